@@ -1,0 +1,147 @@
+# tether — plain Makefile. `make demo`, `make test`, `make bench`, `make install PREFIX=...`
+# `make test SANITIZE=1` builds everything with ASan+UBSan into build-san/.
+
+PREFIX ?= /usr/local
+CC     ?= cc
+CXX    ?= c++
+
+# Debian packages the project needs (see README "Set-up").
+DEB_PKGS := pkg-config lua5.4 liblua5.4-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth gnuplot-nox
+PC_PKGS  := lua5.4 box2d sdl2 osmesa libpng
+
+ifeq ($(SANITIZE),1)
+BUILD    := build-san
+SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g
+OPT      := -O1
+else
+BUILD    := build
+SANFLAGS :=
+OPT      := -O2
+endif
+
+WARN     := -Wall -Wextra -Wpedantic -Wshadow -Wmissing-prototypes -Wstrict-prototypes
+# Determinism: no contraction of a*b+c into FMA, never -ffast-math.
+FPFLAGS  := -ffp-contract=off
+CFLAGS_ALL := -std=c11 -D_DEFAULT_SOURCE $(OPT) $(FPFLAGS) $(WARN) -fPIC -fvisibility=hidden -Iinclude -Isrc $(SANFLAGS) $(CFLAGS)
+LDFLAGS_ALL := $(SANFLAGS) $(LDFLAGS)
+
+PC_CFLAGS = $(shell pkg-config --cflags $(1) 2>/dev/null)
+PC_LIBS   = $(shell pkg-config --libs $(1) 2>/dev/null)
+LUA_CFLAGS := $(call PC_CFLAGS,lua5.4)
+LUA_LIBS   := $(call PC_LIBS,lua5.4)
+
+# Core engine: every src/*.c that is not a binding, the runner or a back end
+# needing an optional library.
+CORE_SRC := $(filter-out src/lua_%.c src/runner.c,$(wildcard src/*.c))
+LUA_SRC  := $(wildcard src/lua_*.c)
+CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
+LUA_OBJ  := $(LUA_SRC:src/%.c=$(BUILD)/obj/%.o)
+TEST_SRC := $(wildcard tests/*.c)
+TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
+BENCH_SRC := $(wildcard bench/*.c)
+
+LIB_A   := $(BUILD)/libtether.a
+LIB_SO  := $(BUILD)/libtether.so
+LUA_MOD := $(BUILD)/tether.so
+RUNNER  := $(BUILD)/tether
+TEST_C  := $(BUILD)/test_c
+BENCH   := $(BUILD)/bench
+
+.PHONY: all deps demo test test-c test-lua bench install uninstall clean
+all: deps $(LIB_A) $(LIB_SO) $(LUA_MOD) $(RUNNER)
+
+# --- dependencies -----------------------------------------------------------
+# Installs what is missing when run as root on Debian; otherwise prints the
+# exact apt-get line and stops.
+deps:
+	@missing=""; \
+	if command -v dpkg-query >/dev/null 2>&1; then \
+	  for p in $(DEB_PKGS); do \
+	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	  done; \
+	else \
+	  for p in $(PC_PKGS); do pkg-config --exists $$p 2>/dev/null || missing="$$missing $$p"; done; \
+	fi; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "tether: installing missing Debian packages:$$missing"; \
+	    apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $$missing >/dev/null || exit 1; \
+	  else \
+	    echo "tether: missing packages:$$missing"; \
+	    echo "tether: run as root:  apt-get update && apt-get install -y$$missing"; \
+	    exit 1; \
+	  fi; \
+	fi
+
+# --- build ------------------------------------------------------------------
+$(BUILD)/obj/%.o: src/%.c $(wildcard include/*.h include/tether/*.h src/*.h) | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) -MMD -c $< -o $@
+
+$(BUILD)/obj/lua_%.o: src/lua_%.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
+
+$(BUILD)/obj/runner.o: src/runner.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
+
+$(BUILD)/obj/tests/%.o: tests/%.c | $(BUILD)/obj/tests
+	$(CC) $(CFLAGS_ALL) -Itests -MMD -c $< -o $@
+
+$(BUILD)/obj $(BUILD)/obj/tests:
+	mkdir -p $@
+
+$(LIB_A): $(CORE_OBJ)
+	rm -f $@; ar rcs $@ $^
+
+$(LIB_SO): $(CORE_OBJ)
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+
+# The Lua module is not linked against liblua: the host (lua5.4 or our runner)
+# provides the Lua API, and a second copy of Lua in one process breaks it.
+$(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ)
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+
+$(RUNNER): $(BUILD)/obj/runner.o $(LUA_OBJ) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) -lm
+
+$(TEST_C): $(TEST_OBJ) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
+
+$(BENCH): $(BENCH_SRC) $(LIB_A)
+	$(CC) $(CFLAGS_ALL) -Ibench -o $@ $(BENCH_SRC) $(LIB_A) $(LDFLAGS_ALL) -lm
+
+-include $(wildcard $(BUILD)/obj/*.d $(BUILD)/obj/tests/*.d)
+
+# --- run --------------------------------------------------------------------
+demo: all
+	$(RUNNER) --headless --steps 600 demos/fountain.lua
+
+test: all $(TEST_C)
+	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh
+
+bench: deps $(BENCH) $(RUNNER)
+	@mkdir -p $(BUILD)/bench-out
+	$(BENCH) $(BUILD)/bench-out
+	@if command -v gnuplot >/dev/null 2>&1; then \
+	  for g in bench/*.gp; do gnuplot -e "dir='$(BUILD)/bench-out'" $$g; done; \
+	  echo "plots: $(BUILD)/bench-out/*.png"; \
+	else echo "gnuplot not installed: no plots (CSV in $(BUILD)/bench-out)"; fi
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/bin \
+	  $(DESTDIR)$(PREFIX)/lib/lua/5.4 $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/share/lua/5.4
+	install -m 644 $(LIB_A) $(LIB_SO) $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 include/tether.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 include/tether/*.h $(DESTDIR)$(PREFIX)/include/tether/
+	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
+	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
+	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|0.1.0|' tether.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
+
+uninstall:
+	rm -rf $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/include/tether.h
+	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so \
+	  $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so $(DESTDIR)$(PREFIX)/bin/tether \
+	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+
+clean:
+	rm -rf build build-san

@@ -1,0 +1,113 @@
+/* tether — the world: owner of all simulation state, and its step. */
+#ifndef TETHER_WORLD_H
+#define TETHER_WORLD_H
+
+#include "base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// The world. Owns every particle, spring and (later) constraint and shape.
+/// All simulation state lives inside it: two worlds never share anything.
+typedef struct tt_world tt_world;
+
+/// How a world is made. Start from tt_world_def_default() and change fields.
+typedef struct tt_world_def {
+    tt_vec2 gravity;          ///< acceleration, m/s²; default (0, −9.81)
+    tt_integrator integrator; ///< default TT_VERLET
+    double damping;           ///< velocity damping, 1/s: v *= 1 − damping·dt each step; default 0; ≥ 0
+    tt_vec2 wind;             ///< uniform force on every particle, N; default (0, 0)
+    double dt_hint;           ///< the step you expect to use, s; default 1/60. Verlet turns a velocity set
+                              ///< before the first step into x_old with it (any later dt is still exact)
+    uint32_t capacity;        ///< particles to reserve up front; default 0 (grows on demand)
+    uint32_t max_particles;   ///< hard limit on live + removed-slot particles; default 16 777 216
+} tt_world_def;
+
+/// Pipeline stages timed by the world (milliseconds of the last step).
+/// A stage the world does not use is skipped outright and reads 0.
+typedef enum tt_stage {
+    TT_STAGE_FORCES = 0, ///< user forces, wind, springs → accelerations
+    TT_STAGE_INTEGRATE,  ///< the integrator's update of positions/velocities
+    TT_STAGE_COLLIDE,    ///< broadphase + narrowphase (collisions issue)
+    TT_STAGE_SOLVE,      ///< constraint relaxation (constraints issue)
+    TT_STAGE_EVENTS,     ///< contact/break events (collisions issue)
+    TT_STAGE_COUNT
+} tt_stage;
+
+/// Counters of the last step, read with tt_world_get_stats.
+typedef struct tt_stats {
+    uint64_t steps;                      ///< steps taken since creation
+    double time;                         ///< simulated time, s (sum of dt)
+    uint32_t particles;                  ///< live particles
+    uint32_t springs;                    ///< live springs
+    double step_ms;                      ///< wall time of the last step, ms
+    double stage_ms[TT_STAGE_COUNT];     ///< wall time per stage of the last step, ms
+    uint32_t force_evaluations;          ///< force evaluations in the last step (1 Euler…4 RK4; 0 when nothing but gravity)
+    uint32_t diverged;                   ///< particles stopped in the last step because |x| or |v| passed TT_DIVERGED
+} tt_stats;
+
+/// Mechanical energy of the world now, J. Computed on request (O(n)), so a
+/// world that never asks never pays. Pinned particles count no energy.
+typedef struct tt_energy {
+    double kinetic;   ///< Σ ½ m |v|²
+    double gravity;   ///< Σ −m g·x (zero at the origin)
+    double spring;    ///< Σ ½ k (|xa − xb| − rest)²
+    double total;     ///< the sum of the three
+} tt_energy;
+
+/// Memory held by a world, bytes.
+typedef struct tt_memory {
+    size_t total;             ///< everything the world allocated
+    size_t particles;         ///< particle arrays at their current capacity
+    uint32_t capacity;        ///< particle slots allocated
+    double bytes_per_particle;///< particle arrays / capacity (core arrays plus any optional ones in use)
+} tt_memory;
+
+/// The defaults documented on each tt_world_def field.
+TT_API tt_world_def tt_world_def_default(void);
+/// Makes a world; NULL on bad input or no memory (tt_last_error(NULL) says why).
+TT_API tt_world *tt_world_create(const tt_world_def *def);
+/// Frees a world and everything in it. NULL is allowed.
+TT_API void tt_world_destroy(tt_world *w);
+
+/// Advances the world by dt seconds (0 < dt ≤ 10, finite). Pipeline, in order:
+/// forces → integrate → [collide → solve → events, as later features add them].
+/// Forces applied with tt_particle_apply_force are used for this step, then cleared.
+TT_API tt_result tt_world_step(tt_world *w, double dt);
+
+TT_API tt_result tt_world_set_gravity(tt_world *w, tt_vec2 g);      ///< m/s², finite
+TT_API tt_vec2 tt_world_get_gravity(const tt_world *w);
+TT_API tt_result tt_world_set_wind(tt_world *w, tt_vec2 f);         ///< N per particle, finite
+TT_API tt_vec2 tt_world_get_wind(const tt_world *w);
+TT_API tt_result tt_world_set_damping(tt_world *w, double damping); ///< 1/s, finite, ≥ 0
+TT_API double tt_world_get_damping(const tt_world *w);
+/// Switches integrator between steps; every particle keeps its velocity.
+TT_API tt_result tt_world_set_integrator(tt_world *w, tt_integrator i);
+TT_API tt_integrator tt_world_get_integrator(const tt_world *w);
+
+/// Radial explosion: every movable particle within `radius` of `center` gets
+/// an impulse of `impulse`·(1 − d/radius) N·s pointing away from the centre.
+/// A particle exactly at the centre is left alone (no direction).
+TT_API tt_result tt_world_explode(tt_world *w, tt_vec2 center, double radius, double impulse);
+
+/// Stats of the last step (see tt_stats).
+TT_API tt_result tt_world_get_stats(const tt_world *w, tt_stats *out);
+/// Energy now (see tt_energy).
+TT_API tt_result tt_world_get_energy(const tt_world *w, tt_energy *out);
+/// Memory now (see tt_memory).
+TT_API tt_result tt_world_get_memory(const tt_world *w, tt_memory *out);
+/// 64-bit FNV-1a hash of the simulation state (live particles' positions,
+/// velocity state, masses, springs, settings, time): equal hashes ⇔ same state
+/// for the purpose of determinism checks.
+TT_API uint64_t tt_world_hash(const tt_world *w);
+
+/// The last error raised by a call on this world, or by tt_world_create when
+/// w is NULL (per thread). "" when none.
+TT_API const char *tt_last_error(const tt_world *w);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

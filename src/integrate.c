@@ -1,0 +1,262 @@
+/* tether — the integrators. Positions and the second state array (x_old for
+ * Verlet, velocity for the rest) advance by dt; pinned and removed particles
+ * (inverse mass 0) are skipped. A particle whose new |x| or |v| passes
+ * TT_DIVERGED is stopped where it was, so no Inf or NaN ever enters a world. */
+#include "internal.h"
+
+static inline bool too_big(double a, double b) { return !(fabs(a) <= TT_DIVERGED && fabs(b) <= TT_DIVERGED); }
+
+static double damping_factor(const tt_world *w, double dt)
+{
+    double f = 1.0 - w->damping * dt;
+    return f > 0.0 ? f : 0.0;
+}
+
+/* Accelerations for this step: NULL when gravity is all there is. */
+static bool accel(tt_world *w, const double *x, const double *y, const double *vx, const double *vy,
+                  double **ax, double **ay)
+{
+    *ax = tt__scratch(w, TT_SCRATCH_AX);
+    *ay = tt__scratch(w, TT_SCRATCH_AY);
+    if (!*ax || !*ay) return false;
+    tt__eval_accel(w, x, y, vx, vy, *ax, *ay);
+    return true;
+}
+
+static uint32_t verlet(tt_world *w, double dt, bool forces)
+{
+    const uint32_t n = w->ppool.count;
+    double *px = w->px, *py = w->py, *qx = w->qx, *qy = w->qy;
+    const double *inv = w->inv_mass;
+    const double gx = w->gravity.x, gy = w->gravity.y;
+    double *ax = NULL, *ay = NULL;
+    if (forces && !accel(w, px, py, NULL, NULL, &ax, &ay)) forces = false;
+
+    /* A velocity set exactly at time t starts with x + v·dt + a·dt²/2 (a
+     * Taylor step), which makes Verlet exact for constant acceleration. */
+    for (uint32_t k = 0; k < w->fresh_count; k++) {
+        uint32_t i = w->fresh[k];
+        if (!(w->flags[i] & TT_PF_FRESH)) continue;
+        w->flags[i] &= (uint16_t)~TT_PF_FRESH;
+        if (inv[i] == 0.0) continue;
+        double h = 0.5 * w->dt_prev * w->dt_prev;
+        qx[i] += (forces ? ax[i] : gx) * h;
+        qy[i] += (forces ? ay[i] : gy) * h;
+    }
+    w->fresh_count = 0;
+
+    /* Time-corrected Verlet: with dt ≠ dt_prev, x + (x − x_old)·dt/dt_prev +
+     * a·dt·(dt + dt_prev)/2 stays exact for constant acceleration. */
+    const double r = dt / w->dt_prev, f = damping_factor(w, dt), dt2 = 0.5 * dt * (dt + w->dt_prev);
+    uint32_t bad = 0;
+    if (!forces && r == 1.0 && f == 1.0) {
+        /* The common case, kept as lean as a bare loop: constant dt, gravity only. */
+        const double gdx = gx * dt * dt, gdy = gy * dt * dt;
+        for (uint32_t i = 0; i < n; i++) {
+            if (inv[i] == 0.0) continue;
+            double x = px[i], y = py[i];
+            double nx = x + (x - qx[i]) + gdx;
+            double ny = y + (y - qy[i]) + gdy;
+            qx[i] = x;
+            qy[i] = y;
+            if (TT_UNLIKELY(too_big(nx, ny))) { bad++; continue; }
+            px[i] = nx;
+            py[i] = ny;
+        }
+        return bad;
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        if (inv[i] == 0.0) continue;
+        double x = px[i], y = py[i];
+        double dx = ((x - qx[i]) * r + (forces ? ax[i] : gx) * dt2) * f;
+        double dy = ((y - qy[i]) * r + (forces ? ay[i] : gy) * dt2) * f;
+        double nx = x + dx, ny = y + dy;
+        qx[i] = x;
+        qy[i] = y;
+        if (TT_UNLIKELY(too_big(nx, ny) || too_big(dx / dt, dy / dt))) { bad++; continue; }
+        px[i] = nx;
+        py[i] = ny;
+    }
+    return bad;
+}
+
+/* Writes the new state of particle i, or stops it where it was. */
+static inline uint32_t commit(double *px, double *py, double *vx, double *vy, uint32_t i,
+                              double nx, double ny, double nvx, double nvy)
+{
+    if (TT_UNLIKELY(too_big(nx, ny) || too_big(nvx, nvy))) {
+        vx[i] = vy[i] = 0.0;
+        return 1;
+    }
+    px[i] = nx;
+    py[i] = ny;
+    vx[i] = nvx;
+    vy[i] = nvy;
+    return 0;
+}
+
+static uint32_t euler(tt_world *w, double dt, bool forces, bool symplectic)
+{
+    const uint32_t n = w->ppool.count;
+    double *px = w->px, *py = w->py, *vx = w->qx, *vy = w->qy;
+    double *ax = NULL, *ay = NULL;
+    if (forces && !accel(w, px, py, vx, vy, &ax, &ay)) return 0;
+    const double *inv = w->inv_mass;
+    const double gx = w->gravity.x, gy = w->gravity.y, f = damping_factor(w, dt);
+    uint32_t bad = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        if (inv[i] == 0.0) continue;
+        double nvx = vx[i] + (forces ? ax[i] : gx) * dt, nvy = vy[i] + (forces ? ay[i] : gy) * dt;
+        if (symplectic) { /* damp, then drift with the new velocity: Verlet's twin */
+            nvx *= f;
+            nvy *= f;
+            bad += commit(px, py, vx, vy, i, px[i] + nvx * dt, py[i] + nvy * dt, nvx, nvy);
+        } else {
+            bad += commit(px, py, vx, vy, i, px[i] + vx[i] * dt, py[i] + vy[i] * dt, nvx * f, nvy * f);
+        }
+    }
+    return bad;
+}
+
+/* Velocity Verlet, kick-drift-kick: forces at both ends of the step. */
+static uint32_t leapfrog(tt_world *w, double dt, bool forces)
+{
+    const uint32_t n = w->ppool.count;
+    double *px = w->px, *py = w->py, *vx = w->qx, *vy = w->qy;
+    double *ax = NULL, *ay = NULL;
+    if (forces && !accel(w, px, py, vx, vy, &ax, &ay)) return 0;
+    const double *inv = w->inv_mass;
+    const double gx = w->gravity.x, gy = w->gravity.y;
+    const double h = 0.5 * dt, f = damping_factor(w, dt);
+    for (uint32_t i = 0; i < n; i++) {
+        if (inv[i] == 0.0) continue;
+        vx[i] += (forces ? ax[i] : gx) * h;
+        vy[i] += (forces ? ay[i] : gy) * h;
+        px[i] += vx[i] * dt;
+        py[i] += vy[i] * dt;
+    }
+    if (forces) tt__eval_accel(w, px, py, vx, vy, ax, ay);
+    uint32_t bad = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        if (inv[i] == 0.0) continue;
+        double nvx = (vx[i] + (forces ? ax[i] : gx) * h) * f, nvy = (vy[i] + (forces ? ay[i] : gy) * h) * f;
+        if (TT_UNLIKELY(too_big(px[i], py[i]) || too_big(nvx, nvy))) {
+            px[i] -= vx[i] * dt; /* back to where the step began */
+            py[i] -= vy[i] * dt;
+            vx[i] = vy[i] = 0.0;
+            bad++;
+            continue;
+        }
+        vx[i] = nvx;
+        vy[i] = nvy;
+    }
+    return bad;
+}
+
+static uint32_t rk4_constant(tt_world *w, double dt)
+{
+    const uint32_t n = w->ppool.count;
+    double *px = w->px, *py = w->py, *vx = w->qx, *vy = w->qy;
+    const double gx = w->gravity.x, gy = w->gravity.y, f = damping_factor(w, dt);
+    const double hx = 0.5 * gx * dt * dt, hy = 0.5 * gy * dt * dt;
+    uint32_t bad = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        if (w->inv_mass[i] == 0.0) continue;
+        bad += commit(px, py, vx, vy, i, px[i] + vx[i] * dt + hx, py[i] + vy[i] * dt + hy,
+                      (vx[i] + gx * dt) * f, (vy[i] + gy * dt) * f);
+    }
+    return bad;
+}
+
+/* With gravity alone the four stages collapse to x + v·dt + g·dt²/2, which
+ * is what is computed then. */
+static uint32_t rk4(tt_world *w, double dt, bool forces)
+{
+    if (!forces) return rk4_constant(w, dt);
+    const uint32_t n = w->ppool.count;
+    double *px = w->px, *py = w->py, *vx = w->qx, *vy = w->qy;
+    double *s[8];
+    for (int k = 0; k < 8; k++)
+        if (!(s[k] = tt__scratch(w, TT_SCRATCH_RK4_FIRST + k))) return 0;
+    double *tx = s[0], *ty = s[1], *tvx = s[2], *tvy = s[3]; /* stage state */
+    double *sx = s[4], *sy = s[5], *svx = s[6], *svy = s[7]; /* weighted sums */
+    double *ax, *ay;
+    if (!accel(w, px, py, vx, vy, &ax, &ay)) return 0;
+    const double *inv = w->inv_mass;
+    const double h = 0.5 * dt;
+    for (uint32_t i = 0; i < n; i++) {
+        sx[i] = vx[i];
+        sy[i] = vy[i];
+        svx[i] = ax[i];
+        svy[i] = ay[i];
+        tx[i] = px[i] + vx[i] * h;
+        ty[i] = py[i] + vy[i] * h;
+        tvx[i] = vx[i] + ax[i] * h;
+        tvy[i] = vy[i] + ay[i] * h;
+    }
+    for (int stage = 2; stage <= 3; stage++) {
+        tt__eval_accel(w, tx, ty, tvx, tvy, ax, ay);
+        double step = stage == 2 ? h : dt;
+        for (uint32_t i = 0; i < n; i++) {
+            double kvx = tvx[i], kvy = tvy[i];
+            sx[i] += 2.0 * kvx;
+            sy[i] += 2.0 * kvy;
+            svx[i] += 2.0 * ax[i];
+            svy[i] += 2.0 * ay[i];
+            tx[i] = px[i] + kvx * step;
+            ty[i] = py[i] + kvy * step;
+            tvx[i] = vx[i] + ax[i] * step;
+            tvy[i] = vy[i] + ay[i] * step;
+        }
+    }
+    tt__eval_accel(w, tx, ty, tvx, tvy, ax, ay);
+    const double sixth = dt / 6.0, f = damping_factor(w, dt);
+    uint32_t bad = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        if (inv[i] == 0.0) continue;
+        bad += commit(px, py, vx, vy, i, px[i] + sixth * (sx[i] + tvx[i]), py[i] + sixth * (sy[i] + tvy[i]),
+                      (vx[i] + sixth * (svx[i] + ax[i])) * f, (vy[i] + sixth * (svy[i] + ay[i])) * f);
+    }
+    return bad;
+}
+
+void tt__integrate(tt_world *w, double dt)
+{
+    double t0 = tt__now_ms();
+    bool forces = tt__has_forces(w);
+    uint32_t bad;
+    switch (w->integrator) {
+    case TT_VERLET: bad = verlet(w, dt, forces); break;
+    case TT_EULER: bad = euler(w, dt, forces, false); break;
+    case TT_SYMPLECTIC_EULER: bad = euler(w, dt, forces, true); break;
+    case TT_LEAPFROG: bad = leapfrog(w, dt, forces); break;
+    case TT_RK4: bad = rk4(w, dt, forces); break;
+    default: bad = 0; break;
+    }
+    w->stats.diverged += bad;
+    w->stats.stage_ms[TT_STAGE_INTEGRATE] += tt__now_ms() - t0 - w->stats.stage_ms[TT_STAGE_FORCES];
+}
+
+/* Switching integrator keeps every particle's velocity: Verlet's x_old and
+ * the others' v are two encodings of the same thing. */
+void tt__convert_state(tt_world *w, tt_integrator from, tt_integrator to)
+{
+    if ((from == TT_VERLET) == (to == TT_VERLET)) return;
+    const uint32_t n = w->ppool.count;
+    const double dt = w->dt_prev;
+    if (from == TT_VERLET) {
+        for (uint32_t i = 0; i < n; i++) {
+            w->qx[i] = (w->px[i] - w->qx[i]) / dt;
+            w->qy[i] = (w->py[i] - w->qy[i]) / dt;
+            w->flags[i] &= (uint16_t)~TT_PF_FRESH;
+        }
+        w->fresh_count = 0;
+        w->integrator = to;
+        return;
+    }
+    w->integrator = to;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        tt__set_velocity(w, i, (tt_vec2){w->qx[i], w->qy[i]});
+    }
+}

@@ -1,0 +1,50 @@
+/* tether — generational slot pool. */
+#include "pool.h"
+
+#include <stdlib.h>
+
+uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew)
+{
+    *grew = false;
+    if (p->free_count > 0) return p->free_list[--p->free_count];
+    if (p->count >= limit || p->count == UINT32_MAX) return UINT32_MAX;
+    if (p->count == p->cap) {
+        uint32_t cap = p->cap ? (p->cap > UINT32_MAX / 2 ? UINT32_MAX : p->cap * 2) : 64;
+        uint32_t *gen = realloc(p->gen, (size_t)cap * sizeof *gen);
+        if (!gen) return UINT32_MAX;
+        p->gen = gen;
+        p->cap = cap;
+    }
+    uint32_t i = p->count++;
+    p->gen[i] = 1;
+    *grew = true;
+    return i;
+}
+
+void tt_pool_free(tt_pool *p, uint32_t index)
+{
+    if (p->gen[index] == UINT32_MAX) return; /* retired: its handles stay stale forever */
+    p->gen[index]++;
+    /* The free list grows only with removals, so worlds that never remove never pay. */
+    if (p->free_count == p->free_cap) {
+        uint32_t cap = p->free_cap ? p->free_cap * 2 : 64;
+        if (cap > p->cap) cap = p->cap;
+        uint32_t *fl = realloc(p->free_list, (size_t)cap * sizeof *fl);
+        if (!fl) return; /* no memory: the slot is retired instead of recycled */
+        p->free_list = fl;
+        p->free_cap = cap;
+    }
+    p->free_list[p->free_count++] = index;
+}
+
+void tt_pool_destroy(tt_pool *p)
+{
+    free(p->gen);
+    free(p->free_list);
+    *p = (tt_pool){0};
+}
+
+size_t tt_pool_bytes(const tt_pool *p)
+{
+    return (size_t)p->cap * sizeof(uint32_t) + (size_t)p->free_cap * sizeof(uint32_t);
+}

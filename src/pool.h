@@ -1,0 +1,27 @@
+/* tether — generational slot pool: the id allocator behind every handle. */
+#ifndef TETHER_POOL_H
+#define TETHER_POOL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* New slots come from a LIFO free list, else the high-water mark (deterministic).
+ * Freeing bumps the slot's generation, so old handles go stale; a slot whose
+ * generation would wrap is retired, never reused. */
+typedef struct tt_pool {
+    uint32_t *gen;       /* generation per slot; the slot is live when `live` says so */
+    uint32_t *free_list;
+    uint32_t free_count, free_cap;
+    uint32_t count;      /* slots ever used (high-water mark) */
+    uint32_t cap;
+} tt_pool;
+
+/* Returns a slot index, or UINT32_MAX if the pool cannot grow (limit or memory).
+ * *grew is set when count increased (the caller must size its arrays to count). */
+uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew);
+void tt_pool_free(tt_pool *p, uint32_t index);
+void tt_pool_destroy(tt_pool *p);
+size_t tt_pool_bytes(const tt_pool *p);
+
+#endif

@@ -1,0 +1,293 @@
+/* tether — the world: creation, settings, the step pipeline, stats. */
+#include "internal.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static _Thread_local char g_error[256];
+
+tt_result tt__fail(const tt_world *w, tt_result code, const char *fmt, ...)
+{
+    /* The message buffer is diagnostic state, not simulation state. */
+    char *buf = w ? ((tt_world *)w)->error : g_error;
+    size_t n = w ? sizeof w->error : sizeof g_error;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, n, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+const char *tt_last_error(const tt_world *w) { return w ? w->error : g_error; }
+
+double tt__now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+const char *tt_version(void) { return TT_VERSION_STRING; }
+
+const char *tt_result_string(tt_result r)
+{
+    switch (r) {
+    case TT_OK: return "ok";
+    case TT_EINVAL: return "invalid argument";
+    case TT_ESTALE: return "stale handle";
+    case TT_ENOMEM: return "out of memory or over a limit";
+    case TT_ESTATE: return "not valid in this state";
+    }
+    return "unknown result";
+}
+
+static const char *const integrator_names[TT_INTEGRATOR_COUNT] = {
+    "euler", "symplectic_euler", "leapfrog", "verlet", "rk4"};
+
+const char *tt_integrator_name(tt_integrator i)
+{
+    return (unsigned)i < TT_INTEGRATOR_COUNT ? integrator_names[i] : "unknown";
+}
+
+tt_result tt_integrator_from_name(const char *name, tt_integrator *out)
+{
+    if (!name || !out) return tt__fail(NULL, TT_EINVAL, "tt_integrator_from_name: NULL argument");
+    for (int i = 0; i < TT_INTEGRATOR_COUNT; i++)
+        if (strcmp(name, integrator_names[i]) == 0) {
+            *out = (tt_integrator)i;
+            return TT_OK;
+        }
+    return tt__fail(NULL, TT_EINVAL, "invalid integrator '%s', expected one of: 'euler', "
+                    "'symplectic_euler', 'leapfrog', 'verlet', 'rk4'", name);
+}
+
+tt_world_def tt_world_def_default(void)
+{
+    tt_world_def d;
+    memset(&d, 0, sizeof d);
+    d.gravity = (tt_vec2){0.0, -9.81};
+    d.integrator = TT_VERLET;
+    d.damping = 0.0;
+    d.wind = (tt_vec2){0.0, 0.0};
+    d.dt_hint = 1.0 / 60.0;
+    d.capacity = 0;
+    d.max_particles = 1u << 24;
+    return d;
+}
+
+static tt_result check_dt(const tt_world *w, double dt, const char *fn)
+{
+    if (!(dt > 0.0 && dt <= TT_MAX_DT))
+        return tt__fail(w, TT_EINVAL, "%s: dt must be in (0, %g] s, got %g", fn, TT_MAX_DT, dt);
+    return TT_OK;
+}
+
+tt_world *tt_world_create(const tt_world_def *def)
+{
+    tt_world_def d = def ? *def : tt_world_def_default();
+    const char *fn = "tt_world_create";
+    if (!tt__vec_ok(d.gravity)) { tt__fail(NULL, TT_EINVAL, "%s: gravity must be finite, |g| <= %g", fn, TT_MAX_VALUE); return NULL; }
+    if (!tt__vec_ok(d.wind)) { tt__fail(NULL, TT_EINVAL, "%s: wind must be finite, |f| <= %g", fn, TT_MAX_VALUE); return NULL; }
+    if (!tt__in_range(d.damping, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: damping must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.damping); return NULL; }
+    if ((unsigned)d.integrator >= TT_INTEGRATOR_COUNT) { tt__fail(NULL, TT_EINVAL, "%s: unknown integrator %d", fn, (int)d.integrator); return NULL; }
+    if (check_dt(NULL, d.dt_hint, fn) != TT_OK) return NULL;
+    if (d.max_particles == 0 || d.max_particles > (1u << 30)) { tt__fail(NULL, TT_EINVAL, "%s: max_particles must be in [1, 2^30]", fn); return NULL; }
+    if (d.capacity > d.max_particles) { tt__fail(NULL, TT_EINVAL, "%s: capacity %u is over max_particles %u", fn, d.capacity, d.max_particles); return NULL; }
+
+    tt_world *w = calloc(1, sizeof *w);
+    if (!w) { tt__fail(NULL, TT_ENOMEM, "%s: out of memory", fn); return NULL; }
+    w->gravity = d.gravity;
+    w->wind = d.wind;
+    w->damping = d.damping;
+    w->integrator = d.integrator;
+    w->dt_prev = d.dt_hint;
+    w->max_particles = d.max_particles;
+    if (d.capacity && tt__particles_reserve(w, d.capacity) != TT_OK) {
+        tt__fail(NULL, TT_ENOMEM, "%s: cannot reserve %u particles", fn, d.capacity);
+        tt_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+void tt_world_destroy(tt_world *w)
+{
+    if (!w) return;
+    tt__particles_free(w);
+    tt__springs_free(w);
+    free(w);
+}
+
+/* The pipeline, top to bottom. Each stage runs only if the world uses it;
+ * later features (collide, solve, events) slot in at the marked places. */
+tt_result tt_world_step(tt_world *w, double dt)
+{
+    TT_CHECK_WORLD(w, "tt_world_step");
+    tt_result r = check_dt(w, dt, "tt_world_step");
+    if (r != TT_OK) return r;
+
+    double t0 = tt__now_ms();
+    memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
+    w->stats.force_evaluations = 0;
+    w->stats.diverged = 0;
+
+    tt__integrate(w, dt); /* forces are evaluated inside, as often as the integrator needs */
+    /* collide → solve → events: added by the collision and constraint features */
+
+    if (w->forces_pending) {
+        memset(w->fx, 0, (size_t)w->ppool.count * sizeof *w->fx);
+        memset(w->fy, 0, (size_t)w->ppool.count * sizeof *w->fy);
+        w->forces_pending = false;
+    }
+    w->dt_prev = dt;
+    w->stats.steps++;
+    w->stats.time += dt;
+    w->stats.step_ms = tt__now_ms() - t0;
+    if (w->stats.diverged)
+        tt__fail(w, TT_OK, "tt_world_step: %u particle(s) passed |x| or |v| > %g and were stopped",
+                 w->stats.diverged, TT_DIVERGED);
+    return TT_OK;
+}
+
+tt_result tt_world_set_gravity(tt_world *w, tt_vec2 g)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_gravity");
+    if (!tt__vec_ok(g)) return tt__fail(w, TT_EINVAL, "tt_world_set_gravity: gravity must be finite, |g| <= %g", TT_MAX_VALUE);
+    w->gravity = g;
+    return TT_OK;
+}
+
+tt_vec2 tt_world_get_gravity(const tt_world *w) { return w ? w->gravity : (tt_vec2){0, 0}; }
+
+tt_result tt_world_set_wind(tt_world *w, tt_vec2 f)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_wind");
+    if (!tt__vec_ok(f)) return tt__fail(w, TT_EINVAL, "tt_world_set_wind: wind must be finite, |f| <= %g", TT_MAX_VALUE);
+    w->wind = f;
+    return TT_OK;
+}
+
+tt_vec2 tt_world_get_wind(const tt_world *w) { return w ? w->wind : (tt_vec2){0, 0}; }
+
+tt_result tt_world_set_damping(tt_world *w, double damping)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_damping");
+    if (!tt__in_range(damping, 0.0, TT_MAX_VALUE))
+        return tt__fail(w, TT_EINVAL, "tt_world_set_damping: damping must be in [0, %g], got %g", TT_MAX_VALUE, damping);
+    w->damping = damping;
+    return TT_OK;
+}
+
+double tt_world_get_damping(const tt_world *w) { return w ? w->damping : 0.0; }
+
+tt_result tt_world_set_integrator(tt_world *w, tt_integrator i)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_integrator");
+    if ((unsigned)i >= TT_INTEGRATOR_COUNT)
+        return tt__fail(w, TT_EINVAL, "tt_world_set_integrator: unknown integrator %d", (int)i);
+    if (i == w->integrator) return TT_OK;
+    tt__convert_state(w, w->integrator, i);
+    w->integrator = i;
+    return TT_OK;
+}
+
+tt_integrator tt_world_get_integrator(const tt_world *w) { return w ? w->integrator : TT_VERLET; }
+
+tt_result tt_world_get_stats(const tt_world *w, tt_stats *out)
+{
+    TT_CHECK_WORLD(w, "tt_world_get_stats");
+    if (!out) return tt__fail(w, TT_EINVAL, "tt_world_get_stats: out is NULL");
+    *out = w->stats;
+    out->particles = w->alive;
+    out->springs = w->springs_alive;
+    return TT_OK;
+}
+
+tt_result tt_world_get_energy(const tt_world *w, tt_energy *out)
+{
+    TT_CHECK_WORLD(w, "tt_world_get_energy");
+    if (!out) return tt__fail(w, TT_EINVAL, "tt_world_get_energy: out is NULL");
+    double ke = 0.0, pe = 0.0;
+    for (uint32_t i = 0; i < w->ppool.count; i++) {
+        if (w->inv_mass[i] == 0.0) continue; /* pinned or removed */
+        tt_vec2 v = tt__velocity(w, i);
+        double m = w->mass[i];
+        ke += 0.5 * m * (v.x * v.x + v.y * v.y);
+        pe -= m * (w->gravity.x * w->px[i] + w->gravity.y * w->py[i]);
+    }
+    out->kinetic = ke;
+    out->gravity = pe;
+    out->spring = tt__springs_energy(w);
+    out->total = ke + pe + out->spring;
+    return TT_OK;
+}
+
+tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
+{
+    TT_CHECK_WORLD(w, "tt_world_get_memory");
+    if (!out) return tt__fail(w, TT_EINVAL, "tt_world_get_memory: out is NULL");
+    /* x, y, x_old|vx, y_old|vy, inverse mass, mass, radius, flags, category, mask */
+    size_t per = 6 * sizeof(double) + sizeof(float) + 3 * sizeof(uint16_t);
+    if (w->fx) per += 2 * sizeof(double);
+    if (w->user) per += sizeof(uint64_t);
+    size_t particles = per * w->pcap + tt_pool_bytes(&w->ppool);
+    size_t total = sizeof *w + particles;
+    for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);
+    total += (size_t)w->fresh_cap * sizeof(uint32_t);
+    total += (size_t)w->scap * sizeof(tt__spring) + tt_pool_bytes(&w->spool);
+    out->total = total;
+    out->particles = particles;
+    out->capacity = w->pcap;
+    out->bytes_per_particle = w->pcap ? (double)particles / w->pcap : (double)per;
+    return TT_OK;
+}
+
+/* FNV-1a over the simulation state, slot order. */
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+uint64_t tt_world_hash(const tt_world *w)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    if (!w) return h;
+    h = fnv(h, &w->gravity, sizeof w->gravity);
+    h = fnv(h, &w->wind, sizeof w->wind);
+    h = fnv(h, &w->damping, sizeof w->damping);
+    h = fnv(h, &w->integrator, sizeof w->integrator);
+    h = fnv(h, &w->dt_prev, sizeof w->dt_prev);
+    h = fnv(h, &w->stats.time, sizeof w->stats.time);
+    h = fnv(h, &w->stats.steps, sizeof w->stats.steps);
+    for (uint32_t i = 0; i < w->ppool.count; i++) {
+        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        h = fnv(h, &i, sizeof i);
+        h = fnv(h, &w->ppool.gen[i], sizeof w->ppool.gen[i]);
+        h = fnv(h, &w->px[i], sizeof(double));
+        h = fnv(h, &w->py[i], sizeof(double));
+        h = fnv(h, &w->qx[i], sizeof(double));
+        h = fnv(h, &w->qy[i], sizeof(double));
+        h = fnv(h, &w->mass[i], sizeof(double));
+        h = fnv(h, &w->radius[i], sizeof(float));
+        h = fnv(h, &w->flags[i], sizeof(uint16_t));
+    }
+    for (uint32_t s = 0; s < w->spool.count; s++) {
+        const tt__spring *sp = &w->springs[s];
+        if (!sp->alive) continue;
+        h = fnv(h, &s, sizeof s);
+        h = fnv(h, &sp->a, sizeof sp->a);
+        h = fnv(h, &sp->b, sizeof sp->b);
+        h = fnv(h, &sp->rest, sizeof sp->rest);
+        h = fnv(h, &sp->k, sizeof sp->k);
+        h = fnv(h, &sp->c, sizeof sp->c);
+    }
+    return h;
+}

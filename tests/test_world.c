@@ -1,0 +1,115 @@
+/* The world: stats, energy, memory, determinism. */
+#include "test.h"
+#include "tether.h"
+
+/* A scene touching every part of the core: springs, forces, impulses, an
+ * explosion, removals, and an integrator switch half way. */
+static tt_world *scene(tt_integrator integ, int steps)
+{
+    tt_world_def d = tt_world_def_default();
+    d.integrator = integ;
+    d.damping = 0.1;
+    d.wind = (tt_vec2){0.3, 0};
+    tt_world *w = tt_world_create(&d);
+    tt_particle prev = {0, 0};
+    for (int k = 0; k < 200; k++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.position = (tt_vec2){k * 0.1, (k * 37 % 11) * 0.2};
+        pd.velocity = (tt_vec2){(k % 7) * 0.3, -(k % 5) * 0.1};
+        pd.mass = 1 + (k % 3);
+        pd.pinned = k % 50 == 0;
+        tt_particle p = tt_particle_create(w, &pd);
+        if (prev.gen) {
+            tt_spring_def sd = tt_spring_def_default();
+            sd.a = prev;
+            sd.b = p;
+            sd.damping = 0.5;
+            tt_spring_create(w, &sd);
+        }
+        prev = p;
+    }
+    tt_particle list[200];
+    tt_world_list_particles(w, list, 200);
+    for (int s = 0; s < steps; s++) {
+        tt_particle_apply_force(w, list[s % 200], (tt_vec2){1, 2});
+        if (s % 60 == 0) tt_world_explode(w, (tt_vec2){10, 1}, 5, 3);
+        if (s == steps / 2) {
+            tt_particle_destroy(w, list[17]);
+            tt_world_set_integrator(w, integ == TT_VERLET ? TT_RK4 : TT_VERLET);
+        }
+        tt_world_step(w, 1.0 / 60);
+    }
+    return w;
+}
+
+TEST(same_inputs_give_bit_identical_state)
+{
+    for (int i = 0; i < TT_INTEGRATOR_COUNT; i++) {
+        tt_world *a = scene((tt_integrator)i, 300), *b = scene((tt_integrator)i, 300), *c = scene((tt_integrator)i, 299);
+        ENSURE(tt_world_hash(a) == tt_world_hash(b));
+        ENSURE(tt_world_hash(a) != tt_world_hash(c));
+        tt_world_destroy(a);
+        tt_world_destroy(b);
+        tt_world_destroy(c);
+    }
+}
+
+TEST(stats_report_the_last_step)
+{
+    tt_world *w = scene(TT_RK4, 10);
+    tt_stats s;
+    ENSURE_OK(tt_world_get_stats(w, &s));
+    ENSURE(s.steps == 10);
+    ENSURE_NEAR(s.time, 10.0 / 60, 1e-12);
+    ENSURE(s.particles == 199);
+    ENSURE(s.springs == 197);
+    ENSURE(s.force_evaluations == 1); /* switched to Verlet half way: one evaluation */
+    ENSURE(s.step_ms >= 0 && s.stage_ms[TT_STAGE_INTEGRATE] >= 0 && s.stage_ms[TT_STAGE_FORCES] > 0);
+    ENSURE(s.stage_ms[TT_STAGE_COLLIDE] == 0 && s.stage_ms[TT_STAGE_SOLVE] == 0);
+    tt_world_destroy(w);
+
+    /* gravity alone evaluates no force at all */
+    w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle_create(w, &pd);
+    tt_world_step(w, 0.01);
+    tt_world_get_stats(w, &s);
+    ENSURE(s.force_evaluations == 0 && s.stage_ms[TT_STAGE_FORCES] == 0);
+    tt_world_set_integrator(w, TT_RK4);
+    tt_world_set_wind(w, (tt_vec2){1, 0});
+    tt_world_step(w, 0.01);
+    tt_world_get_stats(w, &s);
+    ENSURE(s.force_evaluations == 4);
+    tt_world_destroy(w);
+}
+
+TEST(energy_of_a_falling_particle_is_conserved_by_verlet)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){0, 100};
+    pd.mass = 2;
+    tt_particle_create(w, &pd);
+    tt_energy e0, e1;
+    tt_world_get_energy(w, &e0);
+    ENSURE_NEAR(e0.gravity, 2 * 9.81 * 100, 1e-9);
+    ENSURE(e0.kinetic == 0);
+    for (int k = 0; k < 120; k++) tt_world_step(w, 1.0 / 60);
+    tt_world_get_energy(w, &e1);
+    /* Verlet's backward-difference velocity lags by g·dt/2: KE is off by O(dt). */
+    ENSURE_NEAR(e1.total, e0.total, 2 * 9.81 * 9.81 * 2 / 60);
+    tt_world_destroy(w);
+}
+
+TEST(memory_is_reported_and_small)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    for (int k = 0; k < 1000; k++) tt_particle_create(w, &pd);
+    tt_memory m;
+    ENSURE_OK(tt_world_get_memory(w, &m));
+    ENSURE(m.capacity >= 1000);
+    ENSURE(m.bytes_per_particle <= 64);
+    ENSURE(m.total >= m.particles);
+    tt_world_destroy(w);
+}
