@@ -31,6 +31,36 @@ typedef struct tt__spring {
 /* Scratch arrays, allocated the first time an integrator needs them. */
 enum { TT_SCRATCH_AX, TT_SCRATCH_AY, TT_SCRATCH_RK4_FIRST, TT_SCRATCH_COUNT = TT_SCRATCH_RK4_FIRST + 8 };
 
+/* A group of position constraints swept by the relaxation loop: the
+ * constraints feature and the collision feature each register one (or more)
+ * the first time a world uses them, so a world that uses neither pays nothing.
+ * Groups are swept in registration order (deterministic). Only relax is
+ * required. A group moves particles only through tt__correct, so the same
+ * code serves Gauss-Seidel and Jacobi. */
+typedef struct tt__group_ops {
+    const char *name;
+    tt_stage begin_stage; /* where begin's time is booked (TT_STAGE_COLLIDE for detection) */
+    /* once per substep after integration, before the sweeps (detection, rest data) */
+    void (*begin)(tt_world *w, void *self, double h);
+    /* one sweep over every constraint; returns the largest error seen before correcting, m */
+    double (*relax)(tt_world *w, void *self, double h);
+    /* once per substep after the sweeps and the velocity fix-up (restitution, friction, breaking) */
+    void (*end)(tt_world *w, void *self, double h);
+    /* after the whole step, outside every loop: gather events (booked as TT_STAGE_EVENTS) */
+    void (*after_step)(tt_world *w, void *self);
+    void (*particle_removed)(tt_world *w, void *self, uint32_t index); /* drop what refers to it */
+    uint64_t (*hash)(const tt_world *w, const void *self, uint64_t h); /* fold state into the world hash */
+    size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
+    void (*destroy)(tt_world *w, void *self);
+} tt__group_ops;
+
+typedef struct tt__group {
+    const tt__group_ops *ops;
+    void *self;
+} tt__group;
+
+enum { TT_MAX_GROUPS = 8 };
+
 struct tt_world {
     /* settings */
     tt_vec2 gravity, wind;
@@ -58,6 +88,18 @@ struct tt_world {
     uint32_t *fresh;      /* Verlet particles whose velocity was set exactly since the last step */
     uint32_t fresh_count, fresh_cap;
 
+    /* relaxation solver (solver.c) */
+    uint32_t substeps, iterations;
+    double tolerance;
+    tt_solver_order order;
+    tt__group groups[TT_MAX_GROUPS];
+    int group_count;
+    double *jx, *jy;      /* Jacobi: summed corrections per particle (only while sweeping Jacobi) */
+    uint32_t *jn;         /* Jacobi: how many corrections each particle got */
+    uint32_t jcap;
+    double *bx, *by;      /* positions before the sweeps, for the velocity fix-up of non-Verlet integrators */
+    uint32_t bcap;
+
     /* springs */
     tt_pool spool;
     tt__spring *springs;
@@ -76,6 +118,7 @@ static inline bool tt__finite(double x) { return x - x == 0.0; }
 static inline bool tt__in_range(double x, double lo, double hi) { return x >= lo && x <= hi; }
 static inline bool tt__vec_ok(tt_vec2 v) { return fabs(v.x) <= TT_MAX_VALUE && fabs(v.y) <= TT_MAX_VALUE; }
 double tt__now_ms(void);
+uint64_t tt__fnv(uint64_t h, const void *data, size_t n); /* FNV-1a step, for group hashes */
 
 /* Particles. */
 tt_result tt__particles_reserve(tt_world *w, uint32_t cap);
@@ -92,6 +135,32 @@ void tt__springs_detach(tt_world *w, uint32_t particle);
 double tt__springs_energy(const tt_world *w);
 void tt__springs_free(tt_world *w);
 
+/* Solver (solver.c). */
+/* Registers a group; returns its slot or -1 when full. The world owns self
+ * from then on (destroy is called with it). */
+int tt__group_add(tt_world *w, const tt__group_ops *ops, void *self);
+/* The group registered with ops, or NULL. */
+void *tt__group_find(const tt_world *w, const tt__group_ops *ops);
+void tt__solve(tt_world *w, double h);
+void tt__solver_after_step(tt_world *w);
+void tt__solver_particle_removed(tt_world *w, uint32_t index);
+uint64_t tt__solver_hash(const tt_world *w, uint64_t h);
+size_t tt__solver_memory(const tt_world *w);
+void tt__solver_free(tt_world *w);
+/* Moves particle i by (dx, dy), weighted by the caller: in place under
+ * Gauss-Seidel, accumulated for averaging under Jacobi. Pinned particles
+ * (inverse mass 0) must not be passed a non-zero move. */
+static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
+{
+    if (w->jn && w->order == TT_JACOBI) {
+        w->jx[i] += dx;
+        w->jy[i] += dy;
+        w->jn[i]++;
+    } else {
+        w->px[i] += dx;
+        w->py[i] += dy;
+    }
+}
 /* Forces and integration (integrate.c / forces.c). */
 bool tt__has_forces(const tt_world *w);
 void tt__eval_accel(tt_world *w, const double *x, const double *y, const double *vx, const double *vy,

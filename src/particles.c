@@ -188,6 +188,7 @@ tt_result tt_particle_destroy(tt_world *w, tt_particle p)
     if (r != TT_OK) return r;
     uint32_t i = p.index;
     tt__springs_detach(w, i);
+    tt__solver_particle_removed(w, i);
     w->flags[i] = 0;
     w->inv_mass[i] = 0.0;
     if (w->fx) w->fx[i] = w->fy[i] = 0.0;

@@ -75,6 +75,10 @@ tt_world_def tt_world_def_default(void)
     d.dt_hint = 1.0 / 60.0;
     d.capacity = 0;
     d.max_particles = 1u << 24;
+    d.substeps = 1;
+    d.iterations = 10;
+    d.tolerance = 1e-6;
+    d.order = TT_GAUSS_SEIDEL;
     return d;
 }
 
@@ -95,6 +99,10 @@ tt_world *tt_world_create(const tt_world_def *def)
     if ((unsigned)d.integrator >= TT_INTEGRATOR_COUNT) { tt__fail(NULL, TT_EINVAL, "%s: unknown integrator %d", fn, (int)d.integrator); return NULL; }
     if (check_dt(NULL, d.dt_hint, fn) != TT_OK) return NULL;
     if (d.max_particles == 0 || d.max_particles > (1u << 30)) { tt__fail(NULL, TT_EINVAL, "%s: max_particles must be in [1, 2^30]", fn); return NULL; }
+    if (d.substeps < 1 || d.substeps > 1000) { tt__fail(NULL, TT_EINVAL, "%s: substeps must be in [1, 1000], got %u", fn, d.substeps); return NULL; }
+    if (d.iterations < 1 || d.iterations > 10000) { tt__fail(NULL, TT_EINVAL, "%s: iterations must be in [1, 10000], got %u", fn, d.iterations); return NULL; }
+    if (!tt__in_range(d.tolerance, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: tolerance must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.tolerance); return NULL; }
+    if (d.order != TT_GAUSS_SEIDEL && d.order != TT_JACOBI) { tt__fail(NULL, TT_EINVAL, "%s: unknown solver order %d", fn, (int)d.order); return NULL; }
     if (d.capacity > d.max_particles) { tt__fail(NULL, TT_EINVAL, "%s: capacity %u is over max_particles %u", fn, d.capacity, d.max_particles); return NULL; }
 
     tt_world *w = calloc(1, sizeof *w);
@@ -105,6 +113,10 @@ tt_world *tt_world_create(const tt_world_def *def)
     w->integrator = d.integrator;
     w->dt_prev = d.dt_hint;
     w->max_particles = d.max_particles;
+    w->substeps = d.substeps;
+    w->iterations = d.iterations;
+    w->tolerance = d.tolerance;
+    w->order = d.order;
     if (d.capacity && tt__particles_reserve(w, d.capacity) != TT_OK) {
         tt__fail(NULL, TT_ENOMEM, "%s: cannot reserve %u particles", fn, d.capacity);
         tt_world_destroy(w);
@@ -116,6 +128,7 @@ tt_world *tt_world_create(const tt_world_def *def)
 void tt_world_destroy(tt_world *w)
 {
     if (!w) return;
+    tt__solver_free(w);
     tt__particles_free(w);
     tt__springs_free(w);
     free(w);
@@ -133,16 +146,22 @@ tt_result tt_world_step(tt_world *w, double dt)
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
     w->stats.force_evaluations = 0;
     w->stats.diverged = 0;
+    w->stats.iterations = 0;
+    w->stats.max_error = 0.0;
 
-    tt__integrate(w, dt); /* forces are evaluated inside, as often as the integrator needs */
-    /* collide → solve → events: added by the collision and constraint features */
+    const double h = dt / w->substeps;
+    for (uint32_t s = 0; s < w->substeps; s++) {
+        tt__integrate(w, h); /* forces are evaluated inside, as often as the integrator needs */
+        tt__solve(w, h);     /* detect → relax → velocity pass; nothing when no group is registered */
+        w->dt_prev = h;
+    }
+    tt__solver_after_step(w); /* events, gathered outside every loop */
 
     if (w->forces_pending) {
         memset(w->fx, 0, (size_t)w->ppool.count * sizeof *w->fx);
         memset(w->fy, 0, (size_t)w->ppool.count * sizeof *w->fy);
         w->forces_pending = false;
     }
-    w->dt_prev = dt;
     w->stats.steps++;
     w->stats.time += dt;
     w->stats.step_ms = tt__now_ms() - t0;
@@ -196,6 +215,50 @@ tt_result tt_world_set_integrator(tt_world *w, tt_integrator i)
 
 tt_integrator tt_world_get_integrator(const tt_world *w) { return w ? w->integrator : TT_VERLET; }
 
+tt_result tt_world_set_substeps(tt_world *w, uint32_t substeps)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_substeps");
+    if (substeps < 1 || substeps > 1000)
+        return tt__fail(w, TT_EINVAL, "tt_world_set_substeps: substeps must be in [1, 1000], got %u", substeps);
+    w->substeps = substeps;
+    return TT_OK;
+}
+
+uint32_t tt_world_get_substeps(const tt_world *w) { return w ? w->substeps : 1; }
+
+tt_result tt_world_set_iterations(tt_world *w, uint32_t iterations)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_iterations");
+    if (iterations < 1 || iterations > 10000)
+        return tt__fail(w, TT_EINVAL, "tt_world_set_iterations: iterations must be in [1, 10000], got %u", iterations);
+    w->iterations = iterations;
+    return TT_OK;
+}
+
+uint32_t tt_world_get_iterations(const tt_world *w) { return w ? w->iterations : 10; }
+
+tt_result tt_world_set_tolerance(tt_world *w, double tolerance)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_tolerance");
+    if (!tt__in_range(tolerance, 0.0, TT_MAX_VALUE))
+        return tt__fail(w, TT_EINVAL, "tt_world_set_tolerance: tolerance must be in [0, %g], got %g", TT_MAX_VALUE, tolerance);
+    w->tolerance = tolerance;
+    return TT_OK;
+}
+
+double tt_world_get_tolerance(const tt_world *w) { return w ? w->tolerance : 1e-6; }
+
+tt_result tt_world_set_solver_order(tt_world *w, tt_solver_order order)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_solver_order");
+    if (order != TT_GAUSS_SEIDEL && order != TT_JACOBI)
+        return tt__fail(w, TT_EINVAL, "tt_world_set_solver_order: unknown order %d", (int)order);
+    w->order = order;
+    return TT_OK;
+}
+
+tt_solver_order tt_world_get_solver_order(const tt_world *w) { return w ? w->order : TT_GAUSS_SEIDEL; }
+
 tt_result tt_world_get_stats(const tt_world *w, tt_stats *out)
 {
     TT_CHECK_WORLD(w, "tt_world_get_stats");
@@ -238,6 +301,7 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);
     total += (size_t)w->fresh_cap * sizeof(uint32_t);
     total += (size_t)w->scap * sizeof(tt__spring) + tt_pool_bytes(&w->spool);
+    total += tt__solver_memory(w);
     out->total = total;
     out->particles = particles;
     out->capacity = w->pcap;
@@ -246,7 +310,7 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
 }
 
 /* FNV-1a over the simulation state, slot order. */
-static uint64_t fnv(uint64_t h, const void *data, size_t n)
+uint64_t tt__fnv(uint64_t h, const void *data, size_t n)
 {
     const unsigned char *p = data;
     for (size_t i = 0; i < n; i++) {
@@ -260,34 +324,38 @@ uint64_t tt_world_hash(const tt_world *w)
 {
     uint64_t h = 0xcbf29ce484222325ull;
     if (!w) return h;
-    h = fnv(h, &w->gravity, sizeof w->gravity);
-    h = fnv(h, &w->wind, sizeof w->wind);
-    h = fnv(h, &w->damping, sizeof w->damping);
-    h = fnv(h, &w->integrator, sizeof w->integrator);
-    h = fnv(h, &w->dt_prev, sizeof w->dt_prev);
-    h = fnv(h, &w->stats.time, sizeof w->stats.time);
-    h = fnv(h, &w->stats.steps, sizeof w->stats.steps);
+    h = tt__fnv(h, &w->gravity, sizeof w->gravity);
+    h = tt__fnv(h, &w->wind, sizeof w->wind);
+    h = tt__fnv(h, &w->damping, sizeof w->damping);
+    h = tt__fnv(h, &w->integrator, sizeof w->integrator);
+    h = tt__fnv(h, &w->dt_prev, sizeof w->dt_prev);
+    h = tt__fnv(h, &w->stats.time, sizeof w->stats.time);
+    h = tt__fnv(h, &w->stats.steps, sizeof w->stats.steps);
     for (uint32_t i = 0; i < w->ppool.count; i++) {
         if (!(w->flags[i] & TT_PF_ALIVE)) continue;
-        h = fnv(h, &i, sizeof i);
-        h = fnv(h, &w->ppool.gen[i], sizeof w->ppool.gen[i]);
-        h = fnv(h, &w->px[i], sizeof(double));
-        h = fnv(h, &w->py[i], sizeof(double));
-        h = fnv(h, &w->qx[i], sizeof(double));
-        h = fnv(h, &w->qy[i], sizeof(double));
-        h = fnv(h, &w->mass[i], sizeof(double));
-        h = fnv(h, &w->radius[i], sizeof(float));
-        h = fnv(h, &w->flags[i], sizeof(uint16_t));
+        h = tt__fnv(h, &i, sizeof i);
+        h = tt__fnv(h, &w->ppool.gen[i], sizeof w->ppool.gen[i]);
+        h = tt__fnv(h, &w->px[i], sizeof(double));
+        h = tt__fnv(h, &w->py[i], sizeof(double));
+        h = tt__fnv(h, &w->qx[i], sizeof(double));
+        h = tt__fnv(h, &w->qy[i], sizeof(double));
+        h = tt__fnv(h, &w->mass[i], sizeof(double));
+        h = tt__fnv(h, &w->radius[i], sizeof(float));
+        h = tt__fnv(h, &w->flags[i], sizeof(uint16_t));
     }
     for (uint32_t s = 0; s < w->spool.count; s++) {
         const tt__spring *sp = &w->springs[s];
         if (!sp->alive) continue;
-        h = fnv(h, &s, sizeof s);
-        h = fnv(h, &sp->a, sizeof sp->a);
-        h = fnv(h, &sp->b, sizeof sp->b);
-        h = fnv(h, &sp->rest, sizeof sp->rest);
-        h = fnv(h, &sp->k, sizeof sp->k);
-        h = fnv(h, &sp->c, sizeof sp->c);
+        h = tt__fnv(h, &s, sizeof s);
+        h = tt__fnv(h, &sp->a, sizeof sp->a);
+        h = tt__fnv(h, &sp->b, sizeof sp->b);
+        h = tt__fnv(h, &sp->rest, sizeof sp->rest);
+        h = tt__fnv(h, &sp->k, sizeof sp->k);
+        h = tt__fnv(h, &sp->c, sizeof sp->c);
     }
-    return h;
+    h = tt__fnv(h, &w->substeps, sizeof w->substeps);
+    h = tt__fnv(h, &w->iterations, sizeof w->iterations);
+    h = tt__fnv(h, &w->tolerance, sizeof w->tolerance);
+    h = tt__fnv(h, &w->order, sizeof w->order);
+    return tt__solver_hash(w, h);
 }

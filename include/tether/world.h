@@ -12,6 +12,12 @@ extern "C" {
 /// All simulation state lives inside it: two worlds never share anything.
 typedef struct tt_world tt_world;
 
+/// Order of the relaxation sweeps over position constraints and contacts.
+typedef enum tt_solver_order {
+    TT_GAUSS_SEIDEL = 0, ///< in place, one constraint after another: converges in fewer iterations
+    TT_JACOBI            ///< every correction from the same positions, averaged per particle, then applied
+} tt_solver_order;
+
 /// How a world is made. Start from tt_world_def_default() and change fields.
 typedef struct tt_world_def {
     tt_vec2 gravity;          ///< acceleration, m/s²; default (0, −9.81)
@@ -22,6 +28,10 @@ typedef struct tt_world_def {
                               ///< before the first step into x_old with it (any later dt is still exact)
     uint32_t capacity;        ///< particles to reserve up front; default 0 (grows on demand)
     uint32_t max_particles;   ///< hard limit on live + removed-slot particles; default 16 777 216
+    uint32_t substeps;        ///< each step runs this many substeps of dt/substeps; default 1; 1…1000
+    uint32_t iterations;      ///< most relaxation sweeps per substep; default 10; 1…10 000
+    double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
+    tt_solver_order order;    ///< default TT_GAUSS_SEIDEL
 } tt_world_def;
 
 /// Pipeline stages timed by the world (milliseconds of the last step).
@@ -29,9 +39,9 @@ typedef struct tt_world_def {
 typedef enum tt_stage {
     TT_STAGE_FORCES = 0, ///< user forces, wind, springs → accelerations
     TT_STAGE_INTEGRATE,  ///< the integrator's update of positions/velocities
-    TT_STAGE_COLLIDE,    ///< broadphase + narrowphase (collisions issue)
-    TT_STAGE_SOLVE,      ///< constraint relaxation (constraints issue)
-    TT_STAGE_EVENTS,     ///< contact/break events (collisions issue)
+    TT_STAGE_COLLIDE,    ///< detection: broadphase + narrowphase
+    TT_STAGE_SOLVE,      ///< relaxation sweeps over constraints and contacts, and the velocity pass
+    TT_STAGE_EVENTS,     ///< gathering contact and break events for the script
     TT_STAGE_COUNT
 } tt_stage;
 
@@ -45,6 +55,8 @@ typedef struct tt_stats {
     double stage_ms[TT_STAGE_COUNT];     ///< wall time per stage of the last step, ms
     uint32_t force_evaluations;          ///< force evaluations in the last step (1 Euler…4 RK4; 0 when nothing but gravity)
     uint32_t diverged;                   ///< particles stopped in the last step because |x| or |v| passed TT_DIVERGED
+    uint32_t iterations;                 ///< relaxation sweeps run in the last step (all substeps)
+    double max_error;                    ///< largest constraint/contact error left after the last sweep, m (0 if none)
 } tt_stats;
 
 /// Mechanical energy of the world now, J. Computed on request (O(n)), so a
@@ -71,8 +83,9 @@ TT_API tt_world *tt_world_create(const tt_world_def *def);
 /// Frees a world and everything in it. NULL is allowed.
 TT_API void tt_world_destroy(tt_world *w);
 
-/// Advances the world by dt seconds (0 < dt ≤ 10, finite). Pipeline, in order:
-/// forces → integrate → [collide → solve → events, as later features add them].
+/// Advances the world by dt seconds (0 < dt ≤ 10, finite). Per substep, in order:
+/// forces → integrate → detect (collisions) → relax (constraints and contacts,
+/// up to `iterations` sweeps) → velocity pass → events. Stages a world does not use are skipped.
 /// Forces applied with tt_particle_apply_force are used for this step, then cleared.
 TT_API tt_result tt_world_step(tt_world *w, double dt);
 
@@ -85,6 +98,18 @@ TT_API double tt_world_get_damping(const tt_world *w);
 /// Switches integrator between steps; every particle keeps its velocity.
 TT_API tt_result tt_world_set_integrator(tt_world *w, tt_integrator i);
 TT_API tt_integrator tt_world_get_integrator(const tt_world *w);
+
+/// Substeps per step (1…1000): at equal cost, more substeps beat more iterations.
+TT_API tt_result tt_world_set_substeps(tt_world *w, uint32_t substeps);
+TT_API uint32_t tt_world_get_substeps(const tt_world *w);
+/// Most relaxation sweeps per substep (1…10 000).
+TT_API tt_result tt_world_set_iterations(tt_world *w, uint32_t iterations);
+TT_API uint32_t tt_world_get_iterations(const tt_world *w);
+/// Sweeps stop early once the largest error is ≤ tolerance (m, finite, ≥ 0).
+TT_API tt_result tt_world_set_tolerance(tt_world *w, double tolerance);
+TT_API double tt_world_get_tolerance(const tt_world *w);
+TT_API tt_result tt_world_set_solver_order(tt_world *w, tt_solver_order order);
+TT_API tt_solver_order tt_world_get_solver_order(const tt_world *w);
 
 /// Radial explosion: every movable particle within `radius` of `center` gets
 /// an impulse of `impulse`·(1 − d/radius) N·s pointing away from the centre.
