@@ -1,6 +1,7 @@
 /* tether — benchmarks. `make bench` runs them; every figure is a median of
  * repeated runs taken side by side in this one process, and each table says
  * its target. CSV files land in the output folder for the gnuplot scripts. */
+#include "bench.h"
 #include "tether.h"
 
 #include <math.h>
@@ -9,7 +10,7 @@
 #include <string.h>
 #include <time.h>
 
-static double now_ns(void)
+double bench_now_ns(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -22,13 +23,13 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static double median(double *v, int n)
+double bench_median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-static FILE *open_csv(const char *dir, const char *name, const char *header)
+FILE *bench_csv(const char *dir, const char *name, const char *header)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -54,12 +55,12 @@ static void bare_verlet(double *x, double *y, double *ox, double *oy, size_t n, 
     }
 }
 
-static void bench_integrate(const char *dir)
+void bench_integrate(const char *dir)
 {
     printf("\n== Verlet integrate stage, gravity only: engine vs a bare struct-of-arrays loop ==\n");
     printf("target: engine within 2x of the bare loop at 100k and 1M particles; <= 64 bytes/particle\n");
     printf("%10s %14s %14s %14s %8s %12s\n", "particles", "bare ns/p", "stage ns/p", "step ns/p", "ratio", "bytes/p");
-    FILE *csv = open_csv(dir, "integrate.csv", "particles,bare_ns,stage_ns,step_ns,ratio,bytes_per_particle");
+    FILE *csv = bench_csv(dir, "integrate.csv", "particles,bare_ns,stage_ns,step_ns,ratio,bytes_per_particle");
     const size_t sizes[] = {1000, 10000, 100000, 1000000};
     for (int s = 0; s < 4; s++) {
         size_t n = sizes[s];
@@ -80,11 +81,11 @@ static void bench_integrate(const char *dir)
         int reps = n >= 1000000 ? 31 : n >= 100000 ? 101 : 301;
         double *tb = malloc(reps * sizeof *tb), *ts = malloc(reps * sizeof *ts), *tw = malloc(reps * sizeof *tw);
         for (int r = 0; r < reps; r++) { /* interleaved, so both see the same machine */
-            double t0 = now_ns();
+            double t0 = bench_now_ns();
             bare_verlet(x, y, ox, oy, n, gdx, gdy);
-            double t1 = now_ns();
+            double t1 = bench_now_ns();
             tt_world_step(w, dt);
-            double t2 = now_ns();
+            double t2 = bench_now_ns();
             tt_stats st;
             tt_world_get_stats(w, &st);
             tb[r] = (t1 - t0) / (double)n;
@@ -93,7 +94,7 @@ static void bench_integrate(const char *dir)
         }
         tt_memory m;
         tt_world_get_memory(w, &m);
-        double b = median(tb, reps), st = median(ts, reps), sp = median(tw, reps);
+        double b = bench_median(tb, reps), st = bench_median(ts, reps), sp = bench_median(tw, reps);
         printf("%10zu %14.3f %14.3f %14.3f %8.2f %12.1f\n", n, b, st, sp, st / b, m.bytes_per_particle);
         fprintf(csv, "%zu,%.4f,%.4f,%.4f,%.3f,%.1f\n", n, b, st, sp, st / b, m.bytes_per_particle);
         free(tb); free(ts); free(tw);
@@ -105,12 +106,12 @@ static void bench_integrate(const char *dir)
 
 /* Many independent oscillators (unit mass, spring k = 1 to a pinned anchor):
  * error against the exact orbit after t = 10 s, and cost, per integrator × dt. */
-static void bench_tradeoff(const char *dir)
+void bench_tradeoff(const char *dir)
 {
     printf("\n== Speed/accuracy trade: 1000 oscillators (spring to a pin), t = 10 s ==\n");
     printf("position error vs exact solution and cost per particle-step, per integrator and dt\n");
     printf("%18s %10s %14s %14s %16s\n", "integrator", "dt", "max error", "ns/particle", "energy drift");
-    FILE *csv = open_csv(dir, "tradeoff.csv", "integrator,dt,error,ns_per_particle_step,ns_per_particle_to_t,energy_drift");
+    FILE *csv = bench_csv(dir, "tradeoff.csv", "integrator,dt,error,ns_per_particle_step,ns_per_particle_to_t,energy_drift");
     const int n = 1000;
     const double t_end = 10.0;
     const double dts[] = {0.1, 0.05, 0.02, 0.01, 0.005, 0.002};
@@ -143,9 +144,9 @@ static void bench_tradeoff(const char *dir)
             int steps = (int)lround(t_end / dt);
             double *t = malloc(steps * sizeof *t);
             for (int s = 0; s < steps; s++) {
-                double t0 = now_ns();
+                double t0 = bench_now_ns();
                 tt_world_step(w, dt);
-                t[s] = (now_ns() - t0) / n;
+                t[s] = (bench_now_ns() - t0) / n;
             }
             tt_world_get_energy(w, &e1);
             double err = 0;
@@ -154,7 +155,7 @@ static void bench_tradeoff(const char *dir)
                 tt_particle_get_position(w, ps[i], &x);
                 err = fmax(err, hypot(x.x - i * 10.0 - cos(t_end), x.y - 0.5 * sin(t_end)));
             }
-            double ns = median(t, steps);
+            double ns = bench_median(t, steps);
             double drift = e1.total / e0.total - 1;
             printf("%18s %10.3f %14.3e %14.2f %+16.3e\n", tt_integrator_name((tt_integrator)integ), dt, err, ns, drift);
             fprintf(csv, "%s,%g,%.6e,%.4f,%.4f,%.6e\n", tt_integrator_name((tt_integrator)integ), dt, err, ns, ns * steps, drift);
@@ -166,12 +167,21 @@ static void bench_tradeoff(const char *dir)
     fclose(csv);
 }
 
+/* `bench DIR [SECTION]`: every section, or the one named. */
+static const struct {
+    const char *name;
+    void (*run)(const char *dir);
+} sections[] = {
+    {"integrate", bench_integrate},
+    {"tradeoff", bench_tradeoff},
+};
+
 int main(int argc, char **argv)
 {
     const char *dir = argc > 1 ? argv[1] : ".";
     const char *only = argc > 2 ? argv[2] : NULL;
     printf("tether %s benchmarks (medians; CSV in %s)\n", tt_version(), dir);
-    if (!only || strcmp(only, "integrate") == 0) bench_integrate(dir);
-    if (!only || strcmp(only, "tradeoff") == 0) bench_tradeoff(dir);
+    for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++)
+        if (!only || strcmp(only, sections[k].name) == 0) sections[k].run(dir);
     return 0;
 }

@@ -1,0 +1,17 @@
+/* tether — shared helpers for the benchmark sections (one bench_<feature>.c each). */
+#ifndef TETHER_BENCH_H
+#define TETHER_BENCH_H
+
+#include <stdio.h>
+
+double bench_now_ns(void);
+/* Sorts v in place and returns its median. */
+double bench_median(double *v, int n);
+/* Opens dir/name for writing and writes the CSV header line; exits on failure. */
+FILE *bench_csv(const char *dir, const char *name, const char *header);
+
+/* Sections: each prints a table (with its target) and writes CSV into dir. */
+void bench_integrate(const char *dir);
+void bench_tradeoff(const char *dir);
+
+#endif
