@@ -12,5 +12,7 @@
 #include "tether/world.h"
 #include "tether/particle.h"
 #include "tether/spring.h"
+#include "tether/constraint.h"
+#include "tether/composite.h"
 
 #endif

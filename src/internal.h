@@ -161,6 +161,10 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
         w->py[i] += dy;
     }
 }
+/* Constraints (constraints.c): true when a constraint joining particle slots
+ * a and b says they must not collide (O(1); the collision stage asks). */
+bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
+
 /* Forces and integration (integrate.c / forces.c). */
 bool tt__has_forces(const tt_world *w);
 void tt__eval_accel(tt_world *w, const double *x, const double *y, const double *vx, const double *vy,

@@ -1,0 +1,91 @@
+/* tether — private storage of the constraints feature, shared by
+ * constraints.c (storage, API, relaxation) and composites.c. */
+#ifndef TETHER_CONSTRAINT_INTERNAL_H
+#define TETHER_CONSTRAINT_INTERNAL_H
+
+#include "internal.h"
+#include "tether/composite.h"
+
+/* Distance constraints, the hot loop: dense, swap-removed, 40 bytes each.
+ * The allowed length is [lo, hi]: rigid lo = hi, max-only lo = 0, min-only hi = ∞. */
+typedef struct tt__dist {
+    uint32_t a, b;
+    double lo, hi;
+    double k;      /* stiffness, [0, 1] */
+    double alpha;  /* compliance, m/N; > 0 = XPBD */
+} tt__dist;
+
+/* The cold half of a distance constraint, parallel to tt__dist. */
+typedef struct tt__dist_x {
+    double lambda;       /* XPBD multiplier, reset every substep */
+    double rest;         /* the length given at creation */
+    double break_strain; /* 0 = never */
+    uint32_t slot;       /* handle slot */
+    uint8_t mode;
+    bool collide;
+} tt__dist_x;
+
+/* Every other kind: dense, swap-removed. */
+typedef struct tt__gcon {
+    uint8_t kind;
+    bool outside;      /* bounds */
+    uint32_t slot;
+    uint32_t n;        /* particles (bounds: 0 = all) */
+    uint32_t p[3];     /* pin: p[0]; angle, collinear: a, b, c */
+    uint32_t *list;    /* bounds, area: n slot indices (owned) */
+    double k, alpha, lambda;
+    double v[4];       /* pin: anchor; bounds: min, max; angle: min, max; area: rest, pressure */
+    double friction;   /* bounds */
+} tt__gcon;
+
+typedef struct tt__cslot {
+    uint8_t kind;      /* 0: free */
+    uint32_t dense;    /* index into dist or gen */
+} tt__cslot;
+
+typedef struct tt__composite {
+    bool alive;
+    uint32_t np, nc, ccap;
+    tt_particle *parts;
+    tt_constraint *cons;
+    double *rest;      /* 2·np: rest offsets from the rest centre of mass */
+} tt__composite;
+
+typedef struct tt__cgroup {
+    tt_pool pool;
+    tt__cslot *slots;
+    uint32_t slot_cap, alive;
+
+    tt__dist *dist;
+    tt__dist_x *dx;
+    uint32_t ndist, dist_cap, dx_cap, nbreakable, nxpbd;
+
+    tt__gcon *gen;
+    uint32_t ngen, gen_cap;
+
+    /* pairs (min, max) that must not collide, with how many constraints say so */
+    uint64_t *pair_key;
+    uint32_t *pair_n;
+    uint32_t pair_cap, pair_used;
+
+    /* break events: gathered during the step, published after it */
+    tt_break_event *ev_new, *ev_pub;
+    uint32_t nnew, npub, cap_new, cap_pub;
+
+    double *grad;      /* scratch gradients for area constraints */
+    uint32_t grad_cap;
+
+    /* composites (composites.c) */
+    tt_pool cpool;
+    tt__composite *comps;
+    uint32_t comp_cap, comps_alive;
+} tt__cgroup;
+
+/* The group of w, made and registered on first use when create is true (NULL on no memory). */
+tt__cgroup *tt__cgroup_get(tt_world *w, bool create);
+const tt__cgroup *tt__cgroup_peek(const tt_world *w);
+void tt__composites_free(tt__cgroup *g);
+size_t tt__composites_memory(const tt__cgroup *g);
+uint64_t tt__composites_hash(const tt__cgroup *g, uint64_t h);
+
+#endif
