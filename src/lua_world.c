@@ -64,7 +64,10 @@ void tl_check_result(lua_State *L, const tt_world *w, tt_result r)
         const char *msg = tt_last_error(w);
         if (msg == NULL || msg[0] == '\0')
             msg = tt_result_string(r);
-        tl_error(L, "%s", msg);
+        /* The core names its C function ("tt_particle_set_velocity: …"); the
+         * Lua error already names the Lua one, so say it once. */
+        const char *colon = strncmp(msg, "tt_", 3) == 0 ? strstr(msg, ": ") : NULL;
+        tl_error(L, "%s", colon ? colon + 2 : msg);
     }
 }
 

@@ -411,4 +411,12 @@ T.test("docs/lua-api.md and lua/tether.d.lua cover every function", function()
   end
 end)
 
+T.test("a core refusal names the Lua function once", function()
+  local w = tether.world()
+  local p = w:particle(0, 0, { pinned = true })
+  local ok, msg = pcall(w.set_velocity, w, p, 1, 2)
+  T.ok(not ok)
+  T.eq(msg, "set_velocity: the particle is pinned")
+end)
+
 T.done()
