@@ -419,4 +419,19 @@ T.test("a core refusal names the Lua function once", function()
   T.eq(msg, "set_velocity: the particle is pinned")
 end)
 
+T.test("handles carry their world: another world's handle is refused, in every tag range", function()
+  local a = tether.world()
+  local pa = a:particle(1, 1)
+  for i = 1, 300 do -- tags wrap at 255, and half of them make negative integers
+    local w = tether.world()
+    local p = w:particle(i, 2)
+    local x, y = w:position(p)
+    T.eq(x, i)
+    T.ok(w:is_valid(p))
+    T.ok(not w:is_valid(pa))
+    T.checkerror("stale particle handle", w.position, w, pa)
+    w:destroy()
+  end
+end)
+
 T.done()
