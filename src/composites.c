@@ -611,8 +611,14 @@ uint64_t tt__composites_hash(const tt__cgroup *g, uint64_t h)
         const tt__composite *k = &g->comps[i];
         if (!k->alive) continue;
         h = tt__fnv(h, &i, sizeof i);
-        h = tt__fnv(h, k->parts, (size_t)k->np * sizeof *k->parts);
-        h = tt__fnv(h, k->cons, (size_t)k->nc * sizeof *k->cons);
+        for (uint32_t j = 0; j < k->np; j++) { /* indices and generations, without the world's tag */
+            uint32_t v[2] = {k->parts[j].index, k->parts[j].gen & TT_POOL_GEN_MASK};
+            h = tt__fnv(h, v, sizeof v);
+        }
+        for (uint32_t j = 0; j < k->nc; j++) {
+            uint32_t v[2] = {k->cons[j].index, k->cons[j].gen & TT_POOL_GEN_MASK};
+            h = tt__fnv(h, v, sizeof v);
+        }
     }
     return h;
 }

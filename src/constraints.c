@@ -43,6 +43,7 @@ tt__cgroup *tt__cgroup_get(tt_world *w, bool create)
     if (g || !create) return g;
     g = calloc(1, sizeof *g);
     if (!g) return NULL;
+    g->pool.tag = g->cpool.tag = w->tag; /* handles carry the world's tag */
     if (tt__group_add(w, &constraint_ops, g) < 0) {
         free(g);
         return NULL;
