@@ -367,4 +367,104 @@ function world:each() end
 ---"attempt to use a destroyed world".
 function world:destroy() end
 
+-- Constraints and composites (lua_constraints.c) ---------------------------
+
+---@alias tether.constraint integer
+---@alias tether.composite integer
+
+---@class tether.distance_options
+---@field length? number m, ≥ 0; default the distance now
+---@field mode? "rigid"|"max"|"min" default "rigid"
+---@field stiffness? number [0, 1]; default 1
+---@field compliance? number m/N, ≥ 0; default 0
+---@field break_strain? number ≥ 0; default 0 = never
+---@field collide? boolean default false
+
+---@class tether.composite_options
+---@field mass? number kg per particle; default 1
+---@field radius? number m; default 0
+---@field stiffness? number [0, 1]; default 1
+---@field compliance? number m/N; default 0
+---@field collide? boolean default false
+
+---Distance constraint between two distinct particles.
+---@param a tether.particle
+---@param b tether.particle
+---@param opts? tether.distance_options
+---@return tether.constraint
+function world:distance(a, b, opts) end
+---Pins p to an anchor (default where it is). opts: anchor {x, y}, stiffness, compliance.
+---@param p tether.particle
+---@param opts? table
+---@return tether.constraint
+function world:pin(p, opts) end
+---Keeps particles inside (or, outside = true, out of) a box. opts: particles, outside, friction.
+---@return tether.constraint
+function world:bounds(xmin, ymin, xmax, ymax, opts) end
+---Angle at b within [min, max] rad. opts: min, max, stiffness, compliance.
+---@return tether.constraint
+function world:angle(a, b, c, opts) end
+---Polygon area kept at pressure × rest area. opts: area, pressure, stiffness, compliance.
+---@param handles tether.particle[]
+---@return tether.constraint
+function world:area(handles, opts) end
+---b kept on the line through a and c. opts: stiffness, compliance.
+---@return tether.constraint
+function world:collinear(a, b, c, opts) end
+---@param c tether.constraint
+function world:remove_constraint(c) end
+---@return boolean
+function world:constraint_is_valid(c) end
+---@return "distance"|"pin"|"bounds"|"angle"|"area"|"collinear"
+function world:constraint_kind(c) end
+---Error now: m, rad (angle) or m² (area).
+---@return number
+function world:constraint_error(c) end
+---@return tether.particle[]
+function world:constraint_particles(c) end
+---fields: stiffness, compliance, length, anchor {x, y}, box {xmin, ymin, xmax, ymax}.
+function world:set_constraint(c, fields) end
+---@return number x, number y
+function world:pin_anchor(c) end
+---@return number m
+function world:rest_length(c) end
+---@return integer
+function world:constraint_count() end
+---Segments {x1, y1, x2, y2, …} of distance constraints, then pins.
+---@param t? number[]
+---@return number[] xy, integer n
+function world:constraint_lines(t) end
+---Constraints broken in the last step.
+---@return {constraint: tether.constraint, a: tether.particle, b: tether.particle, length: number, strain: number}[]
+function world:break_events() end
+---opts: start, finish, segments, pin_start, pin_end, slack, break_strain + composite options.
+---@return tether.composite
+function world:rope(opts) end
+---opts: origin, width, height, columns, rows, shear_stiffness, bend_stiffness, pin_top_corners, pin_top_row, break_strain + composite options.
+---@return tether.composite
+function world:cloth(opts) end
+---opts: position, height, limits + composite options.
+---@return tether.composite
+function world:ragdoll(opts) end
+---opts: center, size, segments, pressure, area_stiffness, area_compliance + composite options.
+---@return tether.composite
+function world:soft_body(opts) end
+---opts: center, width, height, angle, columns, rows or points {x1, y1, …} + composite options.
+---@return tether.composite
+function world:lattice(opts) end
+---@param h tether.composite
+function world:remove_composite(h) end
+---@return boolean
+function world:composite_is_valid(h) end
+---@return tether.particle[]
+function world:composite_particles(h) end
+---@return tether.constraint[]
+function world:composite_constraints(h) end
+---@return number x, number y
+function world:composite_center(h) end
+---@return number rad
+function world:composite_angle(h) end
+---@return integer
+function world:composite_count() end
+
 return tether

@@ -69,6 +69,16 @@ local gone_s = W:spring(P2, gone)
 W:remove(gone)                   -- also removes gone_s
 local STALE_P = { gone, 0, 987654321, -1, math.maxinteger, math.mininteger, (3 << 32) | 1 }
 local STALE_S = { gone_s, 0, 987654321, -1, math.maxinteger, S1 + (1 << 40) }
+local C1 = W:distance(P1, P2)      -- constraints and composites (lua_constraints.c)
+local PIN1 = W:pin(P3)
+local H1 = W:lattice { center = { 20, 20 } }
+local gone_c = W:distance(P1, P3)
+W:remove_constraint(gone_c)
+local gone_h = W:rope { start = { 30, 30 }, finish = { 31, 30 }, segments = 1 }
+W:remove_composite(gone_h)
+local STALE_C = { gone_c, 0, 987654321, -1, math.maxinteger, C1 + (1 << 40) }
+local STALE_H = { gone_h, 0, 987654321, -1, math.maxinteger, H1 + (1 << 40) }
+local N_FIXTURES = W:count()
 W:step(1 / 60, 5)
 
 -- Argument kinds: a good value (a function so handles can be fresh), whether
@@ -95,6 +105,14 @@ K.P2 = { good = function() return P2 end, bad = handle_bad("particle", STALE_P) 
 K.Pq = { good = function() return P1 end, bad = handle_bad("particle") }   -- is_valid: stale is not an error
 K.S = { good = function() return S1 end, bad = handle_bad("spring", STALE_S) }
 K.Sq = { good = function() return S1 end, bad = handle_bad("spring") }
+K.C = { good = function() return C1 end, bad = handle_bad("constraint", STALE_C) }
+K.Cpin = { good = function() return PIN1 end, bad = handle_bad("constraint", STALE_C) }
+K.Cq = { good = function() return C1 end, bad = handle_bad("constraint") }
+K.H = { good = function() return H1 end, bad = handle_bad("composite", STALE_H) }
+K.Hq = { good = function() return H1 end, bad = handle_bad("composite") }
+K.P3 = { good = function() return P3 end, bad = handle_bad("particle", STALE_P) }
+K.lo = { good = function() return -1 end, bad = K.coord.bad }
+K.hi = { good = function() return 1 end, bad = K.coord.bad }
 K.mode = { good = function() return "keep" end, optional = true, bad = {
   { "x", "invalid mode 'x', expected one of: 'keep', 'reset'" }, { "", "invalid mode ''" },
   { "KEEP", "invalid mode 'KEEP'" }, { 1, "string expected, got number" }, { {}, "string expected, got table" },
@@ -118,6 +136,8 @@ K.sopts = table_kind(true, "table or nil")
 K.setspring = table_kind(false, "table")
 K.handles = table_kind(false, "table of particle handles")
 K.handles.good = function() return { P1, P2 } end
+K.handles3 = table_kind(false, "table of particle handles")
+K.handles3.good = function() return { P1, P2, P3 } end
 K.xy = table_kind(false, "table of numbers")
 K.xy.good = function() return { 1, 2, 3, 4 } end
 
@@ -177,6 +197,35 @@ local METHODS = {
   { "set_positions", "handles", "xy", "mode" },
   { "each" },
   { "destroy" },
+  { "distance", "P", "P2", "opttable" },
+  { "pin", "P", "opttable" },
+  { "bounds", "lo", "lo", "hi", "hi", "opttable" },
+  { "angle", "P", "P2", "P3", "opttable" },
+  { "area", "handles3", "opttable" },
+  { "collinear", "P", "P2", "P3", "opttable" },
+  { "remove_constraint", "C" },
+  { "constraint_is_valid", "Cq" },
+  { "constraint_kind", "C" },
+  { "constraint_error", "C" },
+  { "constraint_particles", "C" },
+  { "set_constraint", "C", "setspring" },
+  { "pin_anchor", "Cpin" },
+  { "rest_length", "C" },
+  { "constraint_count" },
+  { "constraint_lines", "opttable" },
+  { "break_events" },
+  { "rope", "opttable" },
+  { "cloth", "opttable" },
+  { "ragdoll", "opttable" },
+  { "soft_body", "opttable" },
+  { "lattice", "opttable" },
+  { "remove_composite", "H" },
+  { "composite_is_valid", "Hq" },
+  { "composite_particles", "H" },
+  { "composite_constraints", "H" },
+  { "composite_center", "H" },
+  { "composite_angle", "H" },
+  { "composite_count" },
 }
 
 -- Option tables: fields and their kinds.
@@ -246,15 +295,20 @@ end
 T.test("good arguments work (the baseline of every case)", function()
   for _, spec in ipairs(METHODS) do
     local name = spec[1]
-    if name ~= "destroy" and name ~= "remove" and name ~= "remove_spring" then
+    if name ~= "destroy" and name ~= "remove" and name ~= "remove_spring" and name ~= "remove_constraint"
+        and name ~= "remove_composite" then
       local args, n = good_args(spec)
       local w = tether.world()
       local a = w:particle(0, 0); local b = w:particle(1, 0)
       local s = w:spring(a, b)
+      local c3 = w:particle(2, 0)
+      local fix = { [P1] = a, [P2] = b, [P3] = c3, [S1] = s, [C1] = w:distance(a, b), [PIN1] = w:pin(c3), [H1] = w:lattice() }
       -- map the fixtures of W onto w
       for i = 1, n do
-        if args[i] == P1 then args[i] = a elseif args[i] == P2 then args[i] = b elseif args[i] == S1 then args[i] = s end
-        if type(args[i]) == "table" and args[i][1] == P1 then args[i] = { a, b } end
+        if fix[args[i]] then args[i] = fix[args[i]] end
+        if type(args[i]) == "table" and args[i][1] == P1 then
+          for j = 1, #args[i] do args[i][j] = fix[args[i][j]] or args[i][j] end
+        end
       end
       local ok, err = pcall(w[name], w, unpack_args(args, n))
       T.ok(ok, name .. " with good arguments: " .. tostring(err))
@@ -318,7 +372,7 @@ T.test("option tables refuse unknown keys and bad values", function()
   local p = W:particle(0, 0, { user = fn })
   T.eq(W:user(p), fn, "user = function")
   W:remove(p)
-  T.eq(W:count(), 3, "fixtures only")
+  T.eq(W:count(), N_FIXTURES, "fixtures only")
   world_is_finite(W, "after bad options")
 end)
 

@@ -1,0 +1,626 @@
+/* tether — Lua bindings of constraints and composites: world methods added
+ * to the world class by tl_constraints_register (called from luaopen_tether).
+ * Handles are integers (tt_constraint_to_u64, tt_composite_to_u64). Every
+ * argument is checked here first, so the core never sees a bad value. */
+#include "lua_common.h"
+
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+static const tl_range R_UNIT = {0.0, 1.0, false};
+static const tl_range R_ANGLE = {-PI, PI, false};
+static const tl_range R_POS = {0.0, TT_MAX_VALUE, true};
+
+static const char *const kind_names[] = {"distance", "pin", "bounds", "angle", "area", "collinear", NULL};
+static const char *const mode_names[] = {"rigid", "max", "min", NULL};
+
+static tt_constraint check_constraint(lua_State *L, tt_world *w, int arg)
+{
+    tt_constraint c = tt_constraint_from_u64(tl_checkhandle(L, arg, "constraint"));
+    if (!tt_constraint_is_valid(w, c)) tl_argerror(L, arg, "stale constraint handle");
+    return c;
+}
+
+static tt_composite check_composite(lua_State *L, tt_world *w, int arg)
+{
+    tt_composite c = tt_composite_from_u64(tl_checkhandle(L, arg, "composite"));
+    if (!tt_composite_is_valid(w, c)) tl_argerror(L, arg, "stale composite handle");
+    return c;
+}
+
+static void push_constraint(lua_State *L, tt_world *w, tt_constraint c)
+{
+    if (c.gen == 0) tl_check_result(L, w, TT_EINVAL);
+    lua_pushinteger(L, (lua_Integer)tt_constraint_to_u64(c));
+}
+
+static void push_composite(lua_State *L, tt_world *w, tt_composite c)
+{
+    if (c.gen == 0) tl_check_result(L, w, TT_EINVAL);
+    lua_pushinteger(L, (lua_Integer)tt_composite_to_u64(c));
+}
+
+/* A table of live particle handles at arg, into a userdata buffer left on the stack. */
+static tt_particle *check_handle_list(lua_State *L, tt_world *w, int arg, uint32_t min, uint32_t max, uint32_t *n)
+{
+    if (lua_type(L, arg) != LUA_TTABLE) tl_typeerror(L, arg, "table of particle handles");
+    lua_Integer len = (lua_Integer)lua_rawlen(L, arg);
+    if (len < (lua_Integer)min || len > (lua_Integer)max)
+        tl_argerror(L, arg, "%d to %d particle handles expected, got %d", (int)min, (int)max, (int)len);
+    tt_particle *ps = lua_newuserdatauv(L, (size_t)len * sizeof *ps + 1, 0);
+    for (lua_Integer i = 1; i <= len; i++) {
+        uint64_t h;
+        lua_rawgeti(L, arg, i);
+        if (!tl_tohandle(L, -1, "particle", &h)) tl_argerror(L, arg, "index %d: %s", (int)i, lua_tostring(L, -1));
+        ps[i - 1] = tt_particle_from_u64(h);
+        if (!tt_particle_is_valid(w, ps[i - 1])) tl_argerror(L, arg, "index %d: stale particle handle", (int)i);
+        lua_pop(L, 1);
+    }
+    *n = (uint32_t)len;
+    return ps;
+}
+
+/* The stiffness/compliance pair shared by every constraint's options. */
+static void soft_opts(lua_State *L, int arg, double *k, double *alpha)
+{
+    *k = tl_optfield_number(L, arg, "stiffness", &R_UNIT, *k);
+    *alpha = tl_optfield_number(L, arg, "compliance", &TL_R_NONNEG, *alpha);
+}
+
+/* --- constraints ------------------------------------------------------------- */
+
+static const char *const distance_opts[] = {"length", "mode", "stiffness", "compliance", "break_strain", "collide", NULL};
+
+/* w:distance(a, b [, {length, mode, stiffness, compliance, break_strain, collide}]) → constraint */
+static int c_distance(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 4);
+    tt_distance_def d = tt_distance_def_default();
+    d.a = tl_check_particle(L, w, 2);
+    d.b = tl_check_particle(L, w, 3);
+    if (d.a.index == d.b.index) tl_argerror(L, 3, "a distance constraint needs two distinct particles");
+    tl_checkopts(L, 4, distance_opts);
+    d.length = tl_optfield_number(L, 4, "length", &TL_R_NONNEG, -1.0);
+    d.mode = (tt_distance_mode)tl_optfield_option(L, 4, "mode", "mode", mode_names, 0);
+    soft_opts(L, 4, &d.stiffness, &d.compliance);
+    d.break_strain = tl_optfield_number(L, 4, "break_strain", &TL_R_NONNEG, 0.0);
+    d.collide = tl_optfield_boolean(L, 4, "collide", false);
+    push_constraint(L, w, tt_distance_create(w, &d));
+    return 1;
+}
+
+static const char *const pin_opts[] = {"anchor", "stiffness", "compliance", NULL};
+
+/* w:pin(p [, {anchor = {x, y}, stiffness, compliance}]) → constraint */
+static int c_pin(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 3);
+    tt_pin_def d = tt_pin_def_default();
+    d.particle = tl_check_particle(L, w, 2);
+    tl_checkopts(L, 3, pin_opts);
+    if (tl_getopt(L, 3, "anchor")) {
+        lua_pop(L, 1);
+        d.anchor_here = false;
+        d.anchor = tl_optfield_vec2(L, 3, "anchor", &TL_R_COORD, d.anchor);
+    }
+    soft_opts(L, 3, &d.stiffness, &d.compliance);
+    push_constraint(L, w, tt_pin_create(w, &d));
+    return 1;
+}
+
+static const char *const bounds_opts[] = {"particles", "outside", "friction", NULL};
+
+/* w:bounds(xmin, ymin, xmax, ymax [, {particles = {…}, outside, friction}]) → constraint */
+static int c_bounds(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 6);
+    tt_bounds_def d = tt_bounds_def_default();
+    d.min.x = tl_checknumber(L, 2, &TL_R_COORD);
+    d.min.y = tl_checknumber(L, 3, &TL_R_COORD);
+    d.max.x = tl_checknumber(L, 4, &TL_R_COORD);
+    d.max.y = tl_checknumber(L, 5, &TL_R_COORD);
+    if (!(d.min.x < d.max.x)) tl_argerror(L, 4, "xmax must be greater than xmin");
+    if (!(d.min.y < d.max.y)) tl_argerror(L, 5, "ymax must be greater than ymin");
+    tl_checkopts(L, 6, bounds_opts);
+    d.outside = tl_optfield_boolean(L, 6, "outside", false);
+    d.friction = tl_optfield_number(L, 6, "friction", &R_UNIT, 0.0);
+    if (tl_getopt(L, 6, "particles")) {
+        int t = lua_gettop(L);
+        if (lua_type(L, t) != LUA_TTABLE) tl_error(L, "bad option 'particles' (table of particle handles expected)");
+        d.particles = check_handle_list(L, w, t, 1, 1u << 30, &d.count);
+    }
+    push_constraint(L, w, tt_bounds_create(w, &d));
+    return 1;
+}
+
+static const char *const angle_opts[] = {"min", "max", "stiffness", "compliance", NULL};
+
+/* w:angle(a, b, c [, {min, max, stiffness, compliance}]) → constraint; min/max default to the angle now */
+static int c_angle(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 5);
+    tt_angle_def d = tt_angle_def_default();
+    d.a = tl_check_particle(L, w, 2);
+    d.b = tl_check_particle(L, w, 3);
+    d.c = tl_check_particle(L, w, 4);
+    if (d.a.index == d.b.index || d.b.index == d.c.index || d.a.index == d.c.index)
+        tl_argerror(L, 4, "an angle constraint needs three distinct particles");
+    tl_checkopts(L, 5, angle_opts);
+    bool has_min = tl_getopt(L, 5, "min");
+    if (has_min) lua_pop(L, 1);
+    bool has_max = tl_getopt(L, 5, "max");
+    if (has_max) lua_pop(L, 1);
+    if (has_min != has_max) tl_error(L, "give both 'min' and 'max', or neither (the angle now)");
+    d.min = tl_optfield_number(L, 5, "min", &R_ANGLE, d.min);
+    d.max = tl_optfield_number(L, 5, "max", &R_ANGLE, d.max);
+    d.use_current = !has_min;
+    soft_opts(L, 5, &d.stiffness, &d.compliance);
+    push_constraint(L, w, tt_angle_create(w, &d));
+    return 1;
+}
+
+static const char *const area_opts[] = {"area", "pressure", "stiffness", "compliance", NULL};
+
+/* w:area({p1, p2, p3, …} [, {area, pressure, stiffness, compliance}]) → constraint */
+static int c_area(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 3);
+    tt_area_def d = tt_area_def_default();
+    d.particles = check_handle_list(L, w, 2, 3, 65536, &d.count);
+    tl_checkopts(L, 3, area_opts);
+    if (tl_getopt(L, 3, "area")) {
+        lua_pop(L, 1);
+        d.use_current = false;
+        d.area = tl_optfield_number(L, 3, "area", &TL_R_COORD, 0.0);
+    }
+    d.pressure = tl_optfield_number(L, 3, "pressure", &R_POS, 1.0);
+    soft_opts(L, 3, &d.stiffness, &d.compliance);
+    push_constraint(L, w, tt_area_create(w, &d));
+    return 1;
+}
+
+static const char *const soft_only_opts[] = {"stiffness", "compliance", NULL};
+
+/* w:collinear(a, b, c [, {stiffness, compliance}]) → constraint */
+static int c_collinear(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 5);
+    tt_collinear_def d = tt_collinear_def_default();
+    d.a = tl_check_particle(L, w, 2);
+    d.b = tl_check_particle(L, w, 3);
+    d.c = tl_check_particle(L, w, 4);
+    if (d.a.index == d.b.index || d.b.index == d.c.index || d.a.index == d.c.index)
+        tl_argerror(L, 4, "a collinear constraint needs three distinct particles");
+    tl_checkopts(L, 5, soft_only_opts);
+    soft_opts(L, 5, &d.stiffness, &d.compliance);
+    push_constraint(L, w, tt_collinear_create(w, &d));
+    return 1;
+}
+
+static int c_remove_constraint(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_constraint_destroy(w, check_constraint(L, w, 2)));
+    return 0;
+}
+
+static int c_constraint_is_valid(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_pushboolean(L, tt_constraint_is_valid(w, tt_constraint_from_u64(tl_checkhandle(L, 2, "constraint"))));
+    return 1;
+}
+
+static int c_constraint_kind(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_constraint_kind k;
+    tl_check_result(L, w, tt_constraint_get_kind(w, check_constraint(L, w, 2), &k));
+    lua_pushstring(L, kind_names[k - 1]);
+    return 1;
+}
+
+/* w:constraint_error(c) → error now: m (distance, pin, bounds, collinear), rad (angle), m² (area) */
+static int c_constraint_error(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    double e;
+    tl_check_result(L, w, tt_constraint_get_error(w, check_constraint(L, w, 2), &e));
+    lua_pushnumber(L, e);
+    return 1;
+}
+
+static int c_constraint_particles(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_constraint c = check_constraint(L, w, 2);
+    uint32_t n;
+    tl_check_result(L, w, tt_constraint_get_particles(w, c, NULL, 0, &n));
+    tt_particle *ps = lua_newuserdatauv(L, (size_t)n * sizeof *ps + 1, 0);
+    tl_check_result(L, w, tt_constraint_get_particles(w, c, ps, n, &n));
+    lua_createtable(L, (int)n, 0);
+    for (uint32_t i = 0; i < n; i++) {
+        tl_push_particle(L, ps[i]);
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    return 1;
+}
+
+static const char *const set_opts[] = {"stiffness", "compliance", "length", "anchor", "box", NULL};
+
+/* w:set_constraint(c, {stiffness, compliance, length, anchor = {x, y}, box = {xmin, ymin, xmax, ymax}})
+ * — every field is checked (value and kind) before anything changes. */
+static int c_set_constraint(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_constraint c = check_constraint(L, w, 2);
+    lua_settop(L, 3);
+    if (lua_type(L, 3) != LUA_TTABLE) tl_typeerror(L, 3, "table");
+    tl_checkopts(L, 3, set_opts);
+    tt_constraint_kind kind;
+    tt_constraint_get_kind(w, c, &kind);
+    double k = tl_optfield_number(L, 3, "stiffness", &R_UNIT, -1), a = tl_optfield_number(L, 3, "compliance", &TL_R_NONNEG, -1);
+    double len = tl_optfield_number(L, 3, "length", &TL_R_NONNEG, -1);
+    bool has_anchor = tl_getopt(L, 3, "anchor");
+    if (has_anchor) lua_pop(L, 1);
+    tt_vec2 anchor = tl_optfield_vec2(L, 3, "anchor", &TL_R_COORD, (tt_vec2){0, 0});
+    double box[4] = {0, 0, 0, 0};
+    bool has_box = tl_getopt(L, 3, "box");
+    if (has_box) {
+        int t = lua_gettop(L);
+        if (lua_type(L, t) != LUA_TTABLE) tl_error(L, "bad option 'box' (table {xmin, ymin, xmax, ymax} expected)");
+        for (int i = 0; i < 4; i++) {
+            lua_rawgeti(L, t, i + 1);
+            if (!tl_tonumber_in(L, -1, &TL_R_COORD, &box[i]))
+                tl_error(L, "bad option 'box' (table {xmin, ymin, xmax, ymax} expected)");
+            lua_pop(L, 1);
+        }
+        lua_pop(L, 1);
+        if (!(box[0] < box[2] && box[1] < box[3])) tl_error(L, "bad option 'box' (need xmin < xmax and ymin < ymax)");
+    }
+    if ((k >= 0 || a >= 0) && kind == TT_CONSTRAINT_BOUNDS) tl_error(L, "bounds have no stiffness or compliance");
+    if (len >= 0 && kind != TT_CONSTRAINT_DISTANCE) tl_error(L, "'length' is for distance constraints");
+    if (has_anchor && kind != TT_CONSTRAINT_PIN) tl_error(L, "'anchor' is for pins");
+    if (has_box && kind != TT_CONSTRAINT_BOUNDS) tl_error(L, "'box' is for bounds");
+    if (k >= 0) tl_check_result(L, w, tt_constraint_set_stiffness(w, c, k));
+    if (a >= 0) tl_check_result(L, w, tt_constraint_set_compliance(w, c, a));
+    if (len >= 0) tl_check_result(L, w, tt_distance_set_length(w, c, len));
+    if (has_anchor) tl_check_result(L, w, tt_pin_set_anchor(w, c, anchor));
+    if (has_box) tl_check_result(L, w, tt_bounds_set_box(w, c, (tt_vec2){box[0], box[1]}, (tt_vec2){box[2], box[3]}));
+    return 0;
+}
+
+/* w:pin_anchor(c) → x, y */
+static int c_pin_anchor(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_constraint c = check_constraint(L, w, 2);
+    tt_vec2 a;
+    tt_result r = tt_pin_get_anchor(w, c, &a);
+    if (r != TT_OK) tl_argerror(L, 2, "a pin expected");
+    lua_pushnumber(L, a.x);
+    lua_pushnumber(L, a.y);
+    return 2;
+}
+
+/* w:rest_length(c) → m (distance constraints) */
+static int c_rest_length(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_constraint c = check_constraint(L, w, 2);
+    double len;
+    if (tt_distance_get_length(w, c, &len) != TT_OK) tl_argerror(L, 2, "a distance constraint expected");
+    lua_pushnumber(L, len);
+    return 1;
+}
+
+static int c_constraint_count(lua_State *L)
+{
+    lua_pushinteger(L, (lua_Integer)tt_world_constraint_count(tl_check_world(L, 1)));
+    return 1;
+}
+
+/* w:constraint_lines([t]) → {x1, y1, x2, y2, …}, n — distance constraints, then pins to their anchors.
+ * A given table is reused (its tail cleared), so drawing every frame allocates nothing. */
+static int c_constraint_lines(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 2);
+    bool reuse = tl_opttable(L, 2);
+    uint32_t n = tt_world_read_constraint_lines(w, NULL, 0);
+    double *xy = lua_newuserdatauv(L, (size_t)n * 4 * sizeof *xy + 1, 0);
+    n = tt_world_read_constraint_lines(w, xy, n);
+    if (reuse) lua_pushvalue(L, 2);
+    else lua_createtable(L, (int)(4 * n), 0);
+    int t = lua_gettop(L);
+    for (uint32_t i = 0; i < 4 * n; i++) {
+        lua_pushnumber(L, xy[i]);
+        lua_rawseti(L, t, (lua_Integer)i + 1);
+    }
+    for (lua_Integer i = (lua_Integer)4 * n + 1; reuse; i++) { /* clear the old tail */
+        if (lua_rawgeti(L, t, i) == LUA_TNIL) { lua_pop(L, 1); break; }
+        lua_pop(L, 1);
+        lua_pushnil(L);
+        lua_rawseti(L, t, i);
+    }
+    lua_pushinteger(L, (lua_Integer)n);
+    return 2;
+}
+
+/* w:break_events() → {{constraint=, a=, b=, length=, strain=}, …} of the last step */
+static int c_break_events(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    const tt_break_event *ev;
+    uint32_t n;
+    tl_check_result(L, w, tt_world_get_break_events(w, &ev, &n));
+    lua_createtable(L, (int)n, 0);
+    for (uint32_t i = 0; i < n; i++) {
+        lua_createtable(L, 0, 5);
+        lua_pushinteger(L, (lua_Integer)tt_constraint_to_u64(ev[i].constraint));
+        lua_setfield(L, -2, "constraint");
+        tl_push_particle(L, ev[i].a);
+        lua_setfield(L, -2, "a");
+        tl_push_particle(L, ev[i].b);
+        lua_setfield(L, -2, "b");
+        lua_pushnumber(L, ev[i].length);
+        lua_setfield(L, -2, "length");
+        lua_pushnumber(L, ev[i].strain);
+        lua_setfield(L, -2, "strain");
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    return 1;
+}
+
+/* --- composites ----------------------------------------------------------------- */
+
+#define COMMON_KEYS "mass", "radius", "stiffness", "compliance", "collide"
+
+static void common_opts(lua_State *L, int arg, tt_composite_common *k)
+{
+    k->mass = tl_optfield_number(L, arg, "mass", &TL_R_MASS, k->mass);
+    k->radius = tl_optfield_number(L, arg, "radius", &TL_R_NONNEG, k->radius);
+    k->stiffness = tl_optfield_number(L, arg, "stiffness", &R_UNIT, k->stiffness);
+    k->compliance = tl_optfield_number(L, arg, "compliance", &TL_R_NONNEG, k->compliance);
+    k->collide = tl_optfield_boolean(L, arg, "collide", k->collide);
+}
+
+static const char *const rope_opts[] = {COMMON_KEYS, "start", "finish", "segments", "pin_start", "pin_end", "slack", "break_strain", NULL};
+
+/* w:rope({start = {x, y}, finish = {x, y}, segments, pin_start, pin_end, slack, break_strain, …common}) → composite */
+static int c_rope(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 2);
+    tt_rope_def d = tt_rope_def_default();
+    tl_checkopts(L, 2, rope_opts);
+    common_opts(L, 2, &d.common);
+    d.start = tl_optfield_vec2(L, 2, "start", &TL_R_COORD, d.start);
+    d.end = tl_optfield_vec2(L, 2, "finish", &TL_R_COORD, d.end);
+    d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 1, 100000, d.segments);
+    d.pin_start = tl_optfield_boolean(L, 2, "pin_start", d.pin_start);
+    d.pin_end = tl_optfield_boolean(L, 2, "pin_end", d.pin_end);
+    d.slack = tl_optfield_boolean(L, 2, "slack", d.slack);
+    d.break_strain = tl_optfield_number(L, 2, "break_strain", &TL_R_NONNEG, d.break_strain);
+    push_composite(L, w, tt_rope_create(w, &d));
+    return 1;
+}
+
+static const char *const cloth_opts[] = {COMMON_KEYS, "origin", "width", "height", "columns", "rows", "shear_stiffness",
+                                         "bend_stiffness", "pin_top_corners", "pin_top_row", "break_strain", NULL};
+
+/* w:cloth({origin = {x, y}, width, height, columns, rows, shear_stiffness, bend_stiffness,
+ *          pin_top_corners, pin_top_row, break_strain, …common}) → composite */
+static int c_cloth(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 2);
+    tt_cloth_def d = tt_cloth_def_default();
+    tl_checkopts(L, 2, cloth_opts);
+    common_opts(L, 2, &d.common);
+    d.origin = tl_optfield_vec2(L, 2, "origin", &TL_R_COORD, d.origin);
+    d.width = tl_optfield_number(L, 2, "width", &R_POS, d.width);
+    d.height = tl_optfield_number(L, 2, "height", &R_POS, d.height);
+    d.columns = (uint32_t)tl_optfield_integer(L, 2, "columns", 2, 4096, d.columns);
+    d.rows = (uint32_t)tl_optfield_integer(L, 2, "rows", 2, 4096, d.rows);
+    d.shear_stiffness = tl_optfield_number(L, 2, "shear_stiffness", &R_UNIT, d.shear_stiffness);
+    d.bend_stiffness = tl_optfield_number(L, 2, "bend_stiffness", &R_UNIT, d.bend_stiffness);
+    d.pin_top_corners = tl_optfield_boolean(L, 2, "pin_top_corners", d.pin_top_corners);
+    d.pin_top_row = tl_optfield_boolean(L, 2, "pin_top_row", d.pin_top_row);
+    d.break_strain = tl_optfield_number(L, 2, "break_strain", &TL_R_NONNEG, d.break_strain);
+    push_composite(L, w, tt_cloth_create(w, &d));
+    return 1;
+}
+
+static const char *const ragdoll_opts[] = {COMMON_KEYS, "position", "height", "limits", NULL};
+
+/* w:ragdoll({position = {x, y}, height, limits, …common}) → composite */
+static int c_ragdoll(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 2);
+    tt_ragdoll_def d = tt_ragdoll_def_default();
+    tl_checkopts(L, 2, ragdoll_opts);
+    common_opts(L, 2, &d.common);
+    d.position = tl_optfield_vec2(L, 2, "position", &TL_R_COORD, d.position);
+    d.height = tl_optfield_number(L, 2, "height", &R_POS, d.height);
+    d.limits = tl_optfield_boolean(L, 2, "limits", d.limits);
+    push_composite(L, w, tt_ragdoll_create(w, &d));
+    return 1;
+}
+
+static const char *const soft_body_opts[] = {COMMON_KEYS, "center", "size", "segments", "pressure", "area_stiffness",
+                                             "area_compliance", NULL};
+
+/* w:soft_body({center = {x, y}, size (ring radius), segments, pressure, area_stiffness, area_compliance, …common}) */
+static int c_soft_body(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 2);
+    tt_soft_body_def d = tt_soft_body_def_default();
+    tl_checkopts(L, 2, soft_body_opts);
+    common_opts(L, 2, &d.common);
+    d.center = tl_optfield_vec2(L, 2, "center", &TL_R_COORD, d.center);
+    d.radius = tl_optfield_number(L, 2, "size", &R_POS, d.radius);
+    d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 3, 65536, d.segments);
+    d.pressure = tl_optfield_number(L, 2, "pressure", &R_POS, d.pressure);
+    d.area_stiffness = tl_optfield_number(L, 2, "area_stiffness", &R_UNIT, d.area_stiffness);
+    d.area_compliance = tl_optfield_number(L, 2, "area_compliance", &TL_R_NONNEG, d.area_compliance);
+    push_composite(L, w, tt_soft_body_create(w, &d));
+    return 1;
+}
+
+static const char *const lattice_opts[] = {COMMON_KEYS, "center", "width", "height", "angle", "columns", "rows", "points", NULL};
+
+/* w:lattice({center = {x, y}, width, height, angle, columns, rows, …common})
+ * or w:lattice({points = {x1, y1, x2, y2, …}, …common}) → composite */
+static int c_lattice(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 2);
+    tt_lattice_def d = tt_lattice_def_default();
+    tl_checkopts(L, 2, lattice_opts);
+    common_opts(L, 2, &d.common);
+    d.center = tl_optfield_vec2(L, 2, "center", &TL_R_COORD, d.center);
+    d.width = tl_optfield_number(L, 2, "width", &R_POS, d.width);
+    d.height = tl_optfield_number(L, 2, "height", &R_POS, d.height);
+    d.angle = tl_optfield_number(L, 2, "angle", &TL_R_COORD, d.angle);
+    d.columns = (uint32_t)tl_optfield_integer(L, 2, "columns", 2, 1024, d.columns);
+    d.rows = (uint32_t)tl_optfield_integer(L, 2, "rows", 2, 1024, d.rows);
+    tt_vec2 pts[64];
+    if (tl_getopt(L, 2, "points")) {
+        int t = lua_gettop(L);
+        lua_Integer n = lua_type(L, t) == LUA_TTABLE ? (lua_Integer)lua_rawlen(L, t) : -1;
+        if (n < 6 || n > 128 || n % 2)
+            tl_error(L, "bad option 'points' (table {x1, y1, x2, y2, …} of 3 to 64 points expected)");
+        for (lua_Integer i = 0; i < n; i++) {
+            double v;
+            lua_rawgeti(L, t, i + 1);
+            if (!tl_tonumber_in(L, -1, &TL_R_COORD, &v))
+                tl_error(L, "bad option 'points' (index %d: %s)", (int)i + 1, lua_tostring(L, -1));
+            lua_pop(L, 1);
+            if (i % 2) pts[i / 2].y = v;
+            else pts[i / 2].x = v;
+        }
+        d.points = pts;
+        d.point_count = (uint32_t)(n / 2);
+    }
+    push_composite(L, w, tt_lattice_create(w, &d));
+    return 1;
+}
+
+static int c_remove_composite(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_composite_destroy(w, check_composite(L, w, 2)));
+    return 0;
+}
+
+static int c_composite_is_valid(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_pushboolean(L, tt_composite_is_valid(w, tt_composite_from_u64(tl_checkhandle(L, 2, "composite"))));
+    return 1;
+}
+
+/* w:composite_particles(h) → {p1, p2, …} in creation order */
+static int c_composite_particles(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_composite c = check_composite(L, w, 2);
+    uint32_t n;
+    tt_composite_get_particles(w, c, NULL, 0, &n);
+    tt_particle *ps = lua_newuserdatauv(L, (size_t)n * sizeof *ps + 1, 0);
+    tt_composite_get_particles(w, c, ps, n, &n);
+    lua_createtable(L, (int)n, 0);
+    for (uint32_t i = 0; i < n; i++) {
+        tl_push_particle(L, ps[i]);
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    return 1;
+}
+
+/* w:composite_constraints(h) → {c1, c2, …} in creation order (torn ones are stale) */
+static int c_composite_constraints(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_composite c = check_composite(L, w, 2);
+    uint32_t n;
+    tt_composite_get_constraints(w, c, NULL, 0, &n);
+    tt_constraint *cs = lua_newuserdatauv(L, (size_t)n * sizeof *cs + 1, 0);
+    tt_composite_get_constraints(w, c, cs, n, &n);
+    lua_createtable(L, (int)n, 0);
+    for (uint32_t i = 0; i < n; i++) {
+        lua_pushinteger(L, (lua_Integer)tt_constraint_to_u64(cs[i]));
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    return 1;
+}
+
+/* w:composite_center(h) → x, y (centre of mass) */
+static int c_composite_center(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_vec2 c;
+    tl_check_result(L, w, tt_composite_get_center(w, check_composite(L, w, 2), &c));
+    lua_pushnumber(L, c.x);
+    lua_pushnumber(L, c.y);
+    return 2;
+}
+
+/* w:composite_angle(h) → rad, the rotation from the rest shape */
+static int c_composite_angle(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    double a;
+    tl_check_result(L, w, tt_composite_get_angle(w, check_composite(L, w, 2), &a));
+    lua_pushnumber(L, a);
+    return 1;
+}
+
+static int c_composite_count(lua_State *L)
+{
+    lua_pushinteger(L, (lua_Integer)tt_world_composite_count(tl_check_world(L, 1)));
+    return 1;
+}
+
+static const luaL_Reg constraint_methods[] = {
+    {"distance", c_distance},
+    {"pin", c_pin},
+    {"bounds", c_bounds},
+    {"angle", c_angle},
+    {"area", c_area},
+    {"collinear", c_collinear},
+    {"remove_constraint", c_remove_constraint},
+    {"constraint_is_valid", c_constraint_is_valid},
+    {"constraint_kind", c_constraint_kind},
+    {"constraint_error", c_constraint_error},
+    {"constraint_particles", c_constraint_particles},
+    {"set_constraint", c_set_constraint},
+    {"pin_anchor", c_pin_anchor},
+    {"rest_length", c_rest_length},
+    {"constraint_count", c_constraint_count},
+    {"constraint_lines", c_constraint_lines},
+    {"break_events", c_break_events},
+    {"rope", c_rope},
+    {"cloth", c_cloth},
+    {"ragdoll", c_ragdoll},
+    {"soft_body", c_soft_body},
+    {"lattice", c_lattice},
+    {"remove_composite", c_remove_composite},
+    {"composite_is_valid", c_composite_is_valid},
+    {"composite_particles", c_composite_particles},
+    {"composite_constraints", c_composite_constraints},
+    {"composite_center", c_composite_center},
+    {"composite_angle", c_composite_angle},
+    {"composite_count", c_composite_count},
+    {NULL, NULL}};
+
+void tl_constraints_register(lua_State *L) { tl_world_add_methods(L, constraint_methods); }
