@@ -174,6 +174,7 @@ static const struct {
 } sections[] = {
     {"integrate", bench_integrate},
     {"tradeoff", bench_tradeoff},
+    {"constraints", bench_constraints},
 };
 
 int main(int argc, char **argv)

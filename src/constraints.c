@@ -876,7 +876,7 @@ static void group_begin(tt_world *w, void *self, double h)
 
 /* One sweep over the distance constraints. `jacobi` is a constant at each
  * call site, so the compiler makes a lean in-place loop for Gauss-Seidel. */
-static inline double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi)
+static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi)
 {
     double *px = w->px, *py = w->py;
     const double *im = w->inv_mass;
@@ -1015,11 +1015,14 @@ static double relax_collinear(tt_world *w, tt__gcon *c, double h)
     return L > 0.0 ? fabs(C) / L : fabs(C);
 }
 
+static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h) { return sweep_distance(w, g, h, false); }
+static double sweep_distance_jacobi(tt_world *w, tt__cgroup *g, double h) { return sweep_distance(w, g, h, true); }
+
 static double group_relax(tt_world *w, void *self, double h)
 {
     tt__cgroup *g = self;
     bool jacobi = w->jn && w->order == TT_JACOBI;
-    double err = jacobi ? sweep_distance(w, g, h, true) : sweep_distance(w, g, h, false);
+    double err = jacobi ? sweep_distance_jacobi(w, g, h) : sweep_distance_gs(w, g, h);
     for (uint32_t i = 0; i < g->ngen; i++) {
         tt__gcon *c = &g->gen[i];
         double e = 0.0;
