@@ -1,14 +1,14 @@
 -- demos/rope_bridge.lua — a rope bridge between two cliffs: planks are small
--- lattice bodies hung on two slack ropes, and boxes dropped onto it.
+-- lattice bodies hung under two sagging ropes, and two heavy boxes dropped on it.
 --
 --   build/tether --headless --steps 600 demos/rope_bridge.lua
 --   LUA_CPATH='build/?.so' lua5.4 demos/rope_bridge.lua      (stock Lua: runs 600 steps itself)
 --
--- Collisions between bodies are being built separately: until they land, the
--- cliffs and the water are bounds constraints (solid blocks) and the boxes
--- are tied to the deck by slack (max-distance) links, so they drop onto it and
--- hang from it instead of resting on the planks. Every second it
--- prints the sag and the largest link error; at the end the state hash.
+-- Collisions are being built separately: until they land, the cliffs are
+-- bounds constraints (solid blocks) and the boxes are tied to the deck by
+-- slack (max-distance) links, so they fall until the link goes taut and then
+-- hang from the deck instead of resting on the planks. Every second it prints
+-- the sag and the largest link error; at the end the state hash.
 local tether = require "tether"
 
 local SPAN, PLANKS = 8.0, 16
