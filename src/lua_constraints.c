@@ -41,20 +41,40 @@ static void push_composite(lua_State *L, tt_world *w, tt_composite c)
     lua_pushinteger(L, (lua_Integer)tt_composite_to_u64(c));
 }
 
-/* A table of live particle handles at arg, into a userdata buffer left on the stack. */
-static tt_particle *check_handle_list(lua_State *L, tt_world *w, int arg, uint32_t min, uint32_t max, uint32_t *n)
+/* Raises about argument arg, or about option `opt` when it is not NULL. */
+static void list_error(lua_State *L, int arg, const char *opt, const char *msg)
 {
-    if (lua_type(L, arg) != LUA_TTABLE) tl_typeerror(L, arg, "table of particle handles");
-    lua_Integer len = (lua_Integer)lua_rawlen(L, arg);
-    if (len < (lua_Integer)min || len > (lua_Integer)max)
-        tl_argerror(L, arg, "%d to %d particle handles expected, got %d", (int)min, (int)max, (int)len);
+    if (opt) tl_error(L, "bad option '%s' (%s)", opt, msg);
+    tl_argerror(L, arg, "%s", msg);
+}
+
+/* A table of live particle handles at stack index idx (argument arg, or the
+ * value of option opt), into a userdata buffer left on the stack. */
+static tt_particle *check_handle_list(lua_State *L, tt_world *w, int idx, const char *opt, uint32_t min, uint32_t max,
+                                      uint32_t *n)
+{
+    if (lua_type(L, idx) != LUA_TTABLE) {
+        if (!opt) tl_typeerror(L, idx, "table of particle handles");
+        list_error(L, idx, opt, "table of particle handles expected");
+    }
+    lua_Integer len = (lua_Integer)lua_rawlen(L, idx);
+    if (len < (lua_Integer)min || len > (lua_Integer)max) {
+        lua_pushfstring(L, "%d to %d particle handles expected, got %d", (int)min, (int)max, (int)len);
+        list_error(L, idx, opt, lua_tostring(L, -1));
+    }
     tt_particle *ps = lua_newuserdatauv(L, (size_t)len * sizeof *ps + 1, 0);
     for (lua_Integer i = 1; i <= len; i++) {
         uint64_t h;
-        lua_rawgeti(L, arg, i);
-        if (!tl_tohandle(L, -1, "particle", &h)) tl_argerror(L, arg, "index %d: %s", (int)i, lua_tostring(L, -1));
+        lua_rawgeti(L, idx, i);
+        if (!tl_tohandle(L, -1, "particle", &h)) {
+            lua_pushfstring(L, "index %d: %s", (int)i, lua_tostring(L, -1));
+            list_error(L, idx, opt, lua_tostring(L, -1));
+        }
         ps[i - 1] = tt_particle_from_u64(h);
-        if (!tt_particle_is_valid(w, ps[i - 1])) tl_argerror(L, arg, "index %d: stale particle handle", (int)i);
+        if (!tt_particle_is_valid(w, ps[i - 1])) {
+            lua_pushfstring(L, "index %d: stale particle handle", (int)i);
+            list_error(L, idx, opt, lua_tostring(L, -1));
+        }
         lua_pop(L, 1);
     }
     *n = (uint32_t)len;
@@ -129,9 +149,7 @@ static int c_bounds(lua_State *L)
     d.outside = tl_optfield_boolean(L, 6, "outside", false);
     d.friction = tl_optfield_number(L, 6, "friction", &R_UNIT, 0.0);
     if (tl_getopt(L, 6, "particles")) {
-        int t = lua_gettop(L);
-        if (lua_type(L, t) != LUA_TTABLE) tl_error(L, "bad option 'particles' (table of particle handles expected)");
-        d.particles = check_handle_list(L, w, t, 1, 1u << 30, &d.count);
+        d.particles = check_handle_list(L, w, lua_gettop(L), "particles", 1, 1u << 30, &d.count);
     }
     push_constraint(L, w, tt_bounds_create(w, &d));
     return 1;
@@ -172,7 +190,7 @@ static int c_area(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     lua_settop(L, 3);
     tt_area_def d = tt_area_def_default();
-    d.particles = check_handle_list(L, w, 2, 3, 65536, &d.count);
+    d.particles = check_handle_list(L, w, 2, NULL, 3, 65536, &d.count);
     tl_checkopts(L, 3, area_opts);
     if (tl_getopt(L, 3, "area")) {
         lua_pop(L, 1);
