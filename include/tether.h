@@ -12,5 +12,6 @@
 #include "tether/world.h"
 #include "tether/particle.h"
 #include "tether/spring.h"
+#include "tether/collide.h"
 
 #endif
