@@ -2,6 +2,7 @@
 # `make test SANITIZE=1` builds everything with ASan+UBSan into build-san/.
 
 PREFIX ?= /usr/local
+VERSION := $(shell sed -n 's/^\#define TT_VERSION_STRING "\(.*\)"/\1/p' include/tether/base.h)
 CC     ?= cc
 CXX    ?= c++
 
@@ -135,7 +136,8 @@ install: all
 	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
 	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|0.1.0|' tether.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lm\nCflags: -I$${includedir}\n' \
+	  '$(PREFIX)' '$(VERSION)' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
 
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/include/tether.h

@@ -59,5 +59,6 @@ int main(int argc, char **argv)
         if (current_failed) failed++; else passed++;
     }
     printf("%d passed, %d failed\n", passed, failed);
+    fflush(stdout); /* a sanitizer exit must not swallow the summary line */
     return failed ? 1 : 0;
 }

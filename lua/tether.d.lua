@@ -1,0 +1,370 @@
+---@meta tether
+-- LuaLS (lua-language-server) annotations for the tether module.
+-- Definitions only: this file is never run. Reference: docs/lua-api.md.
+--
+-- Argument numbers in error messages count the world as #1
+-- (`w:position(p)`: p is argument #2). Numbers must be numbers (no numeric
+-- strings), finite, and inside the documented ranges, or the call raises.
+
+---A particle handle: a Lua integer (index in the low 32 bits, generation in
+---the high 32 bits). It goes stale when its particle is removed.
+---@alias tether.particle integer
+
+---A spring handle: a Lua integer, like a particle handle.
+---@alias tether.spring integer
+
+---@alias tether.integrator_name
+---| "euler"            # explicit Euler: order 1, gains energy
+---| "symplectic_euler" # semi-implicit Euler: order 1, bounded energy
+---| "leapfrog"         # velocity Verlet (kick-drift-kick), two force evaluations: order 2
+---| "verlet"           # position Verlet (the default): order 2
+---| "rk4"              # classic Runge-Kutta 4, four force evaluations: order 4
+
+---@alias tether.solver_name
+---| "gauss_seidel" # in place, one constraint after another: fewer sweeps
+---| "jacobi"       # corrections averaged per particle, then applied
+
+---@alias tether.move_mode
+---| "keep"  # velocity is kept (the default)
+---| "reset" # velocity becomes 0
+
+---@class tether
+---@field version string The library version, e.g. "0.1.0".
+---@field integrators tether.integrator_name[] {"euler", "symplectic_euler", "leapfrog", "verlet", "rk4"}
+---Runner callback (set it in your script): called once before the first update with the script's arguments.
+---@field load? fun(args: string[])
+---Runner callback (set it in your script): called every fixed step with dt in seconds.
+---@field update? fun(dt: number)
+---Runner callback (set it in your script): called once after the last update.
+---@field unload? fun()
+local tether = {}
+
+---Options of `tether.world`.
+---@class tether.world_options
+---@field gravity? number[] {gx, gy}, m/s², each in [-1e12, 1e12]; default {0, -9.81}
+---@field integrator? tether.integrator_name default "verlet"
+---@field damping? number velocity damping, 1/s, in [0, 1e12]: v *= 1 - damping*dt each step; default 0
+---@field wind? number[] {fx, fy}, N on every particle, each in [-1e12, 1e12]; default {0, 0}
+---@field dt_hint? number the step you expect to use, s, in (0, 10]; default 1/60
+---@field capacity? integer particles to reserve up front, 0..16777216; default 0
+---@field substeps? integer substeps per step, 1..1000; default 1
+---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
+---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
+---@field solver? tether.solver_name default "gauss_seidel"
+
+---Makes a new world. Unknown option keys raise ("tether.world: unknown option 'gravty' ...").
+---@param opts? tether.world_options
+---@return tether.world
+function tether.world(opts) end
+
+---Runner only (the `tether` executable): ends the update loop after the current call.
+function tether.quit() end
+
+---Options of `w:particle`.
+---@class tether.particle_options
+---@field vx? number initial velocity x, m/s, in [-1e12, 1e12]; default 0
+---@field vy? number initial velocity y, m/s, in [-1e12, 1e12]; default 0
+---@field mass? number kg, in [1e-9, 1e9]; default 1
+---@field radius? number m, in [0, 1e12]; default 0 (a point)
+---@field pinned? boolean infinite mass: never moved by forces or impulses; default false
+---@field category? integer collision layer bits, 0..0xFFFF; default 1
+---@field mask? integer layers it collides with, 0..0xFFFF; default 0xFFFF
+---@field user? any any Lua value, read back with w:user(p)
+
+---Options of `w:spring` and fields of `w:set_spring`.
+---@class tether.spring_options
+---@field stiffness? number k, N/m, in [0, 1e12]; default 100
+---@field damping? number c, N·s/m, in [0, 1e12]; default 0
+---@field rest? number rest length, m, in [0, 1e12]; default: the distance between the ends when made
+
+---What `w:spring_info` returns.
+---@class tether.spring_info
+---@field a tether.particle
+---@field b tether.particle
+---@field stiffness number N/m
+---@field damping number N·s/m
+---@field rest number m
+
+---Wall time per pipeline stage of the last step, ms.
+---@class tether.stage_times
+---@field forces number
+---@field integrate number
+---@field collide number
+---@field solve number
+---@field events number
+
+---What `w:stats` returns.
+---@class tether.stats
+---@field steps integer steps taken since creation
+---@field time number simulated time, s
+---@field particles integer live particles
+---@field springs integer live springs
+---@field step_ms number wall time of the last step, ms
+---@field force_evaluations integer force evaluations in the last step
+---@field diverged integer particles stopped in the last step because |x| or |v| ran away
+---@field iterations integer relaxation sweeps in the last step
+---@field max_error number largest constraint error left after the last step, m
+---@field stages tether.stage_times
+
+---What `w:energy` returns, J.
+---@class tether.energy
+---@field kinetic number Σ ½ m |v|²
+---@field gravity number Σ −m g·x
+---@field spring number Σ ½ k (length − rest)²
+---@field total number the sum of the three
+
+---What `w:memory` returns.
+---@class tether.memory
+---@field total integer bytes the world allocated
+---@field particles integer bytes of the particle arrays
+---@field capacity integer particle slots allocated
+---@field bytes_per_particle number particle array bytes per slot
+
+---A simulation world (userdata, metatable "tether.world"). Freed by the
+---garbage collector, by `w:destroy()`, or at the end of a `<close>` scope.
+---@class tether.world
+local world = {}
+
+---Adds a particle at (x, y), m, each in [-1e12, 1e12].
+---@param x number
+---@param y number
+---@param opts? tether.particle_options
+---@return tether.particle
+function world:particle(x, y, opts) end
+
+---Removes a particle, the springs attached to it and its user value. Stale handle: raises.
+---@param p tether.particle
+function world:remove(p) end
+
+---True if p names a live particle of this world; false for stale or never-made handles.
+---@param p tether.particle
+---@return boolean
+function world:is_valid(p) end
+
+---Position, m.
+---@param p tether.particle
+---@return number x
+---@return number y
+function world:position(p) end
+
+---Teleports a particle (no force, no sweep).
+---@param p tether.particle
+---@param x number m, in [-1e12, 1e12]
+---@param y number m, in [-1e12, 1e12]
+---@param mode? tether.move_mode default "keep"
+function world:set_position(p, x, y, mode) end
+
+---Velocity, m/s (Verlet: the backward difference (x − x_old)/dt).
+---@param p tether.particle
+---@return number vx
+---@return number vy
+function world:velocity(p) end
+
+---Sets the velocity exactly, m/s, each in [-1e12, 1e12]. A pinned particle raises.
+---@param p tether.particle
+---@param vx number
+---@param vy number
+function world:set_velocity(p, vx, vy) end
+
+---Mass, kg (kept while pinned).
+---@param p tether.particle
+---@return number
+function world:mass(p) end
+
+---@param p tether.particle
+---@param m number kg, in [1e-9, 1e9]
+function world:set_mass(p, m) end
+
+---@param p tether.particle
+---@return boolean
+function world:pinned(p) end
+
+---Pinning stops the particle where it is.
+---@param p tether.particle
+---@param pinned boolean
+function world:set_pinned(p, pinned) end
+
+---@param p tether.particle
+---@return number radius m
+function world:radius(p) end
+
+---@param p tether.particle
+---@param r number m, in [0, 1e12]
+function world:set_radius(p, r) end
+
+---Collision filter bits.
+---@param p tether.particle
+---@return integer category
+---@return integer mask
+function world:filter(p) end
+
+---@param p tether.particle
+---@param category integer 0..0xFFFF
+---@param mask integer 0..0xFFFF
+function world:set_filter(p, category, mask) end
+
+---The Lua value stored with the particle (nil if none).
+---@param p tether.particle
+---@return any
+function world:user(p) end
+
+---Stores any Lua value with the particle (nil forgets it). Cleared when the particle is removed.
+---@param p tether.particle
+---@param value any
+function world:set_user(p, value) end
+
+---Adds a force, N, for the next step only (forces add up).
+---@param p tether.particle
+---@param fx number in [-1e12, 1e12]
+---@param fy number in [-1e12, 1e12]
+function world:apply_force(p, fx, fy) end
+
+---Instant velocity change Δv = j / m, N·s. Pinned particles: no effect.
+---@param p tether.particle
+---@param jx number in [-1e12, 1e12]
+---@param jy number in [-1e12, 1e12]
+function world:apply_impulse(p, jx, jy) end
+
+---Radial explosion: every movable particle within `radius` of (x, y) gets
+---an impulse of impulse·(1 − d/radius) N·s away from the centre.
+---@param x number m, in [-1e12, 1e12]
+---@param y number m, in [-1e12, 1e12]
+---@param radius number m, in [0, 1e12]
+---@param impulse number N·s, in [-1e12, 1e12]
+function world:explode(x, y, radius, impulse) end
+
+---Adds a spring between two distinct live particles.
+---@param a tether.particle
+---@param b tether.particle
+---@param opts? tether.spring_options
+---@return tether.spring
+function world:spring(a, b, opts) end
+
+---Removes a spring. Stale handle: raises.
+---@param s tether.spring
+function world:remove_spring(s) end
+
+---True if s names a live spring of this world.
+---@param s tether.spring
+---@return boolean
+function world:spring_is_valid(s) end
+
+---Current length |xa − xb|, m.
+---@param s tether.spring
+---@return number
+function world:spring_length(s) end
+
+---@param s tether.spring
+---@return tether.spring_info
+function world:spring_info(s) end
+
+---Changes only the given fields; all are checked before any changes.
+---@param s tether.spring
+---@param fields tether.spring_options
+function world:set_spring(s, fields) end
+
+---Advances the world n times by dt seconds.
+---@param dt number s, in (0, 10]
+---@param n? integer 1..10000000, default 1
+function world:step(dt, n) end
+
+---@return number gx m/s²
+---@return number gy m/s²
+function world:gravity() end
+
+---@param gx number m/s², in [-1e12, 1e12]
+---@param gy number m/s², in [-1e12, 1e12]
+function world:set_gravity(gx, gy) end
+
+---@return number fx N
+---@return number fy N
+function world:wind() end
+
+---@param fx number N on every particle, in [-1e12, 1e12]
+---@param fy number N on every particle, in [-1e12, 1e12]
+function world:set_wind(fx, fy) end
+
+---@return number damping 1/s
+function world:damping() end
+
+---@param d number 1/s, in [0, 1e12]
+function world:set_damping(d) end
+
+---@return tether.integrator_name
+function world:integrator() end
+
+---Switches integrator between steps; every particle keeps its velocity.
+---@param name tether.integrator_name
+function world:set_integrator(name) end
+
+---@return integer substeps per step
+function world:substeps() end
+
+---@param n integer substeps per step, 1..1000
+function world:set_substeps(n) end
+
+---@return integer most relaxation sweeps per substep
+function world:iterations() end
+
+---@param n integer most relaxation sweeps per substep, 1..10000
+function world:set_iterations(n) end
+
+---@return number tolerance, m
+function world:tolerance() end
+
+---@param m number sweeps stop once the largest error is <= m, in [0, 1e12]
+function world:set_tolerance(m) end
+
+---@return tether.solver_name
+function world:solver() end
+
+---@param name tether.solver_name
+function world:set_solver(name) end
+
+---@return integer live particles
+function world:count() end
+
+---@return integer live springs
+function world:spring_count() end
+
+---@return tether.stats
+function world:stats() end
+
+---@return tether.energy
+function world:energy() end
+
+---@return tether.memory
+function world:memory() end
+
+---The state hash (FNV-1a 64 of the simulation state) as 16 hex digits.
+---@return string
+function world:hash() end
+
+---Live particle handles in slot order. Reuses t if given (entries past n are cleared).
+---@param t? tether.particle[]
+---@return tether.particle[] handles
+---@return integer n
+function world:particles(t) end
+
+---Positions {x1, y1, x2, y2, …} in the order of w:particles(). Reuses t if given.
+---@param t? number[]
+---@return number[] xy
+---@return integer n particles (the table holds 2n numbers)
+function world:positions(t) end
+
+---Teleports n particles: xy holds exactly 2n numbers. Everything is checked before anything moves.
+---@param handles tether.particle[]
+---@param xy number[]
+---@param mode? tether.move_mode default "keep"
+function world:set_positions(handles, xy, mode) end
+
+---Iterates over the live particles: `for p, x, y in w:each() do … end`.
+---Particles removed during the loop are skipped; new ones are not visited.
+---@return fun(): tether.particle?, number?, number?
+function world:each() end
+
+---Frees the world now. Idempotent; afterwards every other method raises
+---"attempt to use a destroyed world".
+function world:destroy() end
+
+return tether

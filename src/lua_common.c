@@ -1,0 +1,387 @@
+/* tether — Lua binding helpers: argument checkers, option tables, errors.
+ * See lua_common.h for the conventions. */
+#include "lua_common.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+const tl_range TL_R_COORD = { -TL_MAX_ABS, TL_MAX_ABS, false };
+const tl_range TL_R_NONNEG = { 0.0, TL_MAX_POS, false };
+const tl_range TL_R_MASS = { TL_MIN_MASS, TL_MAX_MASS, false };
+const tl_range TL_R_DT = { 0.0, TL_MAX_DT, true };
+
+/* --- registration ---------------------------------------------------------- */
+
+void tl_setfuncs(lua_State *L, const luaL_Reg *l, const char *prefix)
+{
+    for (; l->name != NULL; l++) {
+        lua_pushfstring(L, "%s%s", prefix, l->name);
+        lua_pushcclosure(L, l->func, 1);
+        lua_setfield(L, -2, l->name);
+    }
+}
+
+const char *tl_fname(lua_State *L)
+{
+    /* A C function without upvalues reads nil here (lua_upvalueindex past
+     * the closure's upvalues is an acceptable index). */
+    if (lua_type(L, lua_upvalueindex(1)) == LUA_TSTRING)
+        return lua_tostring(L, lua_upvalueindex(1));
+    return "?";
+}
+
+/* --- errors ---------------------------------------------------------------- */
+
+/* Formats a number for a message: "%.14g", but "nan" for every NaN
+ * (glibc prints the default x86 NaN as "-nan") and "inf" / "-inf". */
+static const char *fmtnum(char buf[40], double v)
+{
+    if (isnan(v)) return "nan";
+    if (isinf(v)) return v > 0 ? "inf" : "-inf";
+    snprintf(buf, 40, "%.14g", v);
+    return buf;
+}
+
+int tl_argerror(lua_State *L, int arg, const char *fmt, ...)
+{
+    va_list ap;
+    const char *fname = tl_fname(L);
+    va_start(ap, fmt);
+    lua_pushvfstring(L, fmt, ap);
+    va_end(ap);
+    return luaL_error(L, "bad argument #%d to '%s' (%s)", arg, fname, lua_tostring(L, -1));
+}
+
+int tl_error(lua_State *L, const char *fmt, ...)
+{
+    va_list ap;
+    const char *fname = tl_fname(L);
+    va_start(ap, fmt);
+    lua_pushvfstring(L, fmt, ap);
+    va_end(ap);
+    return luaL_error(L, "%s: %s", fname, lua_tostring(L, -1));
+}
+
+const char *tl_pushtypename(lua_State *L, int idx)
+{
+    idx = lua_absindex(L, idx);
+    if (luaL_getmetafield(L, idx, "__name") == LUA_TSTRING)
+        return lua_tostring(L, -1);
+    if (lua_type(L, idx) == LUA_TLIGHTUSERDATA)
+        lua_pushliteral(L, "light userdata");
+    else
+        lua_pushstring(L, luaL_typename(L, idx));
+    return lua_tostring(L, -1);
+}
+
+int tl_typeerror(lua_State *L, int arg, const char *expected)
+{
+    const char *got = tl_pushtypename(L, arg);
+    return tl_argerror(L, arg, "%s expected, got %s", expected, got);
+}
+
+/* --- validators that report instead of raising ------------------------------ */
+
+/* Pushes "<what> expected, got <type>" for the value at idx, or with
+ * by_value "got <the number>" when it is a number. */
+static void push_expected(lua_State *L, int idx, const char *what, bool by_value)
+{
+    char buf[40];
+    idx = lua_absindex(L, idx);
+    if (by_value && lua_type(L, idx) == LUA_TNUMBER) {
+        if (lua_isinteger(L, idx))
+            lua_pushfstring(L, "%s expected, got %I", what, (LUAI_UACINT)lua_tointeger(L, idx));
+        else
+            lua_pushfstring(L, "%s expected, got %s", what, fmtnum(buf, lua_tonumber(L, idx)));
+    } else {
+        const char *got = tl_pushtypename(L, idx);
+        lua_pushfstring(L, "%s expected, got %s", what, got);
+        lua_remove(L, -2);
+    }
+}
+
+/* Pushes "number in [lo, hi]" (bounds are round numbers: %g is exact). */
+static void push_range(lua_State *L, const tl_range *r)
+{
+    char a[40], b[40];
+    snprintf(a, sizeof a, "%g", r->lo);
+    snprintf(b, sizeof b, "%g", r->hi);
+    lua_pushfstring(L, "number in %s%s, %s]", r->lo_open ? "(" : "[", a, b);
+}
+
+bool tl_tonumber_in(lua_State *L, int idx, const tl_range *r, double *out)
+{
+    double v;
+    idx = lua_absindex(L, idx);
+    if (lua_type(L, idx) != LUA_TNUMBER) {
+        push_expected(L, idx, "number", false);
+        return false;
+    }
+    v = lua_tonumber(L, idx);
+    if (!isfinite(v)) {
+        push_expected(L, idx, "finite number", true);
+        return false;
+    }
+    if (v > r->hi || v < r->lo || (r->lo_open && v == r->lo)) {
+        push_range(L, r);
+        push_expected(L, idx, lua_tostring(L, -1), true);
+        lua_remove(L, -2);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+/* An integer-valued number inside [lo, hi]; otherwise pushes a message. */
+static bool tointeger_in(lua_State *L, int idx, lua_Integer lo, lua_Integer hi, lua_Integer *out)
+{
+    int isint = 0;
+    lua_Integer v;
+    idx = lua_absindex(L, idx);
+    if (lua_type(L, idx) != LUA_TNUMBER) {
+        push_expected(L, idx, "integer", false);
+        return false;
+    }
+    v = lua_tointegerx(L, idx, &isint);
+    if (!isint || v < lo || v > hi) {
+        lua_pushfstring(L, "integer in [%I, %I]", (LUAI_UACINT)lo, (LUAI_UACINT)hi);
+        push_expected(L, idx, lua_tostring(L, -1), true);
+        lua_remove(L, -2);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool tl_tohandle(lua_State *L, int idx, const char *kind, uint64_t *out)
+{
+    int isint = 0;
+    lua_Integer v = 0;
+    idx = lua_absindex(L, idx);
+    if (lua_type(L, idx) == LUA_TNUMBER)
+        v = lua_tointegerx(L, idx, &isint);
+    if (!isint) {
+        lua_pushfstring(L, "%s handle", kind);
+        push_expected(L, idx, lua_tostring(L, -1), true);
+        lua_remove(L, -2);
+        return false;
+    }
+    *out = (uint64_t)v;
+    return true;
+}
+
+/* --- positional arguments -------------------------------------------------- */
+
+double tl_checknumber(lua_State *L, int arg, const tl_range *r)
+{
+    double v = 0.0;
+    if (!tl_tonumber_in(L, arg, r, &v))
+        tl_argerror(L, arg, "%s", lua_tostring(L, -1));
+    return v;
+}
+
+double tl_optnumber(lua_State *L, int arg, const tl_range *r, double def)
+{
+    return lua_isnoneornil(L, arg) ? def : tl_checknumber(L, arg, r);
+}
+
+lua_Integer tl_checkinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer hi)
+{
+    lua_Integer v = 0;
+    if (!tointeger_in(L, arg, lo, hi, &v))
+        tl_argerror(L, arg, "%s", lua_tostring(L, -1));
+    return v;
+}
+
+lua_Integer tl_optinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer hi, lua_Integer def)
+{
+    return lua_isnoneornil(L, arg) ? def : tl_checkinteger(L, arg, lo, hi);
+}
+
+bool tl_checkboolean(lua_State *L, int arg)
+{
+    if (lua_type(L, arg) != LUA_TBOOLEAN)
+        tl_typeerror(L, arg, "boolean");
+    return lua_toboolean(L, arg) != 0;
+}
+
+/* Pushes "'a', 'b', 'c'". */
+static void push_choices(lua_State *L, const char *const list[])
+{
+    luaL_Buffer b;
+    luaL_buffinit(L, &b);
+    for (int i = 0; list[i] != NULL; i++) {
+        if (i > 0) luaL_addstring(&b, ", ");
+        luaL_addchar(&b, '\'');
+        luaL_addstring(&b, list[i]);
+        luaL_addchar(&b, '\'');
+    }
+    luaL_pushresult(&b);
+}
+
+int tl_checkoption(lua_State *L, int arg, const char *what, const char *def, const char *const list[])
+{
+    const char *name;
+    if (def != NULL && lua_isnoneornil(L, arg)) {
+        name = def;
+    } else {
+        if (lua_type(L, arg) != LUA_TSTRING)
+            tl_typeerror(L, arg, "string");
+        name = lua_tostring(L, arg);
+    }
+    for (int i = 0; list[i] != NULL; i++)
+        if (strcmp(list[i], name) == 0)
+            return i;
+    push_choices(L, list);
+    return tl_argerror(L, arg, "invalid %s '%s', expected one of: %s", what, name, lua_tostring(L, -1));
+}
+
+uint64_t tl_checkhandle(lua_State *L, int arg, const char *kind)
+{
+    uint64_t h = 0;
+    if (!tl_tohandle(L, arg, kind, &h))
+        tl_argerror(L, arg, "%s", lua_tostring(L, -1));
+    return h;
+}
+
+bool tl_opttable(lua_State *L, int arg)
+{
+    if (lua_isnoneornil(L, arg))
+        return false;
+    if (lua_type(L, arg) != LUA_TTABLE)
+        tl_typeerror(L, arg, "table or nil");
+    return true;
+}
+
+/* --- option tables --------------------------------------------------------- */
+
+bool tl_checkopts(lua_State *L, int arg, const char *const keys[])
+{
+    if (!tl_opttable(L, arg))
+        return false;
+    lua_pushnil(L);
+    while (lua_next(L, arg) != 0) {
+        bool known = false;
+        lua_pop(L, 1); /* the value */
+        if (lua_type(L, -1) == LUA_TSTRING) {
+            const char *k = lua_tostring(L, -1);
+            for (int i = 0; keys[i] != NULL && !known; i++)
+                known = strcmp(keys[i], k) == 0;
+        }
+        if (!known) {
+            /* Never lua_tostring the key itself: that would change a number
+             * key in place and confuse lua_next. */
+            if (lua_type(L, -1) == LUA_TSTRING)
+                lua_pushvalue(L, -1);
+            else
+                luaL_tolstring(L, -1, NULL);
+            push_choices(L, keys);
+            tl_error(L, "unknown option '%s' (expected one of: %s)", lua_tostring(L, -2), lua_tostring(L, -1));
+        }
+    }
+    return true;
+}
+
+bool tl_getopt(lua_State *L, int arg, const char *key)
+{
+    if (lua_type(L, arg) != LUA_TTABLE)
+        return false;
+    if (lua_getfield(L, arg, key) == LUA_TNIL) {
+        lua_pop(L, 1);
+        return false;
+    }
+    return true;
+}
+
+/* Raises "fname: bad option 'key' (<message on top of the stack>)". */
+static int opterror(lua_State *L, const char *key)
+{
+    return tl_error(L, "bad option '%s' (%s)", key, lua_tostring(L, -1));
+}
+
+double tl_optfield_number(lua_State *L, int arg, const char *key, const tl_range *r, double def)
+{
+    double v = def;
+    if (!tl_getopt(L, arg, key))
+        return def;
+    if (!tl_tonumber_in(L, -1, r, &v))
+        opterror(L, key);
+    lua_pop(L, 1);
+    return v;
+}
+
+lua_Integer tl_optfield_integer(lua_State *L, int arg, const char *key, lua_Integer lo, lua_Integer hi, lua_Integer def)
+{
+    lua_Integer v = def;
+    if (!tl_getopt(L, arg, key))
+        return def;
+    if (!tointeger_in(L, -1, lo, hi, &v))
+        opterror(L, key);
+    lua_pop(L, 1);
+    return v;
+}
+
+bool tl_optfield_boolean(lua_State *L, int arg, const char *key, bool def)
+{
+    bool v;
+    if (!tl_getopt(L, arg, key))
+        return def;
+    if (lua_type(L, -1) != LUA_TBOOLEAN) {
+        push_expected(L, -1, "boolean", false);
+        opterror(L, key);
+    }
+    v = lua_toboolean(L, -1) != 0;
+    lua_pop(L, 1);
+    return v;
+}
+
+tt_vec2 tl_optfield_vec2(lua_State *L, int arg, const char *key, const tl_range *r, tt_vec2 def)
+{
+    tt_vec2 v = def;
+    int t;
+    if (!tl_getopt(L, arg, key))
+        return def;
+    t = lua_gettop(L);
+    if (lua_type(L, t) != LUA_TTABLE) {
+        push_expected(L, t, "table {x, y}", false);
+        opterror(L, key);
+    }
+    for (int i = 1; i <= 2; i++) {
+        double c = 0.0;
+        lua_rawgeti(L, t, i);
+        if (!tl_tonumber_in(L, -1, r, &c)) {
+            lua_pushfstring(L, "index %d: %s", i, lua_tostring(L, -1));
+            opterror(L, key);
+        }
+        lua_pop(L, 1);
+        if (i == 1) v.x = c; else v.y = c;
+    }
+    lua_rawgeti(L, t, 3);
+    if (!lua_isnil(L, -1)) {
+        lua_pushliteral(L, "table {x, y} of exactly two numbers expected");
+        opterror(L, key);
+    }
+    lua_pop(L, 2);
+    return v;
+}
+
+int tl_optfield_option(lua_State *L, int arg, const char *key, const char *what, const char *const list[], int def_index)
+{
+    const char *name;
+    if (!tl_getopt(L, arg, key))
+        return def_index;
+    if (lua_type(L, -1) != LUA_TSTRING) {
+        push_expected(L, -1, "string", false);
+        opterror(L, key);
+    }
+    name = lua_tostring(L, -1);
+    for (int i = 0; list[i] != NULL; i++)
+        if (strcmp(list[i], name) == 0) {
+            lua_pop(L, 1);
+            return i;
+        }
+    push_choices(L, list);
+    return tl_error(L, "invalid %s '%s', expected one of: %s", what, name, lua_tostring(L, -1));
+}

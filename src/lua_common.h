@@ -1,0 +1,135 @@
+/* tether — Lua binding helpers shared by every lua_*.c file.
+ *
+ * Every binding function is registered as a C closure whose upvalue 1 is its
+ * own name ("position", "tether.world"), so every checker here can write a
+ * message that names the function and the argument, however the function
+ * was called (w:position(p), pcall(w.position, w, p), a local alias):
+ *
+ *     bad argument #3 to 'set_position' (finite number expected, got nan)
+ *
+ * Argument numbers count every argument the function receives, the world of
+ * a method call included (self is #1). Nothing here lets a non-finite number
+ * or an out-of-range value through: the C core never sees Lua garbage. */
+#ifndef TETHER_LUA_COMMON_H
+#define TETHER_LUA_COMMON_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <lua.h>
+#include <lauxlib.h>
+
+#include "tether.h"
+
+/* Limits enforced by the binding: the core's documented limits (base.h),
+ * checked here first so that the error names the Lua function and argument. */
+#define TL_MAX_ABS    TT_MAX_VALUE /* positions, velocities, forces, impulses, gravity, wind */
+#define TL_MAX_POS    TT_MAX_VALUE /* radius, stiffness, damping, rest length, explosion radius */
+#define TL_MIN_MASS   TT_MIN_MASS  /* kg */
+#define TL_MAX_MASS   TT_MAX_MASS  /* kg */
+#define TL_MAX_DT     TT_MAX_DT    /* s */
+#define TL_MAX_STEPS  10000000     /* w:step(dt, n): n <= 1e7 */
+#define TL_MAX_CAPACITY 16777216   /* world option capacity <= the core's default max_particles */
+
+/* A closed or half-open interval of accepted numbers. */
+typedef struct tl_range {
+    double lo, hi;
+    bool lo_open; /* true: lo itself is refused, written "(lo, hi]" */
+} tl_range;
+
+/* Ready-made ranges. */
+extern const tl_range TL_R_COORD;  /* [-1e12, 1e12]: positions, velocities, forces, impulses, gravity, wind */
+extern const tl_range TL_R_NONNEG; /* [0, 1e12]: radius, stiffness, damping, rest length */
+extern const tl_range TL_R_MASS;   /* [1e-9, 1e9] */
+extern const tl_range TL_R_DT;     /* (0, 10] */
+
+/* --- registration ---------------------------------------------------------- */
+
+/* Like luaL_setfuncs(L, l, 0) into the table on the top of the stack, but
+ * each function becomes a closure with upvalue 1 = prefix .. name. */
+void tl_setfuncs(lua_State *L, const luaL_Reg *l, const char *prefix);
+/* Name of the running binding function (upvalue 1), or "?". */
+const char *tl_fname(lua_State *L);
+
+/* --- errors ---------------------------------------------------------------- */
+
+/* Raises "bad argument #arg to 'fname' (<formatted message>)". Never returns. */
+int tl_argerror(lua_State *L, int arg, const char *fmt, ...);
+/* Raises "bad argument #arg to 'fname' (<expected> expected, got <type>)". */
+int tl_typeerror(lua_State *L, int arg, const char *expected);
+/* Raises "fname: <formatted message>". Never returns. */
+int tl_error(lua_State *L, const char *fmt, ...);
+/* Pushes the type name of the value at idx as luaL_typeerror writes it
+ * (the __name of a userdata class, "light userdata", or the basic type). */
+const char *tl_pushtypename(lua_State *L, int idx);
+
+/* --- positional arguments -------------------------------------------------- */
+
+/* A number (not a numeric string), finite, inside r. */
+double tl_checknumber(lua_State *L, int arg, const tl_range *r);
+/* As tl_checknumber, or def when the argument is none or nil. */
+double tl_optnumber(lua_State *L, int arg, const tl_range *r, double def);
+/* An integer-valued number (3 or 3.0, not "3") inside [lo, hi]. */
+lua_Integer tl_checkinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer hi);
+lua_Integer tl_optinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer hi, lua_Integer def);
+/* A boolean (true or false; no truthiness). */
+bool tl_checkboolean(lua_State *L, int arg);
+/* A string from list (NULL-terminated); def (may be NULL) when none or nil.
+ * what names the thing in the error:
+ * "invalid mode 'x', expected one of: 'keep', 'reset'". Returns the index. */
+int tl_checkoption(lua_State *L, int arg, const char *what, const char *def, const char *const list[]);
+/* A handle: an integer-valued number. kind is "particle" or "spring".
+ * Whether it names a live object is the caller's question. */
+uint64_t tl_checkhandle(lua_State *L, int arg, const char *kind);
+/* Nothing, nil or a table: returns true for a table. */
+bool tl_opttable(lua_State *L, int arg);
+
+/* --- option tables --------------------------------------------------------- */
+
+/* The argument is none, nil or a table whose keys are all in keys
+ * (NULL-terminated). Raises "fname: unknown option 'gravty' (expected one
+ * of: 'gravity', ...)" otherwise. Returns true if it is a table. */
+bool tl_checkopts(lua_State *L, int arg, const char *const keys[]);
+/* Pushes field key of the option table at arg (which may be absent).
+ * Returns false (and pushes nothing) when the field is nil or the table absent. */
+bool tl_getopt(lua_State *L, int arg, const char *key);
+/* Field readers: def when the field is nil; otherwise the value must be valid
+ * or "fname: bad option 'key' (<why>)" is raised. */
+double tl_optfield_number(lua_State *L, int arg, const char *key, const tl_range *r, double def);
+lua_Integer tl_optfield_integer(lua_State *L, int arg, const char *key, lua_Integer lo, lua_Integer hi, lua_Integer def);
+bool tl_optfield_boolean(lua_State *L, int arg, const char *key, bool def);
+/* An option whose value is {x, y}: two numbers inside r. */
+tt_vec2 tl_optfield_vec2(lua_State *L, int arg, const char *key, const tl_range *r, tt_vec2 def);
+/* An option whose value is one string of list: the index, or def_index when
+ * nil. Raises "fname: invalid <what> 'x', expected one of: 'a', 'b'". */
+int tl_optfield_option(lua_State *L, int arg, const char *key, const char *what, const char *const list[], int def_index);
+
+/* --- validators that report instead of raising ------------------------------
+ * Each checks the value at idx; on failure pushes a message ("finite number
+ * expected, got nan") and returns false. Used by the raising checkers above
+ * and by the bulk functions that add "at index 7" to the message. */
+bool tl_tonumber_in(lua_State *L, int idx, const tl_range *r, double *out);
+bool tl_tohandle(lua_State *L, int idx, const char *kind, uint64_t *out);
+
+/* --- classes (lua_world.c) -------------------------------------------------- */
+
+#define TL_WORLD_CLASS "tether.world"
+
+/* Creates the world metatable (once per state); leaves nothing on the stack. */
+void tl_world_register(lua_State *L);
+/* tether.world([opts]) */
+int tl_world_new(lua_State *L);
+/* Pushes the list of integrator names, {"euler", ...}. */
+void tl_push_integrators(lua_State *L);
+/* Adds methods to the world class (a feature's binding calls this from
+ * luaopen_tether through its own tl_<feature>_register). */
+void tl_world_add_methods(lua_State *L, const luaL_Reg *methods);
+/* The world at arg (raises "attempt to use a destroyed world", or a type error). */
+tt_world *tl_check_world(lua_State *L, int arg);
+/* A live particle of w at arg (raises "stale particle handle"). */
+tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg);
+/* Raises "fname: <tt_last_error(w)>" unless r is TT_OK. */
+void tl_check_result(lua_State *L, const tt_world *w, tt_result r);
+void tl_push_particle(lua_State *L, tt_particle p);
+
+#endif

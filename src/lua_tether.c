@@ -1,0 +1,28 @@
+/* tether — the Lua module: require "tether".
+ *
+ *   tether.version      "0.1.0"
+ *   tether.integrators  {"euler", "symplectic_euler", "leapfrog", "verlet", "rk4"}
+ *   tether.world(opts)  a new world (lua_world.c)
+ *
+ * Built into build/tether.so for stock lua5.4 and linked into the runner. */
+#include "lua_common.h"
+
+static const luaL_Reg tether_funcs[] = {
+    { "world", tl_world_new },
+    { NULL, NULL }
+};
+
+TT_API int luaopen_tether(lua_State *L);
+
+TT_API int luaopen_tether(lua_State *L)
+{
+    luaL_checkversion(L);
+    tl_world_register(L);
+    lua_createtable(L, 0, 4);
+    tl_setfuncs(L, tether_funcs, "tether.");
+    lua_pushstring(L, tt_version());
+    lua_setfield(L, -2, "version");
+    tl_push_integrators(L);
+    lua_setfield(L, -2, "integrators");
+    return 1;
+}

@@ -1,0 +1,120 @@
+-- tests/lua/harness.lua — a tiny test harness for the Lua binding tests.
+--
+--   package.path = "tests/lua/?.lua;" .. package.path
+--   local T = require "harness"
+--   T.test("name", function() T.near(x, 1, 1e-9) end)
+--   T.checkerror("bad argument #2 to 'position'", w.position, w, "x")
+--   T.done()   -- prints "N passed, M failed"; exits non-zero when M > 0
+--
+-- Failures are reported on stderr as they happen; T.done prints exactly one
+-- line on stdout. checkerror accepts its pattern as plain text or as a Lua
+-- pattern, so messages with parentheses need no escaping: error messages
+-- are part of the contract.
+local T = {}
+
+local passed, failed = 0, 0
+local current = nil   -- name of the running test
+local checks = 0      -- checks failed inside the current test
+
+local function where(level)
+  local info = debug.getinfo(level + 1, "Sl")
+  if info then return info.short_src .. ":" .. (info.currentline or 0) end
+  return "?"
+end
+
+local function fail(msg, level)
+  checks = checks + 1
+  io.stderr:write(("FAIL %s: %s (%s)\n"):format(current or "(top level)", msg, where((level or 1) + 1)))
+end
+
+--- Runs fn as one test: it passes when it raises nothing and no check failed.
+function T.test(name, fn)
+  current, checks = name, 0
+  local ok, err = xpcall(fn, debug.traceback)
+  if not ok then
+    io.stderr:write(("FAIL %s: error: %s\n"):format(name, tostring(err)))
+    checks = checks + 1
+  end
+  if checks == 0 then passed = passed + 1 else failed = failed + 1 end
+  current = nil
+end
+
+--- Checks that a condition holds.
+function T.ok(cond, msg)
+  if not cond then fail(msg or "condition is false", 2) end
+  return cond
+end
+
+--- Checks a == b (raw equality).
+function T.eq(a, b, msg)
+  if a ~= b then fail(("%s: expected %s, got %s"):format(msg or "eq", tostring(b), tostring(a)), 2) end
+  return a == b
+end
+
+--- Checks |a - b| <= tol (both numbers, neither NaN).
+function T.near(a, b, tol, msg)
+  local good = type(a) == "number" and type(b) == "number" and math.abs(a - b) <= tol
+  if not good then
+    fail(("%s: expected %s within %g, got %s (diff %s)"):format(msg or "near", tostring(b), tol, tostring(a),
+      (type(a) == "number" and type(b) == "number") and tostring(a - b) or "?"), 2)
+  end
+  return good
+end
+
+-- Does err contain `what`? Plain text always counts; unless plain_only, a
+-- Lua pattern match counts too (an invalid pattern is just no match).
+local function contains(err, what, plain_only)
+  if string.find(err, what, 1, true) then return true end
+  if plain_only then return false end
+  local ok, found = pcall(string.find, err, what)
+  return ok and found ~= nil
+end
+
+local function check_error(plain, what, fn, ...)
+  local ok, err = pcall(fn, ...)
+  if ok then
+    fail(("expected an error matching %q, got none"):format(what), 3)
+    return false
+  end
+  err = tostring(err)
+  if not contains(err, what, plain) then
+    fail(("expected an error matching %q, got %q"):format(what, err), 3)
+    return false
+  end
+  return true, err
+end
+
+--- pcall(fn, ...) must fail with a message that contains `pattern`, either
+--- as plain text or as a Lua pattern match (string.find). Returns ok, message.
+function T.checkerror(pattern, fn, ...)
+  return check_error(false, pattern, fn, ...)
+end
+
+--- As checkerror, but `text` must appear literally.
+function T.checkerror_plain(text, fn, ...)
+  return check_error(true, text, fn, ...)
+end
+
+--- pcall(fn, ...) must succeed; returns its results.
+function T.noerror(fn, ...)
+  local r = table.pack(pcall(fn, ...))
+  if not r[1] then fail("unexpected error: " .. tostring(r[2]), 2) end
+  return table.unpack(r, 2, r.n)
+end
+
+--- True if x is a NaN or an infinity.
+function T.nonfinite(x)
+  return x ~= x or x == math.huge or x == -math.huge
+end
+
+--- Counts of the tests so far.
+function T.counts() return passed, failed end
+
+--- Prints "N passed, M failed" and exits (non-zero when M > 0).
+function T.done()
+  io.stdout:write(("%d passed, %d failed\n"):format(passed, failed))
+  io.stdout:flush()
+  os.exit(failed == 0 and 0 or 1, true)
+end
+
+return T

@@ -1,0 +1,141 @@
+#!/bin/sh
+# tests/run.sh — the test driver behind `make test` (POSIX sh, run from the
+# repository root). Environment: BUILD (build or build-san), SANITIZE (1 for
+# the ASan+UBSan build).
+#
+# Parts, in order:
+#   1. $BUILD/test_c                                 the C tests
+#   2. $BUILD/tether tests/lua/test_*.lua            the Lua binding tests
+#   3. fountain.lua run twice as two processes       must print the same hash
+#   4. lua5.4 tests/lua/test_world.lua               stock Lua requires $BUILD/tether.so
+#   5. $BUILD/tether --headless --steps 60 demos/*.lua   smoke test of each demo
+# Every test program ends with a line "N passed, M failed"; a non-zero exit
+# or a missing line counts as a failure. One line per part, then the total
+# "N passed, M failed" as the very last line; exit status 1 if anything failed.
+
+BUILD=${BUILD:-build}
+SANITIZE=${SANITIZE:-}
+RUNNER="$BUILD/tether"
+
+UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+export UBSAN_OPTIONS
+
+total_pass=0
+total_fail=0
+tmp=$(mktemp "${TMPDIR:-/tmp}/tether-test.XXXXXX") || exit 1
+tmp2=$(mktemp "${TMPDIR:-/tmp}/tether-test.XXXXXX") || exit 1
+trap 'rm -f "$tmp" "$tmp2"' EXIT INT TERM
+
+add() { # add PASSED FAILED
+    total_pass=$((total_pass + $1))
+    total_fail=$((total_fail + $2))
+}
+
+# Shows the end of a failed part's output, indented.
+show_tail() {
+    tail -n 25 "$1" | sed 's/^/    | /'
+}
+
+# run_counted LABEL COMMAND... — runs a program that prints "N passed, M failed".
+run_counted() {
+    label=$1
+    shift
+    "$@" >"$tmp" 2>&1
+    rc=$?
+    line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$tmp" | tail -n 1)
+    if [ -z "$line" ]; then
+        echo "$label: FAILED (exit $rc, no 'N passed, M failed' line)"
+        show_tail "$tmp"
+        add 0 1
+        return
+    fi
+    p=${line%% passed*}
+    f=${line#*passed, }
+    f=${f%% failed*}
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+        f=1 # it said all passed, yet exited non-zero (a sanitizer report at exit, say)
+        echo "$label: $line, but exit status $rc: FAILED"
+    else
+        echo "$label: $line"
+    fi
+    if [ "$f" -ne 0 ]; then show_tail "$tmp"; fi
+    add "$p" "$f"
+}
+
+# run_check LABEL COMMAND... — one check: passes if the command exits 0.
+run_check() {
+    label=$1
+    shift
+    if "$@" >"$tmp" 2>&1; then
+        echo "$label: ok"
+        add 1 0
+    else
+        echo "$label: FAILED (exit $?)"
+        show_tail "$tmp"
+        add 0 1
+    fi
+}
+
+for f in "$BUILD/test_c" "$RUNNER" "$BUILD/tether.so"; do
+    if [ ! -e "$f" ]; then
+        echo "tests: $f is missing: run 'make all${SANITIZE:+ SANITIZE=$SANITIZE}' first"
+        add 0 1
+    fi
+done
+
+# 1. C tests
+if [ -x "$BUILD/test_c" ]; then
+    run_counted "c: $BUILD/test_c" "$BUILD/test_c"
+fi
+
+# 2. Lua binding tests under the runner
+for t in tests/lua/test_*.lua; do
+    [ -e "$t" ] || continue
+    run_counted "lua: $t" "$RUNNER" "$t"
+done
+
+# 3. Determinism across processes: two runs, one hash.
+hash_of() {
+    "$RUNNER" --headless --steps 300 demos/fountain.lua 2>&1 | grep -E 'hash [0-9a-f]{16}' | tail -n 1
+}
+h1=$(hash_of)
+h2=$(hash_of)
+if [ -n "$h1" ] && [ "$h1" = "$h2" ]; then
+    echo "determinism: two processes agree: $h1"
+    add 1 0
+else
+    echo "determinism: FAILED: first run '$h1', second run '$h2'"
+    add 0 1
+fi
+
+# 4. Stock lua5.4 loads the module.
+if ! command -v lua5.4 >/dev/null 2>&1; then
+    echo "stock lua5.4: skipped: lua5.4 is not installed"
+elif [ "$SANITIZE" = 1 ]; then
+    # The module is built with ASan, lua5.4 is not: the ASan runtime must be
+    # loaded first. Leak checking is off: lua5.4 itself does not free its
+    # state at exit, and the runner tests above already check for leaks.
+    asan=$(${CC:-gcc} -print-file-name=libasan.so 2>/dev/null)
+    if [ -n "$asan" ] && [ -e "$asan" ]; then
+        run_counted "stock lua5.4 (ASan preloaded): tests/lua/test_world.lua" \
+            env LD_PRELOAD="$asan" ASAN_OPTIONS=detect_leaks=0 LUA_CPATH="$BUILD/?.so" lua5.4 tests/lua/test_world.lua
+    else
+        echo "stock lua5.4: skipped: the ASan runtime (libasan.so) was not found for LD_PRELOAD"
+    fi
+else
+    run_counted "stock lua5.4: tests/lua/test_world.lua" env LUA_CPATH="$BUILD/?.so" lua5.4 tests/lua/test_world.lua
+fi
+
+# 5. Each demo runs headless for 60 steps and prints the runner's summary.
+demo_ok() {
+    "$RUNNER" --headless --steps 60 "$1" >"$tmp2" 2>&1 || { cat "$tmp2"; return 1; }
+    cat "$tmp2"
+    grep -q '^tether: 60 steps of ' "$tmp2"
+}
+for d in demos/*.lua; do
+    [ -e "$d" ] || continue
+    run_check "demo: $d" demo_ok "$d"
+done
+
+echo "$total_pass passed, $total_fail failed"
+[ "$total_fail" -eq 0 ]
