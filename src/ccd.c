@@ -24,9 +24,10 @@ static void sweep_visit(void *ctx, uint32_t k)
     if (sd->sensor || !tt__shape_filter(s->w, sd, s->i)) return;
     tt__hit hit;
     tt__circle_vs_prim(c, p, s->x0, s->y0, s->r, &hit);
-    if (hit.depth > 0.0) return; /* already touching at the start: the discrete test has it */
+    if (hit.depth > -1e-9 * (1.0 + s->r)) return; /* touching at the start: the discrete test has it */
     double t, nx, ny;
-    if (tt__ray_vs_prim(c, p, s->x0, s->y0, s->dx, s->dy, s->r, s->best, &t, &nx, &ny) && t < s->best) {
+    if (tt__ray_vs_prim(c, p, s->x0, s->y0, s->dx, s->dy, s->r, s->best, &t, &nx, &ny) && t < s->best &&
+        nx * s->dx + ny * s->dy < 0.0) {
         s->best = t;
         s->nx = nx;
         s->ny = ny;

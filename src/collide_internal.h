@@ -90,6 +90,9 @@ typedef struct tt__collide {
     tt__grid grid;
     double *vx0, *vy0;    /* pre-solve velocity per particle slot (this substep) */
     uint32_t vcap;
+    double *sx0, *sy0;    /* velocity integrators: position at the start of the substep (Verlet has x_old) */
+    uint32_t scap, s_count;
+    uint64_t s_epoch;     /* the world epoch at which sx0/sy0 hold the last substep's end positions */
     float *mat;           /* per slot: restitution, μs, μk (−1 = world default); NULL until used */
     uint32_t matcap;
     uint8_t *bullet;      /* NULL until used */

@@ -85,15 +85,22 @@ static inline void add_vel(tt_world *w, uint32_t i, double h, double dvx, double
     }
 }
 
-/* As if the particle had moved (dx, dy) further in this substep: position and velocity. */
-static inline void shift(tt_world *w, uint32_t i, double h, double dx, double dy)
+/* Static friction: undo the tangential part t (relative to n) of the
+ * particle's displacement in this substep, and its tangential velocity vt.
+ * Verlet: moving x does both. Others: x moves back by what it slid. */
+static inline void unslide(tt_world *w, const tt__collide *c, uint32_t i, double h, double nx, double ny, double s,
+                           double vtx, double vty)
 {
-    w->px[i] += dx;
-    w->py[i] += dy;
-    if (w->integrator != TT_VERLET) {
-        w->qx[i] += dx / h;
-        w->qy[i] += dy / h;
+    if (w->integrator == TT_VERLET) {
+        w->px[i] -= vtx * h * s;
+        w->py[i] -= vty * h * s;
+        return;
     }
+    double dx = w->px[i] - c->sx0[i], dy = w->py[i] - c->sy0[i], dn = dx * nx + dy * ny;
+    w->px[i] -= (dx - dn * nx) * s;
+    w->py[i] -= (dy - dn * ny) * s;
+    w->qx[i] -= vtx * s;
+    w->qy[i] -= vty * s;
 }
 
 static inline double mat(const tt__collide *c, uint32_t i, int k)
@@ -185,6 +192,28 @@ static void begin(tt_world *w, void *self, double h)
     } else {
         memcpy(c->vx0, w->qx, (size_t)n * sizeof *c->vx0);
         memcpy(c->vy0, w->qy, (size_t)n * sizeof *c->vy0);
+    }
+    if (w->integrator != TT_VERLET) {
+        if (c->scap < n) {
+            uint32_t cap = w->pcap > n ? w->pcap : n;
+            double *a = realloc(c->sx0, (size_t)cap * sizeof *a);
+            if (!a) return;
+            c->sx0 = a;
+            double *b = realloc(c->sy0, (size_t)cap * sizeof *b);
+            if (!b) return;
+            c->sy0 = b;
+            c->scap = cap;
+        }
+        /* the last substep's end positions, unless something moved or appeared since: then x − v·h */
+        if (!(c->s_epoch == w->epoch && c->s_count == n)) {
+            /* where each integrator started the substep, exact under gravity alone */
+            double k = w->integrator == TT_SYMPLECTIC_EULER ? 0.0 : w->integrator == TT_EULER ? 1.0 : 0.5;
+            double gx = k * w->gravity.x * h * h, gy = k * w->gravity.y * h * h;
+            for (uint32_t i = 0; i < n; i++) {
+                c->sx0[i] = w->px[i] - w->qx[i] * h + gx;
+                c->sy0[i] = w->py[i] - w->qy[i] * h + gy;
+            }
+        }
     }
     if (c->nbullets && c->nprim) tt__ccd(w, c, h);
     if (pairs) {
@@ -313,9 +342,9 @@ static void end(tt_world *w, void *self, double h)
         double dvx, dvy, sx, sy, dvn;
         respond(vax - vbx, vay - vby, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], p->nx, p->ny, e, mus, muk, thr,
                 &dvx, &dvy, &sx, &sy, &dvn);
-        if (sx != 0.0 || sy != 0.0) {
-            shift(w, a, h, -sx * h * wa, -sy * h * wa);
-            shift(w, b, h, sx * h * wb, sy * h * wb);
+        if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
+            unslide(w, c, a, h, p->nx, p->ny, wa, sx, sy);
+            unslide(w, c, b, h, p->nx, p->ny, wb, -sx, -sy);
         }
         add_vel(w, a, h, dvx * wa, dvy * wa);
         add_vel(w, b, h, -dvx * wb, -dvy * wb);
@@ -350,13 +379,19 @@ static void end(tt_world *w, void *self, double h)
             dvx -= sx;
             dvy -= sy;
         } else if (sx != 0.0 || sy != 0.0) {
-            shift(w, a, h, -sx * h, -sy * h);
+            unslide(w, c, a, h, s->nx, s->ny, 1.0, sx, sy);
         }
         add_vel(w, a, h, dvx, dvy);
         if (events) {
             uint32_t shape = c->prims[s->prim].shape;
             record(w, c, shape_key(shape, a), a, UINT32_MAX, shape, false, s->nx, s->ny, dvn / inv[a]);
         }
+    }
+    if (w->integrator != TT_VERLET && c->sx0 && c->scap >= w->ppool.count) {
+        memcpy(c->sx0, w->px, (size_t)w->ppool.count * sizeof *c->sx0);
+        memcpy(c->sy0, w->py, (size_t)w->ppool.count * sizeof *c->sy0);
+        c->s_count = w->ppool.count;
+        c->s_epoch = w->epoch; /* after_step moves it past the step's own bump */
     }
 }
 
@@ -382,8 +417,9 @@ static bool push_event(tt__collide *c, const tt_contact_event *ev, uint32_t kind
 
 static void after_step(tt_world *w, void *self)
 {
-    (void)w;
     tt__collide *c = self;
+    /* the step bumps the epoch once after this: end positions stay valid through it, not through a teleport */
+    if (c->s_epoch == w->epoch) c->s_epoch = w->epoch + 1;
     c->nevents = 0;
     if (!c->set.events) {
         c->nrec = 0;
@@ -391,7 +427,7 @@ static void after_step(tt_world *w, void *self)
         return;
     }
     /* one record per contact: sorted by key; substeps merged (impulses add up, the last geometry stays) */
-    qsort(c->rec, c->nrec, sizeof *c->rec, cmp_record);
+    if (c->nrec > 1) qsort(c->rec, c->nrec, sizeof *c->rec, cmp_record);
     uint32_t m = 0;
     for (uint32_t k = 0; k < c->nrec; k++) {
         if (m && c->rec[m - 1].key == c->rec[k].key) {
@@ -494,7 +530,7 @@ static size_t memory(const tt_world *w, const void *self)
     (void)w;
     const tt__collide *c = self;
     size_t b = sizeof *c + tt__shapes_bytes(c) + tt__grid_bytes(&c->grid);
-    b += (size_t)c->vcap * 2 * sizeof(double);
+    b += ((size_t)c->vcap + c->scap) * 2 * sizeof(double);
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
     b += (size_t)c->exclcap * sizeof(uint64_t);
     b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact);
@@ -508,7 +544,7 @@ static void destroy(tt_world *w, void *self)
     tt__collide *c = self;
     tt__shapes_free(c);
     tt__grid_free(&c->grid);
-    free(c->vx0); free(c->vy0);
+    free(c->vx0); free(c->vy0); free(c->sx0); free(c->sy0);
     free(c->mat); free(c->bullet); free(c->ccd_prim);
     free(c->excl);
     free(c->pairs); free(c->sc);
@@ -541,6 +577,7 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn)
     c->set = tt_collision_settings_default();
     c->set.particles = false; /* until tt_world_set_collision says otherwise */
     c->grid.epoch = UINT64_MAX;
+    c->spool.tag = w->tag; /* shape handles carry the world's tag, like particles */
     if (tt__group_add(w, &tt__contacts_ops, c) < 0) {
         free(c);
         tt__fail(w, TT_ENOMEM, "%s: no room for another relaxation group (%d)", fn, TT_MAX_GROUPS);
