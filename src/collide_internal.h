@@ -53,11 +53,11 @@ typedef struct tt__grid {
     uint64_t epoch;               /* w->epoch the grid reflects (queries), or UINT64_MAX */
 } tt__grid;
 
-typedef struct tt__pair {
+typedef struct tt__pair { /* 24 bytes: hundreds of thousands are written every substep */
     uint32_t a, b;
-    double rs;            /* radii sum */
-    double nx, ny;        /* last normal, from b to a */
-    double lambda;        /* normal correction applied this substep, m */
+    float rs;             /* radii sum (the radii are floats already) */
+    float nx, ny;         /* last normal, from b to a */
+    float lambda;         /* normal correction applied this substep, m */
 } tt__pair;
 
 typedef struct tt__scontact {
@@ -122,8 +122,23 @@ static inline tt__collide *tt__collide_peek(const tt_world *w)
 }
 bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem);
 
-/* Filters (contacts.c): the one place that decides whether two particles may collide. */
-bool tt__pair_filter(const tt_world *w, const tt__collide *c, uint32_t a, uint32_t b);
+/* Filters: the one place that decides whether two particles may collide
+ * (layers, two pinned, switched-off pairs, and constraints when issue 4's
+ * tt__constraint_pair_excluded exists). */
+bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b);
+#ifdef TT_HAVE_CONSTRAINTS
+bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
+#endif
+static inline bool tt__pair_filter(const tt_world *w, const tt__collide *c, uint32_t a, uint32_t b)
+{
+    if (!((w->category[a] & w->mask[b]) && (w->category[b] & w->mask[a]))) return false;
+    if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0) return false;
+    if (c->nexcl && tt__pair_excluded(c, a, b)) return false;
+#ifdef TT_HAVE_CONSTRAINTS
+    if (tt__constraint_pair_excluded(w, a, b)) return false;
+#endif
+    return true;
+}
 static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, uint32_t a)
 {
     return (w->category[a] & d->mask) && (d->category & w->mask[a]);
@@ -137,7 +152,9 @@ void tt__grid_free(tt__grid *g);
 size_t tt__grid_bytes(const tt__grid *g);
 static inline int32_t tt__cell_coord(double v, double o, double inv)
 {
-    double f = floor((v - o) * inv);
+    double f = (v - o) * inv;
+    if (f >= 0.0 && f < 1e9) return (int32_t)f; /* truncation is floor here, and much cheaper */
+    f = floor(f);
     if (f < -1e9) return -1000000000;
     if (f > 1e9) return 1000000000;
     return (int32_t)f;

@@ -46,19 +46,9 @@ static inline uint64_t pair_key(uint32_t a, uint32_t b)
     return a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
 }
 
-#ifdef TT_HAVE_CONSTRAINTS
-bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
-#endif
-
-bool tt__pair_filter(const tt_world *w, const tt__collide *c, uint32_t a, uint32_t b)
+bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b)
 {
-    if (!((w->category[a] & w->mask[b]) && (w->category[b] & w->mask[a]))) return false;
-    if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0) return false;
-    if (c->nexcl && excluded(c, pair_key(a, b))) return false;
-#ifdef TT_HAVE_CONSTRAINTS
-    if (tt__constraint_pair_excluded(w, a, b)) return false;
-#endif
-    return true;
+    return excluded(c, pair_key(a, b));
 }
 
 /* --- velocity helpers (h: the substep) ---------------------------------- */
@@ -229,6 +219,7 @@ static void begin(tt_world *w, void *self, double h)
     }
     if (c->nprim) {
         detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
+        const tt__sgrid *sg = &c->sgrid;
         for (uint32_t i = 0; i < n; i++) {
             if (w->inv_mass[i] == 0.0) continue; /* pinned or removed: shapes never push them */
             double r = w->radius[i], m = r * TT__CONTACT_MARGIN;
@@ -237,6 +228,21 @@ static void begin(tt_world *w, void *self, double h)
             d.y = w->py[i];
             d.r = r;
             d.margin = m;
+            if (sg->nbig == 0) { /* fast path: every cell under the particle empty (most particles, most steps) */
+                int32_t x0 = tt__cell_coord(d.x - r - m, sg->ox, sg->inv), x1 = tt__cell_coord(d.x + r + m, sg->ox, sg->inv);
+                int32_t y0 = tt__cell_coord(d.y - r - m, sg->oy, sg->inv), y1 = tt__cell_coord(d.y + r + m, sg->oy, sg->inv);
+                if (x1 < 0 || y1 < 0 || x0 >= sg->nx || y0 >= sg->ny) continue;
+                x0 = x0 < 0 ? 0 : x0;
+                y0 = y0 < 0 ? 0 : y0;
+                x1 = x1 >= sg->nx ? sg->nx - 1 : x1;
+                y1 = y1 >= sg->ny ? sg->ny - 1 : y1;
+                bool any = false;
+                for (int32_t y = y0; y <= y1 && !any; y++) {
+                    uint32_t row = (uint32_t)y * (uint32_t)sg->nx;
+                    any = sg->start[row + (uint32_t)x0] != sg->start[row + (uint32_t)x1 + 1];
+                }
+                if (!any) continue;
+            }
             tt__sgrid_query(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m, detect_visit, &d);
             if (!d.ok) {
                 tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
@@ -274,9 +280,9 @@ static double relax(tt_world *w, void *self, double h)
         double pen = rs - d, s = pen / ws;
         tt__correct(w, a, nx * s * ia, ny * s * ia);
         tt__correct(w, b, -nx * s * ib, -ny * s * ib);
-        p->nx = nx;
-        p->ny = ny;
-        p->lambda += pen;
+        p->nx = (float)nx;
+        p->ny = (float)ny;
+        p->lambda += (float)pen;
         if (pen > err) err = pen;
     }
     for (uint32_t k = 0; k < c->nsc; k++) {
@@ -314,7 +320,7 @@ static void respond(double vx, double vy, double v0x, double v0y, double nx, dou
         *stick_x = tx;
         *stick_y = ty;
     } else if (tl > 0.0) {
-        double f = fmin(muk * change, tl) / tl;
+        double f = (muk * change < tl ? muk * change : tl) / tl;
         *dvx -= tx * f;
         *dvy -= ty * f;
     }
@@ -337,7 +343,7 @@ static void end(tt_world *w, void *self, double h)
         double vax, vay, vbx, vby;
         vel(w, a, h, &vax, &vay);
         vel(w, b, h, &vbx, &vby);
-        double e = fmax(mat(c, a, 0), mat(c, b, 0));
+        double ea = mat(c, a, 0), eb = mat(c, b, 0), e = ea > eb ? ea : eb;
         double mus = sqrt(mat(c, a, 1) * mat(c, b, 1)), muk = sqrt(mat(c, a, 2) * mat(c, b, 2));
         double dvx, dvy, sx, sy, dvn;
         respond(vax - vbx, vay - vby, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], p->nx, p->ny, e, mus, muk, thr,
@@ -371,7 +377,7 @@ static void end(tt_world *w, void *self, double h)
         } else {
             vel(w, a, h, &vx, &vy);
         }
-        double e = fmax(mat(c, a, 0), sd->restitution);
+        double ea = mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
         double mus = sqrt(mat(c, a, 1) * sd->friction_static), muk = sqrt(mat(c, a, 2) * sd->friction_kinetic);
         double dvx, dvy, sx, sy, dvn;
         respond(vx, vy, c->vx0[a], c->vy0[a], s->nx, s->ny, e, mus, muk, thr, &dvx, &dvy, &sx, &sy, &dvn);

@@ -47,9 +47,10 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     for (uint32_t i = 0; i < n; i++) {
         if (!(w->flags[i] & TT_PF_ALIVE)) continue;
         double x = w->px[i], y = w->py[i];
-        lox = fmin(lox, x); hix = fmax(hix, x);
-        loy = fmin(loy, y); hiy = fmax(hiy, y);
-        rmax = fmax(rmax, (double)w->radius[i]);
+        double r = w->radius[i];
+        lox = x < lox ? x : lox; hix = x > hix ? x : hix; /* not fmin/fmax: those are library calls here */
+        loy = y < loy ? y : loy; hiy = y > hiy ? y : hiy;
+        rmax = r > rmax ? r : rmax;
         sx += x; sy += y; sxx += x * x; syy += y * y;
         m++;
     }
@@ -120,9 +121,9 @@ static inline bool push_pair(tt__collide *c, uint32_t a, uint32_t b, double rs)
     tt__pair *p = &c->pairs[c->npairs++];
     p->a = a;
     p->b = b;
-    p->rs = rs;
-    p->nx = p->ny = 0.0;
-    p->lambda = 0.0;
+    p->rs = (float)rs;
+    p->nx = p->ny = 0.0f;
+    p->lambda = 0.0f;
     return true;
 }
 
