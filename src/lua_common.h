@@ -132,4 +132,7 @@ tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg);
 void tl_check_result(lua_State *L, const tt_world *w, tt_result r);
 void tl_push_particle(lua_State *L, tt_particle p);
 
+/* --- feature bindings (each adds its methods to the world class) ------------ */
+void tl_collide_register(lua_State *L); /* lua_collide.c */
+
 #endif
