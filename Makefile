@@ -107,8 +107,13 @@ $(RUNNER): $(BUILD)/obj/runner.o $(LUA_OBJ) $(LIB_A)
 $(TEST_C): $(TEST_OBJ) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
 
-$(BENCH): $(BENCH_SRC) $(LIB_A)
-	$(CC) $(CFLAGS_ALL) -Ibench -o $@ $(BENCH_SRC) $(LIB_A) $(LDFLAGS_ALL) -lm
+# Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
+BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
+$(BOX2D_OBJ): bench/box2d_scene.cpp | $(BUILD)/obj
+	$(CXX) -O2 $(SANFLAGS) $(call PC_CFLAGS,box2d) -c $< -o $@
+
+$(BENCH): $(BENCH_SRC) $(LIB_A) $(BOX2D_OBJ)
+	$(CC) $(CFLAGS_ALL) -Ibench -o $@ $(BENCH_SRC) $(BOX2D_OBJ) $(LIB_A) $(LDFLAGS_ALL) $(call PC_LIBS,box2d) -lstdc++ -lm
 
 -include $(wildcard $(BUILD)/obj/*.d $(BUILD)/obj/tests/*.d)
 

@@ -174,6 +174,7 @@ static const struct {
 } sections[] = {
     {"integrate", bench_integrate},
     {"tradeoff", bench_tradeoff},
+    {"collide", bench_collide},
 };
 
 int main(int argc, char **argv)

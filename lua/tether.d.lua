@@ -466,5 +466,136 @@ function world:composite_center(h) end
 function world:composite_angle(h) end
 ---@return integer
 function world:composite_count() end
+-- Collisions (src/lua_collide.c; docs/collisions.md) --------------------------
+
+---@alias tether.shape integer
+
+---@class tether.shape_options
+---@field restitution? number bounce 0..1, default 0
+---@field friction? number sets friction_static and friction_kinetic
+---@field friction_static? number default 0.6
+---@field friction_kinetic? number default 0.5
+---@field category? integer layer bits, default 1
+---@field mask? integer default 0xFFFF
+---@field sensor? boolean reports overlaps, never pushes; default false
+---@field angle? number rad (box, polygon)
+---@field loop? boolean chain: close it
+
+---@class tether.collision_settings
+---@field particles? boolean particle-particle contacts, default true
+---@field broadphase? "grid"|"brute"
+---@field cell_size? number m, 0 = auto
+---@field restitution? number particles' default bounce
+---@field friction? number particles' default friction (both)
+---@field friction_static? number
+---@field friction_kinetic? number
+---@field restitution_threshold? number m/s
+---@field events? ("begin"|"persist"|"end")[]
+
+---@class tether.ray_hit
+---@field particle? tether.particle
+---@field shape? tether.shape
+---@field x number
+---@field y number
+---@field nx number
+---@field ny number
+---@field fraction number
+
+---@class tether.contact
+---@field kind "begin"|"persist"|"end"
+---@field a tether.particle
+---@field b? tether.particle
+---@field shape? tether.shape
+---@field x number
+---@field y number
+---@field nx number
+---@field ny number
+---@field impulse number N·s
+---@field sensor boolean
+
+---A two-sided segment.
+---@return tether.shape
+function world:segment(x1, y1, x2, y2, opts) end
+---A polyline through {x1, y1, x2, y2, ...}.
+---@param points number[]
+---@param opts? tether.shape_options
+---@return tether.shape
+function world:chain(points, opts) end
+---Axis-aligned box from min to max corner.
+---@return tether.shape
+function world:aabb(x1, y1, x2, y2, opts) end
+---Oriented box: centre, half extents, opts.angle.
+---@return tether.shape
+function world:box(cx, cy, half_w, half_h, opts) end
+---A static circle.
+---@return tether.shape
+function world:circle(x, y, r, opts) end
+---A segment with a radius.
+---@return tether.shape
+function world:capsule(x1, y1, x2, y2, r, opts) end
+---A convex polygon {x1, y1, ...}, 3..64 points.
+---@param points number[]
+---@param opts? tether.shape_options
+---@return tether.shape
+function world:polygon(points, opts) end
+---@param s tether.shape
+function world:remove_shape(s) end
+---@param s tether.shape
+---@return boolean
+function world:shape_is_valid(s) end
+---@return integer
+function world:shape_count() end
+---@param s tether.shape
+---@return string
+function world:shape_type(s) end
+---@param s tether.shape
+---@return number x, number y, number angle
+function world:shape_transform(s) end
+---Kinematic move of a shape.
+---@param s tether.shape
+function world:set_shape_transform(s, x, y, angle) end
+---@param s tether.shape
+function world:set_shape_material(s, restitution, friction_static, friction_kinetic) end
+---@param s tether.shape
+function world:set_shape_filter(s, category, mask) end
+---@param s tether.shape
+---@param sensor boolean
+function world:set_shape_sensor(s, sensor) end
+---@param s tether.shape
+---@return number x1, number y1, number x2, number y2
+function world:shape_aabb(s) end
+---Switches collisions on.
+---@param opts? tether.collision_settings
+function world:set_collision(opts) end
+---@return tether.collision_settings
+function world:collision() end
+---@return table
+function world:collision_stats() end
+---@param p tether.particle
+function world:set_material(p, restitution, friction_static, friction_kinetic) end
+---@param p tether.particle
+---@return number restitution, number friction_static, number friction_kinetic
+function world:material(p) end
+---Continuous detection against shapes for this particle.
+---@param p tether.particle
+---@param bullet boolean
+function world:set_bullet(p, bullet) end
+---@param p tether.particle
+---@return boolean
+function world:bullet(p) end
+---@param a tether.particle
+---@param b tether.particle
+---@param enabled boolean
+function world:set_pair_collision(a, b, enabled) end
+---First hit along the segment, or nil.
+---@return tether.ray_hit?
+function world:raycast(x1, y1, x2, y2, mask) end
+---@return tether.particle[] particles, tether.shape[] shapes
+function world:query_point(x, y, mask) end
+---@return tether.particle[] particles, tether.shape[] shapes
+function world:query_aabb(x1, y1, x2, y2, mask) end
+---Contact events of the last step.
+---@return tether.contact[]
+function world:contacts() end
 
 return tether

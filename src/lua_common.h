@@ -134,5 +134,6 @@ void tl_push_particle(lua_State *L, tt_particle p);
 
 /* --- feature bindings: each adds its methods to the world class ------------- */
 void tl_constraints_register(lua_State *L); /* lua_constraints.c */
+void tl_collide_register(lua_State *L);     /* lua_collide.c */
 
 #endif

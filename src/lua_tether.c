@@ -19,6 +19,7 @@ TT_API int luaopen_tether(lua_State *L)
     luaL_checkversion(L);
     tl_world_register(L);
     tl_constraints_register(L);
+    tl_collide_register(L);
     lua_createtable(L, 0, 4);
     tl_setfuncs(L, tether_funcs, "tether.");
     lua_pushstring(L, tt_version());
