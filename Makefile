@@ -33,8 +33,18 @@ LUA_LIBS   := $(call PC_LIBS,lua5.4)
 
 # Core engine: every src/*.c that is not a binding, the runner or a back end
 # needing an optional library.
-CORE_SRC := $(filter-out src/lua_%.c src/runner.c,$(wildcard src/*.c))
+CORE_SRC := $(filter-out src/lua_%.c src/runner.c src/runner_%.c src/render_%.c,$(wildcard src/*.c))
 LUA_SRC  := $(wildcard src/lua_*.c)
+# Drawing (libtether_render.a): the canvas part is plain C (the Lua module
+# carries it); the GL back ends need OSMesa, SDL2 and libpng.
+CANVAS_SRC := src/render_canvas.c src/render_font.c src/render_debug.c
+RENDER_SRC := $(wildcard src/render_*.c)
+CANVAS_OBJ := $(CANVAS_SRC:src/%.c=$(BUILD)/obj/%.o)
+RENDER_OBJ := $(RENDER_SRC:src/%.c=$(BUILD)/obj/%.o)
+RENDER_CFLAGS := $(call PC_CFLAGS,sdl2 libpng)
+# OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
+RENDER_LIBS := $(call PC_LIBS,osmesa sdl2 libpng)
+RUNNER_OBJ := $(BUILD)/obj/runner.o $(BUILD)/obj/runner_view.o
 CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
 LUA_OBJ  := $(LUA_SRC:src/%.c=$(BUILD)/obj/%.o)
 TEST_SRC := $(wildcard tests/*.c)
@@ -43,13 +53,14 @@ BENCH_SRC := $(wildcard bench/*.c)
 
 LIB_A   := $(BUILD)/libtether.a
 LIB_SO  := $(BUILD)/libtether.so
+RENDER_A := $(BUILD)/libtether_render.a
 LUA_MOD := $(BUILD)/tether.so
 RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 BENCH   := $(BUILD)/bench
 
 .PHONY: all deps demo test test-c test-lua bench install uninstall clean
-all: deps $(LIB_A) $(LIB_SO) $(LUA_MOD) $(RUNNER)
+all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER)
 
 # --- dependencies -----------------------------------------------------------
 # Installs what is missing when run as root on Debian; otherwise prints the
@@ -81,11 +92,14 @@ $(BUILD)/obj/%.o: src/%.c $(wildcard include/*.h include/tether/*.h src/*.h) | $
 $(BUILD)/obj/lua_%.o: src/lua_%.c | $(BUILD)/obj
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/runner.o: src/runner.c | $(BUILD)/obj
-	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
+$(BUILD)/obj/runner%.o: src/runner%.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
+
+$(BUILD)/obj/render_%.o: src/render_%.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
 $(BUILD)/obj/tests/%.o: tests/%.c | $(BUILD)/obj/tests
-	$(CC) $(CFLAGS_ALL) -Itests -MMD -c $< -o $@
+	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Itests -MMD -c $< -o $@
 
 $(BUILD)/obj $(BUILD)/obj/tests:
 	mkdir -p $@
@@ -98,17 +112,20 @@ $(LIB_SO): $(CORE_OBJ)
 
 # The Lua module is not linked against liblua: the host (lua5.4 or our runner)
 # provides the Lua API, and a second copy of Lua in one process breaks it.
-$(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ)
+$(RENDER_A): $(RENDER_OBJ)
+	rm -f $@; ar rcs $@ $^
+
+$(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
 
-$(RUNNER): $(BUILD)/obj/runner.o $(LUA_OBJ) $(LIB_A)
-	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) -lm
+$(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) $(RENDER_LIBS) -lm
 
-$(TEST_C): $(TEST_OBJ) $(LIB_A)
-	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
+$(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(RENDER_LIBS) -lm
 
-$(BENCH): $(BENCH_SRC) $(LIB_A)
-	$(CC) $(CFLAGS_ALL) -Ibench -o $@ $(BENCH_SRC) $(LIB_A) $(LDFLAGS_ALL) -lm
+$(BENCH): $(BENCH_SRC) $(RENDER_A) $(LIB_A)
+	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Ibench -o $@ $(BENCH_SRC) $(RENDER_A) $(LIB_A) $(LDFLAGS_ALL) $(RENDER_LIBS) -lm
 
 -include $(wildcard $(BUILD)/obj/*.d $(BUILD)/obj/tests/*.d)
 
