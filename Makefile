@@ -92,7 +92,10 @@ $(BUILD)/obj/%.o: src/%.c $(wildcard include/*.h include/tether/*.h src/*.h) | $
 $(BUILD)/obj/lua_%.o: src/lua_%.c | $(BUILD)/obj
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/runner%.o: src/runner%.c | $(BUILD)/obj
+$(BUILD)/obj/runner.o: src/runner.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
+
+$(BUILD)/obj/runner_%.o: src/runner_%.c | $(BUILD)/obj
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
 $(BUILD)/obj/render_%.o: src/render_%.c | $(BUILD)/obj

@@ -121,5 +121,7 @@ void tl_world_register(lua_State *L);
 int tl_world_new(lua_State *L);
 /* Pushes the list of integrator names, {"euler", ...}. */
 void tl_push_integrators(lua_State *L);
+/* The live world of the world userdata at idx, or NULL (not a world, or destroyed). */
+tt_world *tl_toworld(lua_State *L, int idx);
 
 #endif

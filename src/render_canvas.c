@@ -155,6 +155,8 @@ tt_result tt_canvas_set_layer(tt_canvas *c, tt_layer layer)
     return TT_OK;
 }
 
+tt_layer tt_canvas_get_layer(const tt_canvas *c) { return c ? c->layer : TT_LAYER_WORLD; }
+
 tt_result tt_canvas_set_line_width(tt_canvas *c, double px)
 {
     if (!c) return TT_EINVAL;

@@ -78,6 +78,7 @@ TT_API void tt_canvas_set_color(tt_canvas *c, tt_color color);
 TT_API tt_color tt_canvas_get_color(const tt_canvas *c);
 /// Layer of the next draws (TT_LAYER_WORLD or TT_LAYER_SCREEN).
 TT_API tt_result tt_canvas_set_layer(tt_canvas *c, tt_layer layer);
+TT_API tt_layer tt_canvas_get_layer(const tt_canvas *c);
 /// Width of lines and outlines, px (0.1…1000); default 1.5.
 TT_API tt_result tt_canvas_set_line_width(tt_canvas *c, double px);
 /// A circle (radius in the layer's units, ≥ 0), filled or outlined; anti-aliased.
