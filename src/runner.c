@@ -419,6 +419,27 @@ bool tr_session_open(session *s, const options *o, int argc, char **argv)
     }
     lua_pushcfunction(L, l_quit);
     lua_setfield(L, -2, "quit");
+    /* tether.runner: how this run shows the script (read-only by convention) */
+    lua_createtable(L, 0, 8);
+    lua_pushstring(L, o->out != NULL ? "frames" : o->headless ? "headless" : "window");
+    lua_setfield(L, -2, "mode");
+    lua_pushinteger(L, o->width);
+    lua_setfield(L, -2, "width");
+    lua_pushinteger(L, o->height);
+    lua_setfield(L, -2, "height");
+    lua_pushnumber(L, o->dt);
+    lua_setfield(L, -2, "dt");
+    if (o->frames > 0) {
+        lua_pushinteger(L, o->frames);
+        lua_setfield(L, -2, "frames");
+    }
+    lua_pushinteger(L, o->every);
+    lua_setfield(L, -2, "every");
+    if (o->out != NULL) {
+        lua_pushstring(L, o->out);
+        lua_setfield(L, -2, "out");
+    }
+    lua_setfield(L, -2, "runner");
     lua_pushvalue(L, -1);
     lua_setglobal(L, "tether");
     s->module = lua_gettop(L);

@@ -9,6 +9,8 @@
 #   3. fountain.lua run twice as two processes       must print the same hash
 #   4. lua5.4 tests/lua/test_world.lua               stock Lua requires $BUILD/tether.so
 #   5. $BUILD/tether --headless --steps 60 demos/*.lua   smoke test of each demo
+#   6. the renderer: tests/lua/test_render.lua inside frames, every demo as
+#      headless PNG frames, and the window under Xvfb (SDL_VIDEODRIVER=x11)
 # Every test program ends with a line "N passed, M failed"; a non-zero exit
 # or a missing line counts as a failure. One line per part, then the total
 # "N passed, M failed" as the very last line; exit status 1 if anything failed.
@@ -19,6 +21,9 @@ RUNNER="$BUILD/tether"
 
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 export UBSAN_OPTIONS
+# Leaks inside system GL libraries are suppressed by name, never our own.
+LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+export LSAN_OPTIONS
 
 total_pass=0
 total_fail=0
@@ -136,6 +141,41 @@ for d in demos/*.lua; do
     [ -e "$d" ] || continue
     run_check "demo: $d" demo_ok "$d"
 done
+
+# 6. The renderer.
+frames=$(mktemp -d "${TMPDIR:-/tmp}/tether-frames.XXXXXX") || exit 1
+trap 'rm -f "$tmp" "$tmp2"; rm -rf "$frames"' EXIT INT TERM
+run_counted "lua: tests/lua/test_render.lua (inside frames)" \
+    "$RUNNER" --headless --frames 2 --size 200x150 --out "$frames/lua" tests/lua/test_render.lua
+
+# each demo as 3 headless PNG frames of 320x240, 10 steps apart
+demo_frames_ok() {
+    out="$frames/$(basename "$1" .lua)"
+    "$RUNNER" --headless --frames 3 --every 10 --size 320x240 --out "$out" "$1" >"$tmp2" 2>&1 || { cat "$tmp2"; return 1; }
+    cat "$tmp2"
+    grep -q '^tether: 3 frames 320x240 ' "$tmp2" || return 1
+    for k in 00000 00001 00002; do
+        [ -s "$out/frame_$k.png" ] || { echo "missing $out/frame_$k.png"; return 1; }
+    done
+}
+for d in demos/*.lua; do
+    [ -e "$d" ] || continue
+    run_check "demo frames: $d" demo_frames_ok "$d"
+done
+
+# the window: 20 frames under Xvfb, a screenshot of the last, exit status 0
+window_ok() {
+    shot="$frames/window.png"
+    SDL_VIDEODRIVER=x11 xvfb-run -a "$RUNNER" --frames 20 --size 320x240 --screenshot "$shot" demos/fountain.lua \
+        >"$tmp2" 2>&1 || { cat "$tmp2"; return 1; }
+    cat "$tmp2"
+    grep -q '^tether: window: 20 frames' "$tmp2" && [ -s "$shot" ] && [ "$(od -An -c -N4 "$shot" | tr -d ' ')" = "211PNG" ]
+}
+if command -v xvfb-run >/dev/null 2>&1; then
+    run_check "window under Xvfb: demos/fountain.lua, 20 frames + screenshot" window_ok
+else
+    echo "window under Xvfb: skipped: xvfb-run is not installed (apt-get install xvfb xauth)"
+fi
 
 echo "$total_pass passed, $total_fail failed"
 [ "$total_fail" -eq 0 ]
