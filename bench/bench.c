@@ -174,6 +174,7 @@ static const struct {
 } sections[] = {
     {"integrate", bench_integrate},
     {"tradeoff", bench_tradeoff},
+    {"render", bench_render},
 };
 
 int main(int argc, char **argv)

@@ -67,6 +67,7 @@ void tt_canvas_destroy(tt_canvas *c)
     for (int l = 0; l < 2; l++) {
         free(c->layers[l].tris.v);
         free(c->layers[l].circles.v);
+        free(c->layers[l].points.v);
         free(c->layers[l].text.v);
         free(c->layers[l].images.v);
     }
@@ -99,6 +100,7 @@ void tt_canvas_clear(tt_canvas *c, tt_color background)
     for (int l = 0; l < 2; l++) {
         c->layers[l].tris.n = 0;
         c->layers[l].circles.n = 0;
+        c->layers[l].points.n = 0;
         c->layers[l].text.n = 0;
         c->layers[l].images.n = 0;
     }
@@ -189,6 +191,16 @@ static tt_result oom(tt_canvas *c, const char *fn)
 static inline bool add_circle(tt_canvas *c, float cx, float cy, float r, float inner, tt_color k)
 {
     tt__layer *L = &c->layers[c->layer];
+    if (r <= TT__POINT_MAX_RADIUS) {
+        if (!RESERVE(L->points, 1)) return false;
+        tt__vpoint *p = L->points.v + L->points.n++;
+        p->x = cx;
+        p->y = cy;
+        p->r = r;
+        p->inner = inner;
+        put_rgba(p->rgba, k);
+        return true;
+    }
     if (!RESERVE(L->circles, 4)) return false;
     float e = r + 1.0f; /* one pixel of room for the anti-aliased edge */
     static const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
@@ -419,7 +431,7 @@ size_t tt_canvas_primitive_count(const tt_canvas *c)
     if (!c) return 0;
     size_t n = 0;
     for (int l = 0; l < 2; l++)
-        n += c->layers[l].tris.n / 3 + c->layers[l].circles.n / 4 + c->layers[l].text.n / 3 + c->layers[l].images.n;
+        n += c->layers[l].tris.n / 3 + c->layers[l].circles.n / 4 + c->layers[l].points.n + c->layers[l].text.n / 3 + c->layers[l].images.n;
     return n;
 }
 

@@ -59,7 +59,8 @@
     X(void, PixelStorei, (GLenum, GLint))                                                            \
     X(void, ReadPixels, (GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *))                    \
     X(void, Finish, (void))                                                                          \
-    X(GLenum, GetError, (void))
+    X(GLenum, GetError, (void))                                                                      \
+    X(void, GetFloatv, (GLenum, GLfloat *))
 
 typedef struct texslot {
     uint64_t image_id;
@@ -72,8 +73,9 @@ struct tt__gl {
 #define X(ret, name, args) ret(APIENTRY *name) args;
     GL_FUNCS(X)
 #undef X
-    GLuint prog_solid, prog_circle, prog_tex;
-    GLint size_solid, size_circle, size_tex, sampler;
+    GLuint prog_solid, prog_circle, prog_tex, prog_point;
+    GLint size_solid, size_circle, size_tex, sampler, size_point;
+    float max_point;      /* largest point sprite, px */
     GLuint vbo, ibo;
     size_t quads_indexed; /* quads the index buffer covers */
     texslot *tex;
@@ -101,6 +103,22 @@ static const char *fs_circle =
     "#version 120\n"
     "varying vec4 v_color; varying vec2 v_local; varying vec2 v_radius;\n"
     "void main() { float d = length(v_local);\n"
+    "  float a = clamp(v_radius.x - d + 0.5, 0.0, 1.0);\n"
+    "  if (v_radius.y >= 0.0) a *= clamp(d - v_radius.y + 0.5, 0.0, 1.0);\n"
+    "  if (a <= 0.0) discard;\n"
+    "  gl_FragColor = vec4(v_color.rgb, v_color.a * a); }\n";
+/* small circles as point sprites: one vertex, the quad made by the rasteriser */
+static const char *vs_point =
+    "#version 120\n"
+    "attribute vec2 a_pos; attribute vec4 a_color; attribute vec2 a_radius; uniform vec2 u_size;\n"
+    "varying vec4 v_color; varying vec2 v_radius; varying vec2 v_center;\n"
+    "void main() { v_color = a_color; v_radius = a_radius; gl_PointSize = 2.0 * a_radius.x + 2.0;\n"
+    "  v_center = vec2(a_pos.x, u_size.y - a_pos.y); /* window coordinates, y up like gl_FragCoord */\n"
+    "  gl_Position = vec4(a_pos.x / u_size.x * 2.0 - 1.0, 1.0 - a_pos.y / u_size.y * 2.0, 0.0, 1.0); }\n";
+static const char *fs_point =
+    "#version 120\n"
+    "varying vec4 v_color; varying vec2 v_radius; varying vec2 v_center;\n"
+    "void main() { float d = length(gl_FragCoord.xy - v_center);\n"
     "  float a = clamp(v_radius.x - d + 0.5, 0.0, 1.0);\n"
     "  if (v_radius.y >= 0.0) a *= clamp(d - v_radius.y + 0.5, 0.0, 1.0);\n"
     "  if (a <= 0.0) discard;\n"
@@ -176,7 +194,12 @@ tt__gl *tt__gl_create(void *(*getproc)(const char *name), char *err, size_t n)
     g->prog_solid = program(g, vs_solid, fs_solid, err, n);
     g->prog_circle = g->prog_solid ? program(g, vs_circle, fs_circle, err, n) : 0;
     g->prog_tex = g->prog_circle ? program(g, vs_tex, fs_tex, err, n) : 0;
-    if (!g->prog_tex) { tt__gl_destroy(g); return NULL; }
+    g->prog_point = g->prog_tex ? program(g, vs_point, fs_point, err, n) : 0;
+    if (!g->prog_point) { tt__gl_destroy(g); return NULL; }
+    g->size_point = g->GetUniformLocation(g->prog_point, "u_size");
+    GLfloat range[2] = {1, 1};
+    g->GetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
+    g->max_point = range[1];
     g->size_solid = g->GetUniformLocation(g->prog_solid, "u_size");
     g->size_circle = g->GetUniformLocation(g->prog_circle, "u_size");
     g->size_tex = g->GetUniformLocation(g->prog_tex, "u_size");
@@ -193,6 +216,7 @@ void tt__gl_destroy(tt__gl *g)
         if (g->prog_solid) g->DeleteProgram(g->prog_solid);
         if (g->prog_circle) g->DeleteProgram(g->prog_circle);
         if (g->prog_tex) g->DeleteProgram(g->prog_tex);
+        if (g->prog_point) g->DeleteProgram(g->prog_point);
         if (g->vbo) g->DeleteBuffers(1, &g->vbo);
         if (g->ibo) g->DeleteBuffers(1, &g->ibo);
         for (size_t i = 0; i < g->ntex; i++) g->DeleteTextures(1, &g->tex[i].tex);
@@ -265,6 +289,26 @@ static bool draw_circles(tt__gl *g, const tt__circle_array *a, int w, int h)
     return true;
 }
 
+static void draw_points(tt__gl *g, const tt__point_array *a, int w, int h)
+{
+    if (a->n == 0) return;
+    g->UseProgram(g->prog_point);
+    g->Uniform2f(g->size_point, (float)w, (float)h);
+    g->BindBuffer(GL_ARRAY_BUFFER, g->vbo);
+    g->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(a->n * sizeof *a->v), a->v, GL_STREAM_DRAW);
+    g->EnableVertexAttribArray(A_POS);
+    g->EnableVertexAttribArray(A_COLOR);
+    g->EnableVertexAttribArray(A_RADIUS);
+    size_t st = sizeof(tt__vpoint);
+    g->VertexAttribPointer(A_POS, 2, GL_FLOAT, GL_FALSE, (GLsizei)st, (void *)offsetof(tt__vpoint, x));
+    g->VertexAttribPointer(A_RADIUS, 2, GL_FLOAT, GL_FALSE, (GLsizei)st, (void *)offsetof(tt__vpoint, r));
+    g->VertexAttribPointer(A_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)st, (void *)offsetof(tt__vpoint, rgba));
+    g->DrawArrays(GL_POINTS, 0, (GLsizei)a->n);
+    g->DisableVertexAttribArray(A_POS);
+    g->DisableVertexAttribArray(A_COLOR);
+    g->DisableVertexAttribArray(A_RADIUS);
+}
+
 /* The texture of img, uploaded when new or touched. */
 static GLuint texture_of(tt__gl *g, tt_image *img)
 {
@@ -332,12 +376,14 @@ tt_result tt__gl_draw(tt__gl *g, const tt_canvas *c, int w, int h, char *err, si
     g->ClearColor(c->background.r / 255.0f, c->background.g / 255.0f, c->background.b / 255.0f, c->background.a / 255.0f);
     g->Clear(GL_COLOR_BUFFER_BIT);
     g->Enable(GL_BLEND);
+    g->Enable(GL_VERTEX_PROGRAM_POINT_SIZE); /* gl_PointSize from the shader */
     /* alpha of the target accumulates as "over", so an opaque background stays opaque */
     g->BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (int l = 0; l < 2; l++) {
         const tt__layer *L = &c->layers[l];
         draw_images(g, L, w, h);
         draw_solid(g, &L->tris, w, h);
+        draw_points(g, &L->points, w, h);
         if (!draw_circles(g, &L->circles, w, h)) {
             tt__errf(err, n, "out of memory for the circle index buffer");
             return TT_ENOMEM;

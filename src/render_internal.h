@@ -20,6 +20,12 @@ typedef struct tt__vcircle {  /* one corner of a circle's quad */
     uint8_t rgba[4];
 } tt__vcircle;
 
+typedef struct tt__vpoint {  /* a small circle as one point sprite */
+    float x, y;               /* centre, px */
+    float r, inner;           /* outer radius; inner radius (−1 when filled), px */
+    uint8_t rgba[4];
+} tt__vpoint;
+
 typedef struct tt__vtex {     /* textured quads */
     float x, y, u, v;
     uint8_t rgba[4];
@@ -27,6 +33,12 @@ typedef struct tt__vtex {     /* textured quads */
 
 typedef struct tt__solid_array { tt__vsolid *v; size_t n, cap; } tt__solid_array;
 typedef struct tt__circle_array { tt__vcircle *v; size_t n, cap; } tt__circle_array;
+typedef struct tt__point_array { tt__vpoint *v; size_t n, cap; } tt__point_array;
+
+/* Circles up to this radius (px) are point sprites (one vertex each); larger ones are quads. */
+#ifndef TT__POINT_MAX_RADIUS
+#define TT__POINT_MAX_RADIUS 60.0f
+#endif
 
 typedef struct tt__imgdraw {
     tt_image *img;
@@ -35,7 +47,8 @@ typedef struct tt__imgdraw {
 
 typedef struct tt__layer {
     tt__solid_array tris;     /* 3 per triangle */
-    tt__circle_array circles; /* 4 per circle: corners in quad order */
+    tt__point_array points;   /* small circles: 1 vertex each */
+    tt__circle_array circles; /* large circles: 4 per circle, corners in quad order */
     tt__solid_array text;     /* 3 per triangle */
     struct { tt__imgdraw *v; size_t n, cap; } images;
 } tt__layer;
