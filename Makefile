@@ -133,8 +133,22 @@ $(BENCH): $(BENCH_SRC) $(RENDER_A) $(LIB_A)
 -include $(wildcard $(BUILD)/obj/*.d $(BUILD)/obj/tests/*.d)
 
 # --- run --------------------------------------------------------------------
+# `make demo` renders DEMO headless to PNG frames in $(BUILD)/demo/ (100 frames,
+# one every 6 steps: 10 s of simulated time at 10 frames per second), then an
+# MP4 (ffmpeg) or an animated GIF (ImageMagick) when one of them is installed.
+DEMO ?= demos/fountain.lua
+DEMO_OUT := $(BUILD)/demo
 demo: all
-	$(RUNNER) --headless --steps 600 demos/fountain.lua
+	@rm -f $(DEMO_OUT)/frame_*.png
+	$(RUNNER) --headless --frames 100 --every 6 --size 800x600 --out $(DEMO_OUT) $(DEMO)
+	@name=$$(basename $(DEMO) .lua); \
+	if command -v ffmpeg >/dev/null 2>&1; then \
+	  ffmpeg -loglevel error -y -framerate 10 -i $(DEMO_OUT)/frame_%05d.png -pix_fmt yuv420p $(DEMO_OUT)/$$name.mp4 && \
+	  echo "demo: video $(DEMO_OUT)/$$name.mp4"; \
+	elif convert -version 2>/dev/null | grep -q ImageMagick; then \
+	  convert -delay 10 -loop 0 -resize 400x300 $(DEMO_OUT)/frame_*.png -layers Optimize $(DEMO_OUT)/$$name.gif && \
+	  echo "demo: animated GIF $(DEMO_OUT)/$$name.gif"; \
+	else echo "demo: PNG frames in $(DEMO_OUT)/ (install ffmpeg or ImageMagick for a video)"; fi
 
 test: all $(TEST_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh

@@ -289,9 +289,37 @@ static bool draw_circles(tt__gl *g, const tt__circle_array *a, int w, int h)
     return true;
 }
 
-static void draw_points(tt__gl *g, const tt__point_array *a, int w, int h)
+static bool draw_circles(tt__gl *g, const tt__circle_array *a, int w, int h);
+
+/* Where points cannot be as large as TT__POINT_MAX_RADIUS needs, they are drawn as quads. */
+static bool points_as_quads(tt__gl *g, const tt__point_array *a, int w, int h)
 {
-    if (a->n == 0) return;
+    tt__circle_array q = {malloc(a->n * 4 * sizeof(tt__vcircle)), a->n * 4, a->n * 4};
+    if (!q.v) return false;
+    static const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+    for (size_t i = 0; i < a->n; i++) {
+        const tt__vpoint *p = &a->v[i];
+        float e = p->r + 1.0f;
+        for (int k = 0; k < 4; k++) {
+            tt__vcircle *v = &q.v[4 * i + k];
+            v->x = p->x + sx[k] * e;
+            v->y = p->y + sy[k] * e;
+            v->lx = sx[k] * e;
+            v->ly = sy[k] * e;
+            v->r = p->r;
+            v->inner = p->inner;
+            memcpy(v->rgba, p->rgba, 4);
+        }
+    }
+    bool ok = draw_circles(g, &q, w, h);
+    free(q.v);
+    return ok;
+}
+
+static bool draw_points(tt__gl *g, const tt__point_array *a, int w, int h)
+{
+    if (a->n == 0) return true;
+    if (g->max_point < 2.0f * TT__POINT_MAX_RADIUS + 2.0f) return points_as_quads(g, a, w, h);
     g->UseProgram(g->prog_point);
     g->Uniform2f(g->size_point, (float)w, (float)h);
     g->BindBuffer(GL_ARRAY_BUFFER, g->vbo);
@@ -307,6 +335,7 @@ static void draw_points(tt__gl *g, const tt__point_array *a, int w, int h)
     g->DisableVertexAttribArray(A_POS);
     g->DisableVertexAttribArray(A_COLOR);
     g->DisableVertexAttribArray(A_RADIUS);
+    return true;
 }
 
 /* The texture of img, uploaded when new or touched. */
@@ -383,8 +412,7 @@ tt_result tt__gl_draw(tt__gl *g, const tt_canvas *c, int w, int h, char *err, si
         const tt__layer *L = &c->layers[l];
         draw_images(g, L, w, h);
         draw_solid(g, &L->tris, w, h);
-        draw_points(g, &L->points, w, h);
-        if (!draw_circles(g, &L->circles, w, h)) {
+        if (!draw_points(g, &L->points, w, h) || !draw_circles(g, &L->circles, w, h)) {
             tt__errf(err, n, "out of memory for the circle index buffer");
             return TT_ENOMEM;
         }
