@@ -59,7 +59,7 @@ RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 BENCH   := $(BUILD)/bench
 
-.PHONY: all deps demo test test-c test-lua bench install uninstall clean
+.PHONY: all deps demo pictures test test-c test-lua bench install uninstall clean
 all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER)
 
 # --- dependencies -----------------------------------------------------------
@@ -149,6 +149,14 @@ demo: all
 	  convert -delay 10 -loop 0 -resize 400x300 $(DEMO_OUT)/frame_*.png -layers Optimize $(DEMO_OUT)/$$name.gif && \
 	  echo "demo: animated GIF $(DEMO_OUT)/$$name.gif"; \
 	else echo "demo: PNG frames in $(DEMO_OUT)/ (install ffmpeg or ImageMagick for a video)"; fi
+
+# `make pictures`: one small PNG per demo (400x300, after 5 s of simulated
+# time) into docs/img/, the pictures the README and docs/render.md show.
+pictures: all
+	@mkdir -p docs/img
+	@for d in demos/*.lua; do n=$$(basename $$d .lua); \
+	  $(RUNNER) --headless --frames 1 --every 300 --size 400x300 --out $(BUILD)/pictures/$$n $$d >/dev/null 2>&1 && \
+	  cp $(BUILD)/pictures/$$n/frame_00000.png docs/img/$$n.png && echo "docs/img/$$n.png" || echo "$$d: FAILED"; done
 
 test: all $(TEST_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh

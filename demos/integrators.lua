@@ -102,7 +102,9 @@ function tether.draw(g)
     if #pts >= 4 then g.line(table.unpack(pts)) end
     if #pts >= 2 then g.circle(pts[#pts - 1], pts[#pts], 4) end
     g.color(0.9, 0.9, 0.9)
-    g.text(left + 8, H * 0.04, tether.integrators[i], scale)
+    local label = tether.integrators[i]
+    if #label * 6 * scale > pw - 12 then label = label:gsub("symplectic_", "sympl_") end
+    g.text(left + 8, H * 0.04, label, scale)
     g.text(left + 8, H * 0.88, ("dE/E\n%+.2e"):format((energy(w) - e0[i]) / e0[i]), scale)
     if i > 1 then
       g.color(0.25, 0.25, 0.3)
@@ -112,8 +114,9 @@ function tether.draw(g)
   end
   g.layer("screen")
   g.color(0.6, 0.6, 0.6)
-  g.text(8, H - 12, ("t = %.2f s   bob %g kg on a %g N/m spring; below: phase orbit (x, v/omega), exact = circle")
-    :format(time, MASS, K), 1)
+  local caption = W >= 640 and "   bob %g kg on a %g N/m spring; below: phase orbit (x, v/omega), exact = circle"
+    or "   phase orbits; exact = circle"
+  g.text(8, H - 12, ("t = %.2f s" .. caption):format(time, MASS, K), 1)
   g.layer("world")
 end
 
