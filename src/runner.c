@@ -80,6 +80,8 @@ static void usage(FILE *f)
             "  --out DIR    (with --headless) write DIR/frame_00000.png ... (default 60 frames)\n"
             "  --size WxH   frame or window size in pixels (default 800x600)\n"
             "  --screenshot FILE  (window) write the last frame shown to FILE (PNG)\n"
+            "  --events FILE      (window) scripted input: lines 'FRAME key NAME', 'FRAME down X Y',\n"
+            "               'FRAME move X Y', 'FRAME up X Y', 'FRAME quit' (X, Y window pixels)\n"
             "  --help       show this help and exit\n"
             "  --version    show the version and exit\n"
             "  --           stop handling options\n",
@@ -109,6 +111,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->width = 800;
     o->height = 600;
     o->screenshot = NULL;
+    o->events = NULL;
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = NULL;
@@ -185,6 +188,13 @@ static int parse_args(int argc, char **argv, options *o)
             o->screenshot = val;
             continue;
         }
+        if (strncmp(a, "--events", 8) == 0 && (a[8] == '\0' || a[8] == '=')) {
+            val = a[8] == '=' ? a + 9 : (i + 1 < argc ? argv[++i] : NULL);
+            if (val == NULL || *val == '\0')
+                return bad_usage("%s needs a file name", "--events");
+            o->events = val;
+            continue;
+        }
         if (strncmp(a, "--size", 6) == 0 && (a[6] == '\0' || a[6] == '=')) {
             long w, h;
             val = a[6] == '=' ? a + 7 : (i + 1 < argc ? argv[++i] : NULL);
@@ -211,6 +221,8 @@ static int parse_args(int argc, char **argv, options *o)
         return bad_usage("%s", "--frames with --headless needs --out DIR (where the PNG frames go)");
     if (!o->headless && o->out != NULL)
         return bad_usage("%s", "--out needs --headless (a window shows its frames; --screenshot saves one)");
+    if (o->headless && o->events != NULL)
+        return bad_usage("%s", "--events is for the window");
     if (o->headless && o->screenshot != NULL)
         return bad_usage("%s", "--screenshot is for the window; headless frames go to --out DIR");
     if (o->out != NULL && o->frames == 0)

@@ -21,6 +21,7 @@ typedef struct options {
     const char *out;  /* folder for PNG frames (headless) */
     int width, height;/* frame / window size, default 800 x 600 */
     const char *screenshot; /* window: PNG of the last frame */
+    const char *events;     /* window: scripted input, "FRAME key NAME | down X Y | move X Y | up X Y | quit" */
 } options;
 
 /* One run of the script: its Lua state and where things are on its stack. */

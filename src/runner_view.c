@@ -185,6 +185,84 @@ done:
 
 /* --- the window --------------------------------------------------------------- */
 
+/* Scripted input (--events FILE): SDL events pushed at given frames, so the
+ * window's keys and mouse can be driven by a test. */
+typedef struct scripted {
+    long frame;
+    SDL_Event ev;
+} scripted;
+
+static scripted *read_events(const char *path, size_t *count)
+{
+    FILE *f = fopen(path, "r");
+    scripted *v = NULL;
+    size_t n = 0, cap = 0;
+    char line[256];
+    int lineno = 0;
+    *count = 0;
+    if (!f) {
+        fprintf(stderr, PROGNAME ": --events: cannot open '%s': %s\n", path, strerror(errno));
+        return NULL;
+    }
+    while (fgets(line, sizeof line, f)) {
+        long frame;
+        char kind[16], name[64];
+        int x = 0, y = 0, got;
+        lineno++;
+        if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
+            continue;
+        got = sscanf(line, "%ld %15s %63s %d", &frame, kind, name, &y);
+        if (got < 2 || frame < 0)
+            goto bad;
+        if (n == cap) {
+            size_t nc = cap ? cap * 2 : 16;
+            scripted *p = realloc(v, nc * sizeof *p);
+            if (!p)
+                goto bad;
+            v = p;
+            cap = nc;
+        }
+        scripted *e = &v[n];
+        memset(e, 0, sizeof *e);
+        e->frame = frame;
+        if (strcmp(kind, "key") == 0 && got >= 3) {
+            SDL_Keycode k = SDL_GetKeyFromName(name);
+            if (k == SDLK_UNKNOWN)
+                goto bad;
+            e->ev.type = SDL_KEYDOWN;
+            e->ev.key.state = SDL_PRESSED;
+            e->ev.key.keysym.sym = k;
+        } else if (strcmp(kind, "quit") == 0) {
+            e->ev.type = SDL_QUIT;
+        } else if ((strcmp(kind, "down") == 0 || strcmp(kind, "up") == 0 || strcmp(kind, "move") == 0) &&
+                   sscanf(line, "%ld %15s %d %d", &frame, kind, &x, &y) == 4) {
+            if (strcmp(kind, "move") == 0) {
+                e->ev.type = SDL_MOUSEMOTION;
+                e->ev.motion.x = x;
+                e->ev.motion.y = y;
+            } else {
+                e->ev.type = kind[0] == 'd' ? SDL_MOUSEBUTTONDOWN : SDL_MOUSEBUTTONUP;
+                e->ev.button.button = SDL_BUTTON_LEFT;
+                e->ev.button.state = kind[0] == 'd' ? SDL_PRESSED : SDL_RELEASED;
+                e->ev.button.x = x;
+                e->ev.button.y = y;
+            }
+        } else {
+            goto bad;
+        }
+        n++;
+    }
+    fclose(f);
+    *count = n;
+    return v ? v : calloc(1, sizeof *v);
+bad:
+    fprintf(stderr, PROGNAME ": --events: %s:%d: expected 'FRAME key NAME', 'FRAME down|move|up X Y' or 'FRAME quit'\n",
+            path, lineno);
+    fclose(f);
+    free(v);
+    return NULL;
+}
+
 typedef struct drag {
     bool active, was_pinned;
     tt_particle p;
@@ -275,6 +353,10 @@ int tr_run_window(session *s, const options *o)
     long frames = 0, steps = 0;
     drag d;
     memset(&d, 0, sizeof d);
+    size_t nevents = 0, next_event = 0;
+    scripted *events = NULL;
+    if (ok && o->events && !(events = read_events(o->events, &nevents)))
+        ok = false;
 
     while (ok && !quit && !g_quit && !g_interrupted) {
         int ww, wh, dw, dh;
@@ -283,6 +365,8 @@ int tr_run_window(session *s, const options *o)
         tt_window_size(win, &dw, &dh);
         SDL_GetWindowSize(SDL_GL_GetCurrentWindow(), &ww, &wh);
         double sx = ww > 0 ? (double)dw / ww : 1.0, sy = wh > 0 ? (double)dh / wh : 1.0;
+        while (next_event < nevents && events[next_event].frame <= frames)
+            SDL_PushEvent(&events[next_event++].ev);
         while (SDL_PollEvent(&ev)) {
             switch (ev.type) {
             case SDL_QUIT:
@@ -401,6 +485,7 @@ int tr_run_window(session *s, const options *o)
                o->screenshot && o->frames > 0 && frames >= o->frames ? o->screenshot : "");
         fflush(stdout);
     }
+    free(events);
     tt_canvas_destroy(c);
     tt_window_close(win);
     return ok ? 0 : 1;

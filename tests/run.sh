@@ -171,6 +171,11 @@ window_ok() {
     cat "$tmp2"
     grep -q '^tether: window: 20 frames' "$tmp2" && [ -s "$shot" ] && [ "$(od -An -c -N4 "$shot" | tr -d ' ')" = "211PNG" ]
 }
+# the window's keys and mouse drag, driven by scripted events
+window_input() {
+    SDL_VIDEODRIVER=x11 ASAN_OPTIONS="$window_asan" xvfb-run -a "$RUNNER" --frames 40 --size 320x240 \
+        --events tests/window_input.events tests/window_input.lua
+}
 if command -v xvfb-run >/dev/null 2>&1; then
     if [ "$SANITIZE" = 1 ]; then
         # ASan stays on; leak checking is off for this one process: the X11,
@@ -179,9 +184,11 @@ if command -v xvfb-run >/dev/null 2>&1; then
         # own code's leaks are checked by every other (headless) run above.
         window_asan="detect_leaks=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
         run_check "window under Xvfb: demos/fountain.lua, 20 frames + screenshot (ASan, leak check off)" window_ok
+        run_counted "window under Xvfb: keys and mouse drag, tests/window_input.lua (ASan, leak check off)" window_input
     else
         window_asan=${ASAN_OPTIONS:-}
         run_check "window under Xvfb: demos/fountain.lua, 20 frames + screenshot" window_ok
+        run_counted "window under Xvfb: keys and mouse drag, tests/window_input.lua" window_input
     fi
 else
     echo "window under Xvfb: skipped: xvfb-run is not installed (apt-get install xvfb xauth)"
