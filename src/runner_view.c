@@ -2,6 +2,7 @@
  * (OSMesa) and an interactive SDL2 window. Both call tether.update(dt) at a
  * fixed dt and tether.draw(g) once per frame, g being tether.gfx. */
 #include <errno.h>
+#include <stdint.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -234,6 +235,12 @@ static scripted *read_events(const char *path, size_t *count)
             e->ev.key.keysym.sym = k;
         } else if (strcmp(kind, "quit") == 0) {
             e->ev.type = SDL_QUIT;
+        } else if (strcmp(kind, "resize") == 0 && sscanf(line, "%ld %15s %d %d", &frame, kind, &x, &y) == 4 &&
+                   x >= 16 && y >= 16 && x <= 8192 && y <= 8192) {
+            e->ev.type = SDL_USEREVENT; /* not pushed: the window is resized as a user would */
+            e->ev.user.code = 1;
+            e->ev.user.data1 = (void *)(intptr_t)x;
+            e->ev.user.data2 = (void *)(intptr_t)y;
         } else if ((strcmp(kind, "down") == 0 || strcmp(kind, "up") == 0 || strcmp(kind, "move") == 0) &&
                    sscanf(line, "%ld %15s %d %d", &frame, kind, &x, &y) == 4) {
             if (strcmp(kind, "move") == 0) {
@@ -365,8 +372,13 @@ int tr_run_window(session *s, const options *o)
         tt_window_size(win, &dw, &dh);
         SDL_GetWindowSize(SDL_GL_GetCurrentWindow(), &ww, &wh);
         double sx = ww > 0 ? (double)dw / ww : 1.0, sy = wh > 0 ? (double)dh / wh : 1.0;
-        while (next_event < nevents && events[next_event].frame <= frames)
-            SDL_PushEvent(&events[next_event++].ev);
+        while (next_event < nevents && events[next_event].frame <= frames) {
+            SDL_Event *e = &events[next_event++].ev;
+            if (e->type == SDL_USEREVENT && e->user.code == 1)
+                SDL_SetWindowSize(SDL_GL_GetCurrentWindow(), (int)(intptr_t)e->user.data1, (int)(intptr_t)e->user.data2);
+            else
+                SDL_PushEvent(e);
+        }
         while (SDL_PollEvent(&ev)) {
             switch (ev.type) {
             case SDL_QUIT:

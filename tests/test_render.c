@@ -239,3 +239,66 @@ TEST(list_springs_gives_every_live_handle)
     ENSURE(tt_world_list_springs(w, out, 1) == 2); /* returns the count even when cap is smaller */
     tt_world_destroy(w);
 }
+
+/* Circles larger than a point sprite may be are quads: same disc, same ring. */
+TEST(headless_frame_large_circles_filled_and_outlined)
+{
+    tt_headless *hl = tt_headless_create(200, 200, NULL, 0);
+    ENSURE(hl != NULL);
+    tt_canvas *c = tt_canvas_create(200, 200);
+    tt_canvas_clear(c, (tt_color){0, 0, 0, 255});
+    ENSURE_OK(tt_canvas_set_layer(c, TT_LAYER_SCREEN));
+    ENSURE_OK(tt_canvas_circle(c, (tt_vec2){50, 50}, 45, true));   /* a point sprite (≤ 60 px) */
+    ENSURE_OK(tt_canvas_set_line_width(c, 4));
+    ENSURE_OK(tt_canvas_circle(c, (tt_vec2){100, 100}, 80, false)); /* a quad, outlined */
+    ENSURE_OK(tt_headless_render(hl, c));
+    int pw, ph;
+    const uint8_t *px = tt_headless_pixels(hl, &pw, &ph);
+#define AT(x, y) (px[((size_t)(ph - 1 - (y)) * pw + (x)) * 4])
+    ENSURE(AT(50, 50) == 255);      /* inside the filled disc */
+    ENSURE(AT(50 + 40, 50) == 255);
+    ENSURE(AT(50 + 47, 50 + 20) == 0); /* just outside it: (47, 20) is 51 px from the centre */
+    ENSURE(AT(100 + 78, 100) == 255); /* on the ring: radius 76…80 */
+    ENSURE(AT(100 - 78, 100) == 255);
+    ENSURE(AT(100, 100 + 77) == 255);
+    ENSURE(AT(100 + 70, 100) == 0);   /* inside the ring */
+    ENSURE(AT(100 + 83, 100) == 0);   /* outside it */
+#undef AT
+    tt_canvas_destroy(c);
+    tt_headless_destroy(hl);
+}
+
+/* The same scene renders to the same bytes (no uninitialised memory, no
+ * order that depends on anything but the calls). */
+TEST(headless_frames_are_reproducible)
+{
+    uint8_t *first = NULL;
+    for (int run = 0; run < 2; run++) {
+        tt_headless *hl = tt_headless_create(96, 64, NULL, 0);
+        ENSURE(hl != NULL);
+        tt_canvas *c = tt_canvas_create(96, 64);
+        tt_canvas_clear(c, (tt_color){10, 20, 30, 255});
+        for (int i = 0; i < 200; i++) {
+            tt_canvas_set_color(c, (tt_color){(uint8_t)(i * 7), (uint8_t)(i * 13), 200, 160});
+            ENSURE_OK(tt_canvas_circle(c, (tt_vec2){(i * 37) % 11 - 5.0, (i * 17) % 7 - 3.0}, 0.3 + (i % 5) * 0.2, i % 3 != 0));
+        }
+        tt_vec2 tri[3] = {{-4, -2}, {4, -2}, {0, 3}};
+        ENSURE_OK(tt_canvas_polygon(c, tri, 3, false));
+        ENSURE_OK(tt_canvas_text(c, (tt_vec2){-4, 3}, "tether 0.1", 1));
+        ENSURE_OK(tt_headless_render(hl, c));
+        int pw, ph;
+        const uint8_t *px = tt_headless_pixels(hl, &pw, &ph);
+        if (run == 0) {
+            first = malloc((size_t)pw * ph * 4);
+            ENSURE(first != NULL);
+            memcpy(first, px, (size_t)pw * ph * 4);
+        } else {
+            int same = memcmp(first, px, (size_t)pw * ph * 4) == 0;
+            free(first);
+            first = NULL;
+            ENSURE(same);
+        }
+        tt_canvas_destroy(c);
+        tt_headless_destroy(hl);
+    }
+}
