@@ -46,8 +46,8 @@ FILE *bench_csv(const char *dir, const char *name, const char *header)
 static void bare_verlet(double *x, double *y, double *ox, double *oy, size_t n, double gdx, double gdy)
 {
     for (size_t i = 0; i < n; i++) {
-        double nx = x[i] + (x[i] - ox[i]) + gdx;
-        double ny = y[i] + (y[i] - oy[i]) + gdy;
+        double nx = x[i] + ((x[i] - ox[i]) + gdx);
+        double ny = y[i] + ((y[i] - oy[i]) + gdy);
         ox[i] = x[i];
         oy[i] = y[i];
         x[i] = nx;

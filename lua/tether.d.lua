@@ -20,6 +20,10 @@
 ---| "verlet"           # position Verlet (the default): order 2
 ---| "rk4"              # classic Runge-Kutta 4, four force evaluations: order 4
 
+---@alias tether.solver_name
+---| "gauss_seidel" # in place, one constraint after another: fewer sweeps
+---| "jacobi"       # corrections averaged per particle, then applied
+
 ---@alias tether.move_mode
 ---| "keep"  # velocity is kept (the default)
 ---| "reset" # velocity becomes 0
@@ -43,6 +47,10 @@ local tether = {}
 ---@field wind? number[] {fx, fy}, N on every particle, each in [-1e12, 1e12]; default {0, 0}
 ---@field dt_hint? number the step you expect to use, s, in (0, 10]; default 1/60
 ---@field capacity? integer particles to reserve up front, 0..16777216; default 0
+---@field substeps? integer substeps per step, 1..1000; default 1
+---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
+---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
+---@field solver? tether.solver_name default "gauss_seidel"
 
 ---Makes a new world. Unknown option keys raise ("tether.world: unknown option 'gravty' ...").
 ---@param opts? tether.world_options
@@ -288,6 +296,30 @@ function world:integrator() end
 ---Switches integrator between steps; every particle keeps its velocity.
 ---@param name tether.integrator_name
 function world:set_integrator(name) end
+
+---@return integer substeps per step
+function world:substeps() end
+
+---@param n integer substeps per step, 1..1000
+function world:set_substeps(n) end
+
+---@return integer most relaxation sweeps per substep
+function world:iterations() end
+
+---@param n integer most relaxation sweeps per substep, 1..10000
+function world:set_iterations(n) end
+
+---@return number tolerance, m
+function world:tolerance() end
+
+---@param m number sweeps stop once the largest error is <= m, in [0, 1e12]
+function world:set_tolerance(m) end
+
+---@return tether.solver_name
+function world:solver() end
+
+---@param name tether.solver_name
+function world:set_solver(name) end
 
 ---@return integer live particles
 function world:count() end

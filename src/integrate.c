@@ -55,8 +55,8 @@ static uint32_t verlet(tt_world *w, double dt, bool forces)
         for (uint32_t i = 0; i < n; i++) {
             if (inv[i] == 0.0) continue;
             double x = px[i], y = py[i];
-            double nx = x + (x - qx[i]) + gdx;
-            double ny = y + (y - qy[i]) + gdy;
+            double nx = x + ((x - qx[i]) + gdx); /* small terms first: g·dt² keeps its bits */
+            double ny = y + ((y - qy[i]) + gdy);
             qx[i] = x;
             qy[i] = y;
             if (TT_UNLIKELY(too_big(nx, ny))) { bad++; continue; }

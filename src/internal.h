@@ -68,6 +68,7 @@ struct tt_world {
     tt_integrator integrator;
     double dt_prev;       /* dt of the last step (dt_hint before the first): Verlet's x_old is x − v·dt_prev */
     uint32_t max_particles;
+    uint32_t tag;         /* 1…255: the high byte of every handle generation this world hands out */
 
     /* particles: struct of arrays indexed by slot; a slot keeps its index for life */
     tt_pool ppool;

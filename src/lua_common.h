@@ -121,7 +121,17 @@ void tl_world_register(lua_State *L);
 int tl_world_new(lua_State *L);
 /* Pushes the list of integrator names, {"euler", ...}. */
 void tl_push_integrators(lua_State *L);
-/* The live world of the world userdata at idx, or NULL (not a world, or destroyed). */
+/* Adds methods to the world class (a feature's binding calls this from
+ * luaopen_tether through its own tl_<feature>_register). */
+void tl_world_add_methods(lua_State *L, const luaL_Reg *methods);
+/* The world at arg (raises "attempt to use a destroyed world", or a type error). */
+tt_world *tl_check_world(lua_State *L, int arg);
+/* A live particle of w at arg (raises "stale particle handle"). */
+tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg);
+/* Raises "fname: <tt_last_error(w)>" unless r is TT_OK. */
+void tl_check_result(lua_State *L, const tt_world *w, tt_result r);
+void tl_push_particle(lua_State *L, tt_particle p);
+/* The live world of the world userdata at idx, or NULL (not a world, or destroyed): never raises. */
 tt_world *tl_toworld(lua_State *L, int idx);
 
 #endif

@@ -269,11 +269,7 @@ static void hud_panel(tt_canvas *c, const char *text, double *y)
 static int g_hud(lua_State *L)
 {
     tt_canvas *c = canvas(L);
-    tt_world *w = tl_toworld(L, 1);
-    if (!w) {
-        if (luaL_testudata(L, 1, TL_WORLD_CLASS)) tl_argerror(L, 1, "attempt to use a destroyed world");
-        tl_typeerror(L, 1, TL_WORLD_CLASS);
-    }
+    tt_world *w = tl_check_world(L, 1);
     const char *extra = luaL_optstring(L, 2, NULL);
     tt_stats st;
     tt_world_get_stats(w, &st);
@@ -331,11 +327,7 @@ static void remember(lua_State *L, int idx, tt_canvas *c)
 
 static int w_draw(lua_State *L)
 {
-    tt_world *w = tl_toworld(L, 1);
-    if (!w) {
-        if (luaL_testudata(L, 1, TL_WORLD_CLASS)) tl_argerror(L, 1, "attempt to use a destroyed world");
-        tl_typeerror(L, 1, TL_WORLD_CLASS);
-    }
+    tt_world *w = tl_check_world(L, 1);
     tl_checkopts(L, 2, draw_opts);
     tt_canvas *c = canvas(L);
     tt_debug_draw d = tt_debug_draw_default();
@@ -366,10 +358,7 @@ void tl_render_register(lua_State *L)
     lua_createtable(L, 0, (int)(sizeof gfx_funcs / sizeof gfx_funcs[0]));
     tl_setfuncs(L, gfx_funcs, "tether.gfx.");
     lua_setfield(L, -2, "gfx");
-    luaL_getmetatable(L, TL_WORLD_CLASS);
-    lua_getfield(L, -1, "__index");
-    tl_setfuncs(L, world_draw, "");
-    lua_pop(L, 2);
+    tl_world_add_methods(L, world_draw);
 }
 
 void tl_render_begin(lua_State *L, tt_canvas *c)

@@ -30,7 +30,7 @@ static const char *const move_modes[] = { "keep", "reset", NULL };
 /* --- checkers --------------------------------------------------------------- */
 
 /* The one checker of the class: a live world at arg. */
-static tt_world *check_world(lua_State *L, int arg)
+tt_world *tl_check_world(lua_State *L, int arg)
 {
     lw_world *u = luaL_testudata(L, arg, TL_WORLD_CLASS);
     if (u == NULL)
@@ -47,7 +47,7 @@ tt_world *tl_toworld(lua_State *L, int idx)
 }
 
 /* The handle checker: a live particle (or spring) of w at arg. */
-static tt_particle check_particle(lua_State *L, tt_world *w, int arg)
+tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg)
 {
     tt_particle p = tt_particle_from_u64(tl_checkhandle(L, arg, "particle"));
     if (!tt_particle_is_valid(w, p))
@@ -64,17 +64,20 @@ static tt_spring check_spring(lua_State *L, tt_world *w, int arg)
 }
 
 /* A failed C call: raises "method: <tt_last_error>". */
-static void check_result(lua_State *L, const tt_world *w, tt_result r)
+void tl_check_result(lua_State *L, const tt_world *w, tt_result r)
 {
     if (r != TT_OK) {
         const char *msg = tt_last_error(w);
         if (msg == NULL || msg[0] == '\0')
             msg = tt_result_string(r);
-        tl_error(L, "%s", msg);
+        /* The core names its C function ("tt_particle_set_velocity: …"); the
+         * Lua error already names the Lua one, so say it once. */
+        const char *colon = strncmp(msg, "tt_", 3) == 0 ? strstr(msg, ": ") : NULL;
+        tl_error(L, "%s", colon ? colon + 2 : msg);
     }
 }
 
-static void push_particle(lua_State *L, tt_particle p)
+void tl_push_particle(lua_State *L, tt_particle p)
 {
     lua_pushinteger(L, (lua_Integer)tt_particle_to_u64(p));
 }
@@ -118,7 +121,10 @@ static void clear_user(lua_State *L, uint64_t h)
 
 /* --- construction and life cycle -------------------------------------------- */
 
-static const char *const world_opts[] = { "gravity", "integrator", "damping", "wind", "dt_hint", "capacity", NULL };
+static const char *const world_opts[] = { "gravity", "integrator", "damping", "wind", "dt_hint", "capacity",
+                                          "substeps", "iterations", "tolerance", "solver", NULL };
+/* Same order as tt_solver_order. */
+static const char *const solver_names[] = { "gauss_seidel", "jacobi", NULL };
 
 int tl_world_new(lua_State *L)
 {
@@ -133,6 +139,10 @@ int tl_world_new(lua_State *L)
     def.wind = tl_optfield_vec2(L, 1, "wind", &TL_R_COORD, def.wind);
     def.dt_hint = tl_optfield_number(L, 1, "dt_hint", &TL_R_DT, def.dt_hint);
     def.capacity = (uint32_t)tl_optfield_integer(L, 1, "capacity", 0, TL_MAX_CAPACITY, def.capacity);
+    def.substeps = (uint32_t)tl_optfield_integer(L, 1, "substeps", 1, 1000, def.substeps);
+    def.iterations = (uint32_t)tl_optfield_integer(L, 1, "iterations", 1, 10000, def.iterations);
+    def.tolerance = tl_optfield_number(L, 1, "tolerance", &TL_R_NONNEG, def.tolerance);
+    def.order = (tt_solver_order)tl_optfield_option(L, 1, "solver", "solver", solver_names, (int)def.order);
 
     /* Harmless first: a userdata with no world, its metatable and its user
      * table; only then the world. An error in between leaves nothing. */
@@ -199,7 +209,7 @@ static const char *const particle_opts[] = { "vx", "vy", "mass", "radius", "pinn
 /* w:particle(x, y [, opts]) → handle */
 static int w_particle(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_particle_def def = tt_particle_def_default();
     tt_particle p;
 
@@ -217,23 +227,23 @@ static int w_particle(lua_State *L)
 
     p = tt_particle_create(w, &def);
     if (p.gen == 0)
-        check_result(L, w, TT_ENOMEM);
+        tl_check_result(L, w, TT_ENOMEM);
     if (tl_getopt(L, 4, "user")) {
         push_users(L);
         lua_insert(L, -2);
         lua_rawseti(L, -2, (lua_Integer)tt_particle_to_u64(p));
         lua_pop(L, 1);
     }
-    push_particle(L, p);
+    tl_push_particle(L, p);
     return 1;
 }
 
 /* w:remove(p) */
 static int w_remove(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
-    check_result(L, w, tt_particle_destroy(w, p));
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
+    tl_check_result(L, w, tt_particle_destroy(w, p));
     clear_user(L, tt_particle_to_u64(p));
     return 0;
 }
@@ -241,7 +251,7 @@ static int w_remove(lua_State *L)
 /* w:is_valid(p) → boolean */
 static int w_is_valid(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_particle p = tt_particle_from_u64(tl_checkhandle(L, 2, "particle"));
     lua_pushboolean(L, tt_particle_is_valid(w, p));
     return 1;
@@ -249,10 +259,10 @@ static int w_is_valid(lua_State *L)
 
 static int w_position(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     tt_vec2 v;
-    check_result(L, w, tt_particle_get_position(w, p, &v));
+    tl_check_result(L, w, tt_particle_get_position(w, p, &v));
     lua_pushnumber(L, v.x);
     lua_pushnumber(L, v.y);
     return 2;
@@ -261,23 +271,23 @@ static int w_position(lua_State *L)
 /* w:set_position(p, x, y [, mode]) */
 static int w_set_position(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     tt_vec2 v;
     int mode;
     v.x = tl_checknumber(L, 3, &TL_R_COORD);
     v.y = tl_checknumber(L, 4, &TL_R_COORD);
     mode = tl_checkoption(L, 5, "mode", "keep", move_modes);
-    check_result(L, w, tt_particle_set_position(w, p, v, mode == 0 ? TT_MOVE_KEEP_VELOCITY : TT_MOVE_RESET_VELOCITY));
+    tl_check_result(L, w, tt_particle_set_position(w, p, v, mode == 0 ? TT_MOVE_KEEP_VELOCITY : TT_MOVE_RESET_VELOCITY));
     return 0;
 }
 
 static int w_velocity(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     tt_vec2 v;
-    check_result(L, w, tt_particle_get_velocity(w, p, &v));
+    tl_check_result(L, w, tt_particle_get_velocity(w, p, &v));
     lua_pushnumber(L, v.x);
     lua_pushnumber(L, v.y);
     return 2;
@@ -285,78 +295,78 @@ static int w_velocity(lua_State *L)
 
 static int w_set_velocity(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     tt_vec2 v;
     v.x = tl_checknumber(L, 3, &TL_R_COORD);
     v.y = tl_checknumber(L, 4, &TL_R_COORD);
-    check_result(L, w, tt_particle_set_velocity(w, p, v));
+    tl_check_result(L, w, tt_particle_set_velocity(w, p, v));
     return 0;
 }
 
 static int w_mass(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     double m;
-    check_result(L, w, tt_particle_get_mass(w, p, &m));
+    tl_check_result(L, w, tt_particle_get_mass(w, p, &m));
     lua_pushnumber(L, m);
     return 1;
 }
 
 static int w_set_mass(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     double m = tl_checknumber(L, 3, &TL_R_MASS);
-    check_result(L, w, tt_particle_set_mass(w, p, m));
+    tl_check_result(L, w, tt_particle_set_mass(w, p, m));
     return 0;
 }
 
 static int w_pinned(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     bool b;
-    check_result(L, w, tt_particle_get_pinned(w, p, &b));
+    tl_check_result(L, w, tt_particle_get_pinned(w, p, &b));
     lua_pushboolean(L, b);
     return 1;
 }
 
 static int w_set_pinned(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     bool b = tl_checkboolean(L, 3);
-    check_result(L, w, tt_particle_set_pinned(w, p, b));
+    tl_check_result(L, w, tt_particle_set_pinned(w, p, b));
     return 0;
 }
 
 static int w_radius(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     double r;
-    check_result(L, w, tt_particle_get_radius(w, p, &r));
+    tl_check_result(L, w, tt_particle_get_radius(w, p, &r));
     lua_pushnumber(L, r);
     return 1;
 }
 
 static int w_set_radius(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     double r = tl_checknumber(L, 3, &TL_R_NONNEG);
-    check_result(L, w, tt_particle_set_radius(w, p, r));
+    tl_check_result(L, w, tt_particle_set_radius(w, p, r));
     return 0;
 }
 
 static int w_filter(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     uint16_t category, mask;
-    check_result(L, w, tt_particle_get_filter(w, p, &category, &mask));
+    tl_check_result(L, w, tt_particle_get_filter(w, p, &category, &mask));
     lua_pushinteger(L, category);
     lua_pushinteger(L, mask);
     return 2;
@@ -364,19 +374,19 @@ static int w_filter(lua_State *L)
 
 static int w_set_filter(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     uint16_t category = (uint16_t)tl_checkinteger(L, 3, 0, 0xFFFF);
     uint16_t mask = (uint16_t)tl_checkinteger(L, 4, 0, 0xFFFF);
-    check_result(L, w, tt_particle_set_filter(w, p, category, mask));
+    tl_check_result(L, w, tt_particle_set_filter(w, p, category, mask));
     return 0;
 }
 
 /* w:user(p) → the Lua value stored with p (nil if none) */
 static int w_user(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     push_users(L);
     lua_rawgeti(L, -1, (lua_Integer)tt_particle_to_u64(p));
     return 1;
@@ -385,8 +395,8 @@ static int w_user(lua_State *L)
 /* w:set_user(p, value) — any Lua value; nil forgets it */
 static int w_set_user(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     lua_settop(L, 3);
     push_users(L);
     lua_pushvalue(L, 3);
@@ -396,37 +406,37 @@ static int w_set_user(lua_State *L)
 
 static int w_apply_force(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     tt_vec2 f;
     f.x = tl_checknumber(L, 3, &TL_R_COORD);
     f.y = tl_checknumber(L, 4, &TL_R_COORD);
-    check_result(L, w, tt_particle_apply_force(w, p, f));
+    tl_check_result(L, w, tt_particle_apply_force(w, p, f));
     return 0;
 }
 
 static int w_apply_impulse(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
-    tt_particle p = check_particle(L, w, 2);
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
     tt_vec2 j;
     j.x = tl_checknumber(L, 3, &TL_R_COORD);
     j.y = tl_checknumber(L, 4, &TL_R_COORD);
-    check_result(L, w, tt_particle_apply_impulse(w, p, j));
+    tl_check_result(L, w, tt_particle_apply_impulse(w, p, j));
     return 0;
 }
 
 /* w:explode(x, y, radius, impulse) */
 static int w_explode(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_vec2 c;
     double radius, impulse;
     c.x = tl_checknumber(L, 2, &TL_R_COORD);
     c.y = tl_checknumber(L, 3, &TL_R_COORD);
     radius = tl_checknumber(L, 4, &TL_R_NONNEG);
     impulse = tl_checknumber(L, 5, &TL_R_COORD);
-    check_result(L, w, tt_world_explode(w, c, radius, impulse));
+    tl_check_result(L, w, tt_world_explode(w, c, radius, impulse));
     return 0;
 }
 
@@ -437,13 +447,13 @@ static const char *const spring_opts[] = { "stiffness", "damping", "rest", NULL 
 /* w:spring(a, b [, opts]) → spring handle */
 static int w_spring(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_spring_def def = tt_spring_def_default();
     tt_spring s;
 
     lua_settop(L, 4);
-    def.a = check_particle(L, w, 2);
-    def.b = check_particle(L, w, 3);
+    def.a = tl_check_particle(L, w, 2);
+    def.b = tl_check_particle(L, w, 3);
     if (def.a.index == def.b.index && def.a.gen == def.b.gen)
         tl_argerror(L, 3, "a spring needs two distinct particles");
     tl_checkopts(L, 4, spring_opts);
@@ -453,22 +463,22 @@ static int w_spring(lua_State *L)
 
     s = tt_spring_create(w, &def);
     if (s.gen == 0)
-        check_result(L, w, TT_EINVAL);
+        tl_check_result(L, w, TT_EINVAL);
     push_spring(L, s);
     return 1;
 }
 
 static int w_remove_spring(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_spring s = check_spring(L, w, 2);
-    check_result(L, w, tt_spring_destroy(w, s));
+    tl_check_result(L, w, tt_spring_destroy(w, s));
     return 0;
 }
 
 static int w_spring_is_valid(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_spring s = tt_spring_from_u64(tl_checkhandle(L, 2, "spring"));
     lua_pushboolean(L, tt_spring_is_valid(w, s));
     return 1;
@@ -476,10 +486,10 @@ static int w_spring_is_valid(lua_State *L)
 
 static int w_spring_length(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_spring s = check_spring(L, w, 2);
     double len;
-    check_result(L, w, tt_spring_get_length(w, s, &len));
+    tl_check_result(L, w, tt_spring_get_length(w, s, &len));
     lua_pushnumber(L, len);
     return 1;
 }
@@ -487,14 +497,14 @@ static int w_spring_length(lua_State *L)
 /* w:spring_info(s) → {a=, b=, stiffness=, damping=, rest=} */
 static int w_spring_info(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_spring s = check_spring(L, w, 2);
     tt_spring_def d;
-    check_result(L, w, tt_spring_get_def(w, s, &d));
+    tl_check_result(L, w, tt_spring_get_def(w, s, &d));
     lua_createtable(L, 0, 5);
-    push_particle(L, d.a);
+    tl_push_particle(L, d.a);
     lua_setfield(L, -2, "a");
-    push_particle(L, d.b);
+    tl_push_particle(L, d.b);
     lua_setfield(L, -2, "b");
     lua_pushnumber(L, d.stiffness);
     lua_setfield(L, -2, "stiffness");
@@ -509,7 +519,7 @@ static int w_spring_info(lua_State *L)
  * change; all are checked before any changes. */
 static int w_set_spring(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_spring s = check_spring(L, w, 2);
     double k, c, rest;
 
@@ -521,9 +531,9 @@ static int w_set_spring(lua_State *L)
     k = tl_optfield_number(L, 3, "stiffness", &TL_R_NONNEG, -1.0);
     c = tl_optfield_number(L, 3, "damping", &TL_R_NONNEG, -1.0);
     rest = tl_optfield_number(L, 3, "rest", &TL_R_NONNEG, -1.0);
-    if (k >= 0.0) check_result(L, w, tt_spring_set_stiffness(w, s, k));
-    if (c >= 0.0) check_result(L, w, tt_spring_set_damping(w, s, c));
-    if (rest >= 0.0) check_result(L, w, tt_spring_set_rest_length(w, s, rest));
+    if (k >= 0.0) tl_check_result(L, w, tt_spring_set_stiffness(w, s, k));
+    if (c >= 0.0) tl_check_result(L, w, tt_spring_set_damping(w, s, c));
+    if (rest >= 0.0) tl_check_result(L, w, tt_spring_set_rest_length(w, s, rest));
     return 0;
 }
 
@@ -532,17 +542,17 @@ static int w_set_spring(lua_State *L)
 /* w:step(dt [, n]) */
 static int w_step(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     double dt = tl_checknumber(L, 2, &TL_R_DT);
     lua_Integer n = tl_optinteger(L, 3, 1, TL_MAX_STEPS, 1);
     for (lua_Integer i = 0; i < n; i++)
-        check_result(L, w, tt_world_step(w, dt));
+        tl_check_result(L, w, tt_world_step(w, dt));
     return 0;
 }
 
 static int w_gravity(lua_State *L)
 {
-    tt_vec2 g = tt_world_get_gravity(check_world(L, 1));
+    tt_vec2 g = tt_world_get_gravity(tl_check_world(L, 1));
     lua_pushnumber(L, g.x);
     lua_pushnumber(L, g.y);
     return 2;
@@ -550,17 +560,17 @@ static int w_gravity(lua_State *L)
 
 static int w_set_gravity(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_vec2 g;
     g.x = tl_checknumber(L, 2, &TL_R_COORD);
     g.y = tl_checknumber(L, 3, &TL_R_COORD);
-    check_result(L, w, tt_world_set_gravity(w, g));
+    tl_check_result(L, w, tt_world_set_gravity(w, g));
     return 0;
 }
 
 static int w_wind(lua_State *L)
 {
-    tt_vec2 f = tt_world_get_wind(check_world(L, 1));
+    tt_vec2 f = tt_world_get_wind(tl_check_world(L, 1));
     lua_pushnumber(L, f.x);
     lua_pushnumber(L, f.y);
     return 2;
@@ -568,40 +578,94 @@ static int w_wind(lua_State *L)
 
 static int w_set_wind(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_vec2 f;
     f.x = tl_checknumber(L, 2, &TL_R_COORD);
     f.y = tl_checknumber(L, 3, &TL_R_COORD);
-    check_result(L, w, tt_world_set_wind(w, f));
+    tl_check_result(L, w, tt_world_set_wind(w, f));
     return 0;
 }
 
 static int w_damping(lua_State *L)
 {
-    lua_pushnumber(L, tt_world_get_damping(check_world(L, 1)));
+    lua_pushnumber(L, tt_world_get_damping(tl_check_world(L, 1)));
     return 1;
 }
 
 static int w_set_damping(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     double d = tl_checknumber(L, 2, &TL_R_NONNEG);
-    check_result(L, w, tt_world_set_damping(w, d));
+    tl_check_result(L, w, tt_world_set_damping(w, d));
     return 0;
 }
 
 static int w_integrator(lua_State *L)
 {
-    tt_integrator i = tt_world_get_integrator(check_world(L, 1));
+    tt_integrator i = tt_world_get_integrator(tl_check_world(L, 1));
     lua_pushstring(L, (unsigned)i < TT_INTEGRATOR_COUNT ? integrator_names[i] : tt_integrator_name(i));
     return 1;
 }
 
 static int w_set_integrator(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     int i = tl_checkoption(L, 2, "integrator", NULL, integrator_names);
-    check_result(L, w, tt_world_set_integrator(w, (tt_integrator)i));
+    tl_check_result(L, w, tt_world_set_integrator(w, (tt_integrator)i));
+    return 0;
+}
+
+static int w_substeps(lua_State *L)
+{
+    lua_pushinteger(L, tt_world_get_substeps(tl_check_world(L, 1)));
+    return 1;
+}
+
+static int w_set_substeps(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_set_substeps(w, (uint32_t)tl_checkinteger(L, 2, 1, 1000)));
+    return 0;
+}
+
+static int w_iterations(lua_State *L)
+{
+    lua_pushinteger(L, tt_world_get_iterations(tl_check_world(L, 1)));
+    return 1;
+}
+
+static int w_set_iterations(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_set_iterations(w, (uint32_t)tl_checkinteger(L, 2, 1, 10000)));
+    return 0;
+}
+
+static int w_tolerance(lua_State *L)
+{
+    lua_pushnumber(L, tt_world_get_tolerance(tl_check_world(L, 1)));
+    return 1;
+}
+
+static int w_set_tolerance(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_set_tolerance(w, tl_checknumber(L, 2, &TL_R_NONNEG)));
+    return 0;
+}
+
+static int w_solver(lua_State *L)
+{
+    tt_solver_order o = tt_world_get_solver_order(tl_check_world(L, 1));
+    lua_pushstring(L, solver_names[o == TT_JACOBI ? 1 : 0]);
+    return 1;
+}
+
+static int w_set_solver(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    int o = tl_checkoption(L, 2, "solver", NULL, solver_names);
+    tl_check_result(L, w, tt_world_set_solver_order(w, (tt_solver_order)o));
     return 0;
 }
 
@@ -609,13 +673,13 @@ static int w_set_integrator(lua_State *L)
 
 static int w_count(lua_State *L)
 {
-    lua_pushinteger(L, (lua_Integer)tt_world_particle_count(check_world(L, 1)));
+    lua_pushinteger(L, (lua_Integer)tt_world_particle_count(tl_check_world(L, 1)));
     return 1;
 }
 
 static int w_spring_count(lua_State *L)
 {
-    lua_pushinteger(L, (lua_Integer)tt_world_spring_count(check_world(L, 1)));
+    lua_pushinteger(L, (lua_Integer)tt_world_spring_count(tl_check_world(L, 1)));
     return 1;
 }
 
@@ -635,11 +699,11 @@ static void setint(lua_State *L, const char *k, lua_Integer v)
  *              diverged, iterations, max_error, stages = {...}} */
 static int w_stats(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     static const char *const stage_names[TT_STAGE_COUNT] = { "forces", "integrate", "collide", "solve", "events" };
     tt_stats s;
     memset(&s, 0, sizeof s);
-    check_result(L, w, tt_world_get_stats(w, &s));
+    tl_check_result(L, w, tt_world_get_stats(w, &s));
     lua_createtable(L, 0, 10);
     setint(L, "steps", (lua_Integer)s.steps);
     setnum(L, "time", s.time);
@@ -660,10 +724,10 @@ static int w_stats(lua_State *L)
 /* w:energy() → {kinetic, gravity, spring, total} */
 static int w_energy(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_energy e;
     memset(&e, 0, sizeof e);
-    check_result(L, w, tt_world_get_energy(w, &e));
+    tl_check_result(L, w, tt_world_get_energy(w, &e));
     lua_createtable(L, 0, 4);
     setnum(L, "kinetic", e.kinetic);
     setnum(L, "gravity", e.gravity);
@@ -675,10 +739,10 @@ static int w_energy(lua_State *L)
 /* w:memory() → {total, particles, capacity, bytes_per_particle} */
 static int w_memory(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     tt_memory m;
     memset(&m, 0, sizeof m);
-    check_result(L, w, tt_world_get_memory(w, &m));
+    tl_check_result(L, w, tt_world_get_memory(w, &m));
     lua_createtable(L, 0, 4);
     setint(L, "total", (lua_Integer)m.total);
     setint(L, "particles", (lua_Integer)m.particles);
@@ -691,7 +755,7 @@ static int w_memory(lua_State *L)
 static int w_hash(lua_State *L)
 {
     char buf[24];
-    snprintf(buf, sizeof buf, "%016" PRIx64, tt_world_hash(check_world(L, 1)));
+    snprintf(buf, sizeof buf, "%016" PRIx64, tt_world_hash(tl_check_world(L, 1)));
     lua_pushstring(L, buf);
     return 1;
 }
@@ -729,7 +793,7 @@ static void clear_from(lua_State *L, int t, lua_Integer from)
 /* w:particles([t]) → {p1, p2, …}, n — live handles in slot order */
 static int w_particles(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     uint32_t n = tt_world_particle_count(w), m;
     tt_particle *ids;
     int t;
@@ -740,7 +804,7 @@ static int w_particles(lua_State *L)
     result_table(L, 2, m);
     t = lua_gettop(L);
     for (uint32_t i = 0; i < m; i++) {
-        push_particle(L, ids[i]);
+        tl_push_particle(L, ids[i]);
         lua_rawseti(L, t, (lua_Integer)i + 1);
     }
     clear_from(L, t, (lua_Integer)m + 1);
@@ -751,7 +815,7 @@ static int w_particles(lua_State *L)
 /* w:positions([t]) → {x1, y1, x2, y2, …}, n — the order of w:particles() */
 static int w_positions(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     uint32_t n = tt_world_particle_count(w), m;
     double *xy;
     int t;
@@ -774,7 +838,7 @@ static int w_positions(lua_State *L)
  * anything moves. */
 static int w_set_positions(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     size_t n, nxy;
     tt_particle *ids;
     double *xy;
@@ -811,7 +875,7 @@ static int w_set_positions(lua_State *L)
             tl_argerror(L, 3, "index %I: %s", (LUAI_UACINT)(i + 1), lua_tostring(L, -1));
         lua_pop(L, 1);
     }
-    check_result(L, w, tt_particles_set_positions(w, ids, (uint32_t)n, xy,
+    tl_check_result(L, w, tt_particles_set_positions(w, ids, (uint32_t)n, xy,
                                                   mode == 0 ? TT_MOVE_KEEP_VELOCITY : TT_MOVE_RESET_VELOCITY));
     return 0;
 }
@@ -832,7 +896,7 @@ static int each_next(lua_State *L)
         if (tt_particle_get_position(u->w, ids[i], &v) == TT_OK) {
             lua_pushinteger(L, i + 1);
             lua_replace(L, lua_upvalueindex(5));
-            push_particle(L, ids[i]);
+            tl_push_particle(L, ids[i]);
             lua_pushnumber(L, v.x);
             lua_pushnumber(L, v.y);
             return 3;
@@ -847,7 +911,7 @@ static int each_next(lua_State *L)
 /* w:each() → iterator: for p, x, y in w:each() do … end */
 static int w_each(lua_State *L)
 {
-    tt_world *w = check_world(L, 1);
+    tt_world *w = tl_check_world(L, 1);
     uint32_t n = tt_world_particle_count(w), m;
     tt_particle *ids;
     lua_settop(L, 1);
@@ -900,6 +964,14 @@ static const luaL_Reg world_methods[] = {
     { "set_damping", w_set_damping },
     { "integrator", w_integrator },
     { "set_integrator", w_set_integrator },
+    { "substeps", w_substeps },
+    { "set_substeps", w_set_substeps },
+    { "iterations", w_iterations },
+    { "set_iterations", w_set_iterations },
+    { "tolerance", w_tolerance },
+    { "set_tolerance", w_set_tolerance },
+    { "solver", w_solver },
+    { "set_solver", w_set_solver },
     { "count", w_count },
     { "spring_count", w_spring_count },
     { "stats", w_stats },
@@ -930,6 +1002,15 @@ void tl_world_register(lua_State *L)
         lua_setfield(L, -2, "__index");
     }
     lua_pop(L, 1);
+}
+
+void tl_world_add_methods(lua_State *L, const luaL_Reg *methods)
+{
+    tl_world_register(L);
+    luaL_getmetatable(L, TL_WORLD_CLASS);
+    lua_getfield(L, -1, "__index");
+    tl_setfuncs(L, methods, "");
+    lua_pop(L, 2);
 }
 
 void tl_push_integrators(lua_State *L)

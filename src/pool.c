@@ -16,14 +16,14 @@ uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew)
         p->cap = cap;
     }
     uint32_t i = p->count++;
-    p->gen[i] = 1;
+    p->gen[i] = (p->tag << TT_POOL_TAG_SHIFT) | 1u;
     *grew = true;
     return i;
 }
 
 void tt_pool_free(tt_pool *p, uint32_t index)
 {
-    if (p->gen[index] == UINT32_MAX) return; /* retired: its handles stay stale forever */
+    if ((p->gen[index] & TT_POOL_GEN_MASK) == TT_POOL_GEN_MASK) return; /* retired: its handles stay stale forever */
     p->gen[index]++;
     /* The free list grows only with removals, so worlds that never remove never pay. */
     if (p->free_count == p->free_cap) {
@@ -39,9 +39,11 @@ void tt_pool_free(tt_pool *p, uint32_t index)
 
 void tt_pool_destroy(tt_pool *p)
 {
+    uint32_t tag = p->tag;
     free(p->gen);
     free(p->free_list);
     *p = (tt_pool){0};
+    p->tag = tag;
 }
 
 size_t tt_pool_bytes(const tt_pool *p)

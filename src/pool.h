@@ -8,13 +8,19 @@
 
 /* New slots come from a LIFO free list, else the high-water mark (deterministic).
  * Freeing bumps the slot's generation, so old handles go stale; a slot whose
- * generation would wrap is retired, never reused. */
+ * generation would wrap is retired, never reused. A generation's high byte is
+ * the owning world's tag (TT_POOL_TAG_SHIFT), so a handle from another world
+ * is stale here too; its low 24 bits count reuses of the slot. */
+#define TT_POOL_TAG_SHIFT 24
+#define TT_POOL_GEN_MASK 0x00FFFFFFu
+
 typedef struct tt_pool {
     uint32_t *gen;       /* generation per slot; the slot is live when `live` says so */
     uint32_t *free_list;
     uint32_t free_count, free_cap;
     uint32_t count;      /* slots ever used (high-water mark) */
     uint32_t cap;
+    uint32_t tag;        /* 1…255, set by the world before first use (0 works, without the cross-world check) */
 } tt_pool;
 
 /* Returns a slot index, or UINT32_MAX if the pool cannot grow (limit or memory).

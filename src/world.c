@@ -2,6 +2,7 @@
 #include "internal.h"
 
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -107,6 +108,11 @@ tt_world *tt_world_create(const tt_world_def *def)
 
     tt_world *w = calloc(1, sizeof *w);
     if (!w) { tt__fail(NULL, TT_ENOMEM, "%s: out of memory", fn); return NULL; }
+    /* Worlds take tags 1…255 in turn; handles carry it, so a handle used on
+     * the wrong world is refused as stale. Not simulation state: hashes mask it. */
+    static atomic_uint next_tag;
+    w->tag = atomic_fetch_add(&next_tag, 1) % 255 + 1;
+    w->ppool.tag = w->spool.tag = w->tag;
     w->gravity = d.gravity;
     w->wind = d.wind;
     w->damping = d.damping;
@@ -334,7 +340,8 @@ uint64_t tt_world_hash(const tt_world *w)
     for (uint32_t i = 0; i < w->ppool.count; i++) {
         if (!(w->flags[i] & TT_PF_ALIVE)) continue;
         h = tt__fnv(h, &i, sizeof i);
-        h = tt__fnv(h, &w->ppool.gen[i], sizeof w->ppool.gen[i]);
+        uint32_t gen = w->ppool.gen[i] & TT_POOL_GEN_MASK;
+        h = tt__fnv(h, &gen, sizeof gen);
         h = tt__fnv(h, &w->px[i], sizeof(double));
         h = tt__fnv(h, &w->py[i], sizeof(double));
         h = tt__fnv(h, &w->qx[i], sizeof(double));

@@ -36,6 +36,31 @@ TEST(handles_go_stale_and_are_never_reused)
     tt_world_destroy(w);
 }
 
+TEST(a_handle_from_another_world_is_stale)
+{
+    tt_world *a = tt_world_create(NULL), *b = tt_world_create(NULL);
+    tt_particle pa = add(a, 1, 1), pb = add(b, 2, 2); /* same slot index in both */
+    ENSURE(pa.index == pb.index);
+    ENSURE(!tt_particle_is_valid(b, pa));
+    ENSURE(!tt_particle_is_valid(a, pb));
+    tt_vec2 x;
+    ENSURE(tt_particle_get_position(b, pa, &x) == TT_ESTALE);
+    ENSURE(tt_particle_destroy(b, pa) == TT_ESTALE);
+    tt_spring_def sd = tt_spring_def_default();
+    sd.a = add(a, 0, 0);
+    sd.b = pa;
+    tt_spring s = tt_spring_create(a, &sd);
+    ENSURE(tt_spring_is_valid(a, s));
+    ENSURE(!tt_spring_is_valid(b, s));
+    /* identical worlds still hash identically: the tag is not simulation state */
+    tt_world *c = tt_world_create(NULL);
+    add(c, 2, 2);
+    ENSURE(tt_world_hash(b) == tt_world_hash(c));
+    tt_world_destroy(a);
+    tt_world_destroy(b);
+    tt_world_destroy(c);
+}
+
 TEST(creation_rejects_bad_input)
 {
     tt_world *w = tt_world_create(NULL);

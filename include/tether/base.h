@@ -48,7 +48,9 @@ typedef struct tt_vec2 {
 /// Generational handles: index of a slot + the slot's generation when the
 /// object was made. A removed object's handle stays stale forever (the
 /// generation moved on; a slot whose generation would wrap is retired).
-/// The all-zero handle is null: generations start at 1.
+/// The generation's high byte is a tag of the world (worlds take tags 1…255
+/// in turn), so a handle used on another world is refused as stale unless the
+/// two worlds share a tag. The all-zero handle is null.
 typedef struct tt_particle {
     uint32_t index;
     uint32_t gen;

@@ -81,6 +81,11 @@ K.dt = { good = function() return 1 / 60 end, bad = number_bad("(0, 10]", { 0, -
 K.u16 = { good = function() return 3 end, bad = integer_bad("[0, 65535]", { -1, 65536, 1e300, math.maxinteger }) }
 K.nsteps = { good = function() return 2 end, optional = true,
              bad = integer_bad("[1, 10000000]", { 0, -5, 10000001, 1e300 }) }
+K.substeps = { good = function() return 2 end, bad = integer_bad("[1, 1000]", { 0, -1, 1001, 1e300 }) }
+K.iterations = { good = function() return 5 end, bad = integer_bad("[1, 10000]", { 0, -1, 10001, 1e300 }) }
+K.solver = { good = function() return "jacobi" end, bad = {
+  { NIL, "string expected, got nil" }, { "x", "invalid solver 'x', expected one of: 'gauss_seidel', 'jacobi'" },
+  { 1, "string expected, got number" }, { {}, "string expected, got table" } } }
 K.bool = { good = function() return true end, bad = {} }
 for _, v in ipairs { NIL, 0, 1, "true", {}, fn } do
   K.bool.bad[#K.bool.bad + 1] = { v, "boolean expected, got " }
@@ -153,6 +158,14 @@ local METHODS = {
   { "set_damping", "nonneg" },
   { "integrator" },
   { "set_integrator", "integrator" },
+  { "substeps" },
+  { "set_substeps", "substeps" },
+  { "iterations" },
+  { "set_iterations", "iterations" },
+  { "tolerance" },
+  { "set_tolerance", "nonneg" },
+  { "solver" },
+  { "set_solver", "solver" },
   { "count" },
   { "spring_count" },
   { "stats" },
@@ -246,6 +259,20 @@ T.test("good arguments work (the baseline of every case)", function()
       local ok, err = pcall(w[name], w, unpack_args(args, n))
       T.ok(ok, name .. " with good arguments: " .. tostring(err))
     end
+  end
+end)
+
+-- Methods that work only inside the runner's tether.draw(g) (no frame here),
+-- with their bad-input cases in the file named.
+local FRAME_ONLY = { draw = "tests/lua/test_render.lua" }
+
+T.test("the table above lists every method of the world class", function()
+  local listed = {}
+  for _, m in ipairs(METHODS) do listed[m[1]] = true end
+  for name in pairs(FRAME_ONLY) do listed[name] = true end
+  local index = getmetatable(tether.world()).__index
+  for name in pairs(index) do
+    T.ok(listed[name], "method '" .. name .. "' has no bad-input row in METHODS")
   end
 end)
 

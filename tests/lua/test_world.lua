@@ -411,4 +411,33 @@ T.test("docs/lua-api.md and lua/tether.d.lua cover every function", function()
   end
 end)
 
+T.test("a core refusal names the Lua function once", function()
+  local w = tether.world()
+  local p = w:particle(0, 0, { pinned = true })
+  local ok, msg = pcall(w.set_velocity, w, p, 1, 2)
+  T.ok(not ok)
+  T.eq(msg, "set_velocity: the particle is pinned")
+end)
+
+T.test("handles carry their world: another world's handle is refused, in every tag range", function()
+  local a = tether.world()
+  local pa = a:particle(1, 1)
+  local function tag(h) return (h >> 56) & 0xFF end -- the world tag: high byte of the generation
+  local refused = 0
+  for i = 1, 300 do -- tags wrap at 255, and half of them make negative integers
+    local w = tether.world()
+    local p = w:particle(i, 2)
+    local x = w:position(p)
+    T.eq(x, i)
+    T.ok(w:is_valid(p))
+    if tag(p) ~= tag(pa) then -- one world in 255 shares a's tag: the guard cannot tell those apart
+      T.ok(not w:is_valid(pa))
+      T.checkerror("stale particle handle", w.position, w, pa)
+      refused = refused + 1
+    end
+    w:destroy()
+  end
+  T.ok(refused >= 298)
+end)
+
 T.done()
