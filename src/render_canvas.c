@@ -324,7 +324,8 @@ tt_result tt_canvas_polygon(tt_canvas *c, const tt_vec2 *pts, int n, bool filled
             ok = add_segment(L, 0, x[i], y[i], x[j], y[j], (float)c->line_width, c->color, c->color);
         }
     } else {
-        /* ear clipping: O(n²), fine for shapes; a fan when no ear is found (self-crossing input) */
+        /* ear clipping (worst case O(n³): only up to 256 points, plenty for shapes);
+         * a fan when no ear is found (self-crossing input) or for longer outlines */
         double area = 0;
         for (int i = 0; i < n; i++) {
             int j = (i + 1) % n;
@@ -332,7 +333,9 @@ tt_result tt_canvas_polygon(tt_canvas *c, const tt_vec2 *pts, int n, bool filled
         }
         double sign = area >= 0 ? 1.0 : -1.0;
         for (int i = 0; i < n; i++) idx[i] = i;
-        int m = n;
+        int m = n > 256 ? 0 : n;
+        if (m == 0)
+            for (int i = 1; i + 1 < n && ok; i++) ok = add_tri(L, x, y, 0, i, i + 1, c->color);
         while (m > 3 && ok) {
             bool cut = false;
             for (int i = 0; i < m && !cut; i++) {

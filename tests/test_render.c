@@ -88,6 +88,15 @@ TEST(canvas_batches_by_kind)
     tt_vec2 l[6] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
     ENSURE_OK(tt_canvas_polygon(c, l, 6, true));
     ENSURE(tt_canvas_primitive_count(c) == 1004);
+    /* a 100 000-point circle outline filled: a fan of n − 2 triangles, at once (no O(n³) ear search) */
+    enum { BIG = 100000 };
+    tt_vec2 *ring = malloc(BIG * sizeof *ring);
+    ENSURE(ring != NULL);
+    for (int i = 0; i < BIG; i++) ring[i] = (tt_vec2){cos(i * 2 * M_PI / BIG), sin(i * 2 * M_PI / BIG)};
+    tt_result pr = tt_canvas_polygon(c, ring, BIG, true);
+    free(ring);
+    ENSURE_OK(pr);
+    ENSURE(tt_canvas_primitive_count(c) == 1004 + BIG - 2);
     int w, h;
     tt_canvas_text_size("ab\ncde", 2, &w, &h);
     ENSURE(w == (3 * 6 - 1) * 2);

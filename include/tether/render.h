@@ -87,7 +87,8 @@ TT_API tt_result tt_canvas_circle(tt_canvas *c, tt_vec2 center, double radius, b
 TT_API tt_result tt_canvas_line(tt_canvas *c, tt_vec2 a, tt_vec2 b);
 /// A line whose two ends have their own colours (stress gradients).
 TT_API tt_result tt_canvas_line2(tt_canvas *c, tt_vec2 a, tt_vec2 b, tt_color ca, tt_color cb);
-/// A polygon of n ≥ 3 points (either winding; concave is fine, self-crossing is drawn as a fan), filled or outlined.
+/// A polygon of 3…1 000 000 points, filled or outlined. Filled: either winding; concave is fine up to
+/// 256 points; longer outlines and self-crossing ones are drawn as a fan from the first point.
 TT_API tt_result tt_canvas_polygon(tt_canvas *c, const tt_vec2 *points, int n, bool filled);
 /// Text in the built-in 5×7 font (ASCII 32…126; others show as '?'), top-left
 /// corner at pos, each font pixel `scale` screen pixels (1…64). '\n' starts a new line.
