@@ -478,6 +478,39 @@ function tether.gfx.to_world(px, py) end
 ---@param text? string
 function tether.gfx.hud(w, text) end
 
+---An RGBA image, drawn as a texture with g.image.
+---@class tether.image
+local image = {}
+---@return integer width, integer height
+function image:size() end
+---Colour of pixel (x, y), x in [0, width-1], y in [0, height-1] from the top; numbers in [0, 1].
+---@return number r, number g, number b, number a
+function image:pixel(x, y) end
+---@param a? number default 1
+function image:set_pixel(x, y, r, g, b, a) end
+---@param a? number default 1
+function image:fill(r, g, b, a) end
+
+---A new image, 1..8192 pixels a side, transparent black.
+---@param width integer
+---@param height integer
+---@return tether.image
+function tether.gfx.new_image(width, height) end
+
+---Reads a PNG file (runner only: absent under stock lua5.4).
+---@param path string
+---@return tether.image? image
+---@return string? message
+function tether.gfx.load_image(path) end
+
+---Draws an image stretched over the rectangle (its first row at the top), tinted by the current colour.
+---@param img tether.image
+---@param x1 number
+---@param y1 number
+---@param x2 number
+---@param y2 number
+function tether.gfx.image(img, x1, y1, x2, y2) end
+
 ---@class tether.draw_options
 ---@field particles? boolean default true
 ---@field springs? boolean default true; coloured by strain

@@ -14,6 +14,7 @@
 #define STATE_KEY "tether.render"        /* registry: the tl_render userdata */
 #define DRAWN_KEY "tether.render.drawn"  /* registry: worlds drawn this frame, 1…n */
 #define DRAG_KEY "tether.render.drag"    /* registry: the world being dragged */
+#define IMAGES_KEY "tether.render.images" /* registry: images drawn this frame (kept alive until rendered) */
 
 typedef struct drawn {
     tt_vec2 center;
@@ -342,19 +343,154 @@ static int w_draw(lua_State *L)
     return 0;
 }
 
+/* --- images ------------------------------------------------------------------ */
+
+typedef struct li_image {
+    tt_image *img; /* NULL once collected */
+} li_image;
+
+static tt_image *check_image(lua_State *L, int arg)
+{
+    li_image *u = luaL_testudata(L, arg, TL_IMAGE_CLASS);
+    if (u == NULL) tl_typeerror(L, arg, TL_IMAGE_CLASS);
+    if (u->img == NULL) tl_argerror(L, arg, "attempt to use a closed image");
+    return u->img;
+}
+
+static int img_gc(lua_State *L)
+{
+    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    tt_image_destroy(u->img);
+    u->img = NULL;
+    return 0;
+}
+
+static int img_tostring(lua_State *L)
+{
+    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    int w, h;
+    tt_image_size(u->img, &w, &h);
+    lua_pushfstring(L, TL_IMAGE_CLASS " (%dx%d): %p", w, h, (void *)u);
+    return 1;
+}
+
+void tl_push_image(lua_State *L, tt_image *img)
+{
+    li_image *u = lua_newuserdatauv(L, sizeof *u, 0); /* harmless until img is stored */
+    u->img = NULL;
+    luaL_setmetatable(L, TL_IMAGE_CLASS);
+    u->img = img;
+}
+
+/* g.new_image(width, height) → image, transparent black */
+static int g_new_image(lua_State *L)
+{
+    int w = (int)tl_checkinteger(L, 1, 1, 8192), h = (int)tl_checkinteger(L, 2, 1, 8192);
+    li_image *u = lua_newuserdatauv(L, sizeof *u, 0);
+    u->img = NULL;
+    luaL_setmetatable(L, TL_IMAGE_CLASS);
+    u->img = tt_image_create(w, h);
+    if (!u->img) tl_error(L, "out of memory for a %dx%d image", w, h);
+    return 1;
+}
+
+/* img:size() → width, height */
+static int img_size(lua_State *L)
+{
+    int w, h;
+    tt_image_size(check_image(L, 1), &w, &h);
+    lua_pushinteger(L, w);
+    lua_pushinteger(L, h);
+    return 2;
+}
+
+static uint8_t *pixel_at(lua_State *L, tt_image *img)
+{
+    int w, h;
+    tt_image_size(img, &w, &h);
+    lua_Integer x = tl_checkinteger(L, 2, 0, w - 1), y = tl_checkinteger(L, 3, 0, h - 1);
+    return tt_image_pixels(img) + ((size_t)y * (size_t)w + (size_t)x) * 4;
+}
+
+/* img:set_pixel(x, y, r, g, b [, a]) — x in [0, width − 1], y in [0, height − 1] from the top */
+static int img_set_pixel(lua_State *L)
+{
+    tt_image *img = check_image(L, 1);
+    uint8_t *p = pixel_at(L, img);
+    uint8_t k[4] = { byte_of(tl_checknumber(L, 4, &R_UNIT)), byte_of(tl_checknumber(L, 5, &R_UNIT)),
+                     byte_of(tl_checknumber(L, 6, &R_UNIT)), byte_of(tl_optnumber(L, 7, &R_UNIT, 1.0)) };
+    memcpy(p, k, 4);
+    tt_image_touch(img);
+    return 0;
+}
+
+/* img:pixel(x, y) → r, g, b, a */
+static int img_pixel(lua_State *L)
+{
+    const uint8_t *p = pixel_at(L, check_image(L, 1));
+    for (int i = 0; i < 4; i++) lua_pushnumber(L, p[i] / 255.0);
+    return 4;
+}
+
+/* img:fill(r, g, b [, a]) */
+static int img_fill(lua_State *L)
+{
+    tt_image *img = check_image(L, 1);
+    uint8_t k[4] = { byte_of(tl_checknumber(L, 2, &R_UNIT)), byte_of(tl_checknumber(L, 3, &R_UNIT)),
+                     byte_of(tl_checknumber(L, 4, &R_UNIT)), byte_of(tl_optnumber(L, 5, &R_UNIT, 1.0)) };
+    int w, h;
+    tt_image_size(img, &w, &h);
+    uint8_t *p = tt_image_pixels(img);
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++) memcpy(p + 4 * i, k, 4);
+    tt_image_touch(img);
+    return 0;
+}
+
+/* g.image(img, x1, y1, x2, y2) — stretched over the rectangle, tinted by the colour (white: as is) */
+static int g_image(lua_State *L)
+{
+    tt_canvas *c = canvas(L);
+    tt_image *img = check_image(L, 1);
+    double x1 = tl_checknumber(L, 2, &TL_R_COORD), y1 = tl_checknumber(L, 3, &TL_R_COORD);
+    double x2 = tl_checknumber(L, 4, &TL_R_COORD), y2 = tl_checknumber(L, 5, &TL_R_COORD);
+    tt_vec2 lo = { x1 < x2 ? x1 : x2, y1 < y2 ? y1 : y2 }, hi = { x1 < x2 ? x2 : x1, y1 < y2 ? y2 : y1 };
+    check_canvas_result(L, c, tt_canvas_image(c, img, lo, hi));
+    /* the canvas points at img until the frame is drawn: keep it from the collector */
+    lua_getfield(L, LUA_REGISTRYINDEX, IMAGES_KEY);
+    if (lua_istable(L, -1)) {
+        lua_pushvalue(L, 1);
+        lua_rawseti(L, -2, (lua_Integer)lua_rawlen(L, -2) + 1);
+    }
+    lua_pop(L, 1);
+    return 0;
+}
+
+static const luaL_Reg image_methods[] = {
+    { "size", img_size }, { "set_pixel", img_set_pixel }, { "pixel", img_pixel }, { "fill", img_fill }, { NULL, NULL }
+};
+static const luaL_Reg image_meta[] = { { "__gc", img_gc }, { "__close", img_gc }, { "__tostring", img_tostring }, { NULL, NULL } };
+
 /* --- registration and the runner's side ------------------------------------ */
 
 static const luaL_Reg gfx_funcs[] = {
     { "color", g_color },         { "clear", g_clear },   { "circle", g_circle },   { "line", g_line },
     { "polygon", g_polygon },     { "text", g_text },     { "line_width", g_line_width },
     { "layer", g_layer },         { "camera", g_camera }, { "fit", g_fit },         { "size", g_size },
-    { "to_world", g_to_world },   { "to_screen", g_to_screen }, { "hud", g_hud }, { NULL, NULL }
+    { "to_world", g_to_world },   { "to_screen", g_to_screen }, { "hud", g_hud },
+    { "new_image", g_new_image }, { "image", g_image },   { NULL, NULL }
 };
 
 static const luaL_Reg world_draw[] = { { "draw", w_draw }, { NULL, NULL } };
 
 void tl_render_register(lua_State *L)
 {
+    if (luaL_newmetatable(L, TL_IMAGE_CLASS)) {
+        tl_setfuncs(L, image_meta, "");
+        lua_createtable(L, 0, 4);
+        tl_setfuncs(L, image_methods, "");
+        lua_setfield(L, -2, "__index");
+    }
+    lua_pop(L, 1);
     lua_createtable(L, 0, (int)(sizeof gfx_funcs / sizeof gfx_funcs[0]));
     tl_setfuncs(L, gfx_funcs, "tether.gfx.");
     lua_setfield(L, -2, "gfx");
@@ -368,6 +504,8 @@ void tl_render_begin(lua_State *L, tt_canvas *c)
     r->ndrawn = 0;
     lua_newtable(L);
     lua_setfield(L, LUA_REGISTRYINDEX, DRAWN_KEY);
+    lua_newtable(L);
+    lua_setfield(L, LUA_REGISTRYINDEX, IMAGES_KEY);
     lua_pushnil(L);
     lua_setfield(L, LUA_REGISTRYINDEX, "tether.render.hud_y");
 }
@@ -375,6 +513,12 @@ void tl_render_begin(lua_State *L, tt_canvas *c)
 void tl_render_end(lua_State *L)
 {
     state(L)->canvas = NULL;
+}
+
+void tl_render_done(lua_State *L)
+{
+    lua_pushnil(L);
+    lua_setfield(L, LUA_REGISTRYINDEX, IMAGES_KEY);
 }
 
 bool tl_render_pick(lua_State *L, double px, double py, double max_px, tt_particle *out)

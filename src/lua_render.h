@@ -10,9 +10,16 @@
 /* Adds tether.gfx to the module table on the top of the stack, and
  * world:draw() to the world class (tl_world_register must have run). */
 void tl_render_register(lua_State *L);
-/* Drawing calls go to c until tl_render_end (c is cleared by the caller). */
+#define TL_IMAGE_CLASS "tether.image"
+
+/* Drawing calls go to c until tl_render_end (c is cleared by the caller).
+ * Images drawn stay referenced until tl_render_done, to be called once the
+ * back end has drawn the canvas. */
 void tl_render_begin(lua_State *L, tt_canvas *c);
 void tl_render_end(lua_State *L);
+void tl_render_done(lua_State *L);
+/* Pushes a tether.image userdata that owns img (the runner's load_image). */
+void tl_push_image(lua_State *L, tt_image *img);
 /* Mouse picking over the worlds drawn by the last frame: the live particle
  * nearest to pixel (px, py), within max_px on screen. On success the world
  * is remembered (kept alive) as the drag target and true is returned. */

@@ -452,6 +452,7 @@ bool tr_session_open(session *s, const options *o, int argc, char **argv)
         lua_setfield(L, -2, "out");
     }
     lua_setfield(L, -2, "runner");
+    tr_register_gfx(L, lua_gettop(L));
     lua_pushvalue(L, -1);
     lua_setglobal(L, "tether");
     s->module = lua_gettop(L);

@@ -51,6 +51,8 @@ double tr_now_s(void);
 double tr_median(double *v, size_t n);
 
 /* runner_view.c */
+/* Adds the runner-only drawing functions (tether.gfx.load_image) to the module at stack index module. */
+void tr_register_gfx(lua_State *L, int module);
 int tr_run_frames(session *s, const options *o);
 int tr_run_window(session *s, const options *o);
 

@@ -141,7 +141,9 @@ int tr_run_frames(session *s, const options *o)
         ok = draw_frame(s, c);
         if (!ok)
             break;
-        if (tt_headless_render(hl, c) != TT_OK) {
+        tt_result rr = tt_headless_render(hl, c);
+        tl_render_done(s->L);
+        if (rr != TT_OK) {
             fprintf(stderr, PROGNAME ": %s\n", tt_headless_error(hl));
             ok = false;
             break;
@@ -182,6 +184,29 @@ done:
     tt_canvas_destroy(c);
     tt_headless_destroy(hl);
     return status;
+}
+
+/* tether.gfx.load_image(path) → image, or nil and a message (runner only: it needs libpng) */
+static int l_load_image(lua_State *L)
+{
+    const char *path = luaL_checkstring(L, 1);
+    char err[512];
+    tt_image *img = tt_image_load_png(path, err, sizeof err);
+    if (!img) {
+        lua_pushnil(L);
+        lua_pushstring(L, err);
+        return 2;
+    }
+    tl_push_image(L, img);
+    return 1;
+}
+
+void tr_register_gfx(lua_State *L, int module)
+{
+    static const luaL_Reg funcs[] = { { "load_image", l_load_image }, { NULL, NULL } };
+    lua_getfield(L, module, "gfx");
+    tl_setfuncs(L, funcs, "tether.gfx.");
+    lua_pop(L, 1);
 }
 
 /* --- the window --------------------------------------------------------------- */
@@ -481,6 +506,7 @@ int tr_run_window(session *s, const options *o)
             fprintf(stderr, PROGNAME ": %s\n", tt_window_error(win));
             ok = false;
         }
+        tl_render_done(s->L);
         if (last)
             break;
         double spent = tr_now_s() - now;

@@ -13,7 +13,7 @@ local g = tether.gfx
 local function outside_frame()
   T.test("gfx exists and lists its functions", function()
     for _, name in ipairs { "color", "clear", "circle", "line", "polygon", "text", "line_width", "layer",
-      "camera", "fit", "size", "to_world", "to_screen", "hud" } do
+      "camera", "fit", "size", "to_world", "to_screen", "hud", "new_image", "image", "load_image" } do
       T.eq(type(g[name]), "function", "tether.gfx." .. name)
     end
     T.eq(type(tether.world().draw), "function", "world:draw")
@@ -49,6 +49,19 @@ local function inside_frame()
       local x, y, z = gg.camera()
       T.test("the camera persists between frames", function()
         T.eq(x, 1, "x"); T.eq(y, 2, "y"); T.eq(z, 10, "zoom")
+      end)
+      T.test("load_image reads the PNG of the first frame", function()
+        local img, msg = gg.load_image(tether.runner.out .. "/frame_00000.png")
+        T.ok(img, "loaded: " .. tostring(msg))
+        if not img then return end
+        local W, H = img:size()
+        T.eq(W, 200, "width"); T.eq(H, 150, "height")
+        local r, g2, b, a = img:pixel(0, 0) -- frame 1 ended with g.clear(0, 0, 0): opaque black
+        T.eq(r + g2 + b, 0, "black"); T.eq(a, 1, "opaque")
+        T.noerror(gg.image, img, -1, -1, 1, 1)
+        local none, why = gg.load_image("no/such/file.png")
+        T.eq(none, nil, "missing file: nil")
+        T.ok(type(why) == "string" and why:find("no/such/file.png", 1, true), "message names the file: " .. tostring(why))
       end)
       return
     end
@@ -97,6 +110,30 @@ local function inside_frame()
       T.noerror(gg.hud, w)
       T.noerror(gg.hud, w, "one more line")
       T.noerror(gg.clear, 0, 0, 0)
+    end)
+
+    T.test("images: make, write, read, draw", function()
+      local img = gg.new_image(3, 2)
+      T.eq(getmetatable(img).__name, "tether.image", "class")
+      local W, H = img:size()
+      T.eq(W, 3, "width"); T.eq(H, 2, "height")
+      T.eq(select(4, img:pixel(2, 1)), 0, "starts transparent")
+      img:fill(0, 0, 1)
+      img:set_pixel(2, 1, 1, 0, 0, 0.5)
+      local r, g2, b, a = img:pixel(2, 1)
+      T.eq(r, 1, "r"); T.eq(g2, 0, "g"); T.eq(b, 0, "b"); T.near(a, 128 / 255, 1e-12, "a")
+      T.eq(select(3, img:pixel(0, 0)), 1, "filled blue")
+      T.ok(tostring(img):find("tether.image (3x2)", 1, true), "tostring")
+      T.noerror(gg.image, img, 0, 0, 3, 2)
+      T.noerror(gg.image, gg.new_image(1, 1), 0, 0, 1, 1) -- a temporary: kept alive until the frame is drawn
+      collectgarbage()
+      T.checkerror_plain("bad argument #2 to 'set_pixel'", img.set_pixel, img, 3, 0, 1, 1, 1)
+      T.checkerror_plain("bad argument #4 to 'set_pixel'", img.set_pixel, img, 0, 0, 2, 1, 1)
+      T.checkerror_plain("bad argument #1 to 'tether.gfx.new_image'", gg.new_image, 0, 1)
+      T.checkerror("tether.image expected", gg.image, {}, 0, 0, 1, 1)
+      local closed = gg.new_image(1, 1)
+      getmetatable(closed).__close(closed)
+      T.checkerror_plain("attempt to use a closed image", closed.size, closed)
     end)
 
     T.test("bad arguments name the function and the argument", function()
