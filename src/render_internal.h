@@ -73,8 +73,9 @@ struct tt_image {
     uint32_t version;         /* bumped by tt_image_touch */
 };
 
-/* The built-in font: 7 rows per glyph, bit 4 = leftmost column (render_font.c). */
-enum { TT_FONT_W = 5, TT_FONT_H = 7, TT_FONT_ADVANCE = 6, TT_FONT_LINE = 9 };
+/* The built-in font: 9 rows per glyph (7 above the baseline, 2 of descenders),
+ * bit 4 = leftmost column (render_font.c). */
+enum { TT_FONT_W = 5, TT_FONT_H = 9, TT_FONT_ADVANCE = 6, TT_FONT_LINE = 10 };
 const uint8_t *tt__font_glyph(int ch);
 
 /* The GL drawing shared by both back ends (render_gl.c). The functions are
