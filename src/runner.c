@@ -492,6 +492,18 @@ void tr_session_close(session *s)
     s->L = NULL;
 }
 
+/* A window can open: an X11 or Wayland display, or a video driver chosen explicitly. */
+static bool has_display(void)
+{
+    const char *v[] = { "DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER" };
+    for (int i = 0; i < 3; i++) {
+        const char *e = getenv(v[i]);
+        if (e != NULL && *e != '\0')
+            return true;
+    }
+    return false;
+}
+
 int main(int argc, char **argv)
 {
     options o;
@@ -517,7 +529,14 @@ int main(int argc, char **argv)
         status = 1;
     else if (o.out != NULL)
         status = tr_run_frames(&s, &o);
-    else if (!o.headless && (has_update || has_draw))
+    else if (!o.headless && (has_update || has_draw) && !has_display() && o.frames == 0 && o.screenshot == NULL &&
+             o.events == NULL) {
+        /* no display to open a window on (a CI job, ssh): the plain loop, as --headless */
+        fprintf(stderr, PROGNAME ": no display (DISPLAY and WAYLAND_DISPLAY are not set): running headless; "
+                        "--headless --out DIR writes PNG frames\n");
+        if (has_update)
+            status = run_loop(&s, &o);
+    } else if (!o.headless && (has_update || has_draw))
         status = tr_run_window(&s, &o);
     else if (has_update)
         status = run_loop(&s, &o);
