@@ -190,6 +190,8 @@ static tt_result oom(tt_canvas *c, const char *fn)
 /* Appends one circle; the hot path of a debug draw (no checks: callers check). */
 static inline bool add_circle(tt_canvas *c, float cx, float cy, float r, float inner, tt_color k)
 {
+    if (cx + r + 1.0f < 0.0f || cy + r + 1.0f < 0.0f || cx - r - 1.0f > (float)c->width || cy - r - 1.0f > (float)c->height)
+        return true; /* entirely off the canvas: culled */
     tt__layer *L = &c->layers[c->layer];
     if (r <= TT__POINT_MAX_RADIUS) {
         if (!RESERVE(L->points, 1)) return false;

@@ -111,16 +111,16 @@ static const char *fs_circle =
 static const char *vs_point =
     "#version 120\n"
     "attribute vec2 a_pos; attribute vec4 a_color; attribute vec2 a_radius; uniform vec2 u_size;\n"
-    "varying vec4 v_color; varying vec2 v_radius; varying vec2 v_center;\n"
-    "void main() { v_color = a_color; v_radius = a_radius; gl_PointSize = 2.0 * a_radius.x + 2.0;\n"
-    "  v_center = vec2(a_pos.x, u_size.y - a_pos.y); /* window coordinates, y up like gl_FragCoord */\n"
+    "varying vec4 v_color; varying vec4 v_disc; /* centre (window coordinates, y up), radius, inner radius */\n"
+    "void main() { v_color = a_color; gl_PointSize = 2.0 * a_radius.x + 1.0;\n"
+    "  v_disc = vec4(a_pos.x, u_size.y - a_pos.y, a_radius);\n"
     "  gl_Position = vec4(a_pos.x / u_size.x * 2.0 - 1.0, 1.0 - a_pos.y / u_size.y * 2.0, 0.0, 1.0); }\n";
 static const char *fs_point =
     "#version 120\n"
-    "varying vec4 v_color; varying vec2 v_radius; varying vec2 v_center;\n"
-    "void main() { float d = length(gl_FragCoord.xy - v_center);\n"
-    "  float a = clamp(v_radius.x - d + 0.5, 0.0, 1.0);\n"
-    "  if (v_radius.y >= 0.0) a *= clamp(d - v_radius.y + 0.5, 0.0, 1.0);\n"
+    "varying vec4 v_color; varying vec4 v_disc;\n"
+    "void main() { float d = length(gl_FragCoord.xy - v_disc.xy);\n"
+    "  float a = clamp(v_disc.z - d + 0.5, 0.0, 1.0);\n"
+    "  if (v_disc.w >= 0.0) a *= clamp(d - v_disc.w + 0.5, 0.0, 1.0);\n"
     "  if (a <= 0.0) discard;\n"
     "  gl_FragColor = vec4(v_color.rgb, v_color.a * a); }\n";
 static const char *vs_tex =
@@ -319,7 +319,7 @@ static bool points_as_quads(tt__gl *g, const tt__point_array *a, int w, int h)
 static bool draw_points(tt__gl *g, const tt__point_array *a, int w, int h)
 {
     if (a->n == 0) return true;
-    if (g->max_point < 2.0f * TT__POINT_MAX_RADIUS + 2.0f) return points_as_quads(g, a, w, h);
+    if (g->max_point < 2.0f * TT__POINT_MAX_RADIUS + 1.0f) return points_as_quads(g, a, w, h);
     g->UseProgram(g->prog_point);
     g->Uniform2f(g->size_point, (float)w, (float)h);
     g->BindBuffer(GL_ARRAY_BUFFER, g->vbo);

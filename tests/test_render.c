@@ -84,6 +84,8 @@ TEST(canvas_batches_by_kind)
     ENSURE(c != NULL);
     for (int i = 0; i < 1000; i++) ENSURE_OK(tt_canvas_circle(c, (tt_vec2){0, 0}, 0.1, true));
     ENSURE(tt_canvas_primitive_count(c) == 1000);
+    ENSURE_OK(tt_canvas_circle(c, (tt_vec2){100, 0}, 1, true)); /* 100 m right of a 64 px canvas at 30 px/m: culled */
+    ENSURE(tt_canvas_primitive_count(c) == 1000);
     /* a concave L-shaped hexagon: ear clipping gives n − 2 = 4 triangles */
     tt_vec2 l[6] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
     ENSURE_OK(tt_canvas_polygon(c, l, 6, true));

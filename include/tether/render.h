@@ -81,7 +81,7 @@ TT_API tt_result tt_canvas_set_layer(tt_canvas *c, tt_layer layer);
 TT_API tt_layer tt_canvas_get_layer(const tt_canvas *c);
 /// Width of lines and outlines, px (0.1…1000); default 1.5.
 TT_API tt_result tt_canvas_set_line_width(tt_canvas *c, double px);
-/// A circle (radius in the layer's units, ≥ 0), filled or outlined; anti-aliased.
+/// A circle (radius in the layer's units, ≥ 0), filled or outlined; anti-aliased. Circles entirely off the canvas are culled.
 TT_API tt_result tt_canvas_circle(tt_canvas *c, tt_vec2 center, double radius, bool filled);
 /// A straight line of the current line width.
 TT_API tt_result tt_canvas_line(tt_canvas *c, tt_vec2 a, tt_vec2 b);
