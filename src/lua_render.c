@@ -7,6 +7,7 @@
  * the camera, or pixels (origin top-left) after g.layer("screen"). */
 #include "lua_render.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,7 @@
 #define DRAWN_KEY "tether.render.drawn"  /* registry: worlds drawn this frame, 1…n */
 #define DRAG_KEY "tether.render.drag"    /* registry: the world being dragged */
 #define IMAGES_KEY "tether.render.images" /* registry: images drawn this frame (kept alive until rendered) */
+#define WORLDS_KEY "tether.render.worlds" /* registry: every world made, 1…n, weak values */
 
 typedef struct drawn {
     tt_vec2 center;
@@ -27,6 +29,9 @@ typedef struct tl_render {
     drawn *drawn;      /* camera of each world drawn this frame (worlds in DRAWN_KEY) */
     size_t ndrawn, cap;
     drawn drag_cam;    /* camera when the drag started */
+    lua_Integer nworlds;   /* worlds made so far (keys of WORLDS_KEY) */
+    tt_vec2 auto_lo, auto_hi; /* what the automatic view has shown so far */
+    bool auto_set;
 } tl_render;
 
 static int state_gc(lua_State *L)
@@ -470,6 +475,85 @@ static const luaL_Reg image_methods[] = {
 };
 static const luaL_Reg image_meta[] = { { "__gc", img_gc }, { "__close", img_gc }, { "__tostring", img_tostring }, { NULL, NULL } };
 
+/* --- every world, for scripts without tether.draw ----------------------------- */
+
+/* tether.world(...): the module's constructor, and the world is remembered. */
+static int l_world_tracked(lua_State *L)
+{
+    int n = lua_gettop(L);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, n, 1);
+    tl_render *r = state(L);
+    if (lua_getfield(L, LUA_REGISTRYINDEX, WORLDS_KEY) == LUA_TTABLE) {
+        lua_pushvalue(L, -2);
+        lua_rawseti(L, -2, ++r->nworlds);
+    }
+    lua_pop(L, 1);
+    return 1;
+}
+
+void tl_render_auto(lua_State *L)
+{
+    tl_render *r = state(L);
+    tt_canvas *c = r->canvas;
+    if (!c) return;
+    lua_getfield(L, LUA_REGISTRYINDEX, WORLDS_KEY);
+    int t = lua_gettop(L);
+    int shown = 0;
+    /* the view grows to hold every particle seen so far (it never jumps back) */
+    for (lua_Integer k = 1; k <= r->nworlds && lua_istable(L, t); k++) {
+        lua_rawgeti(L, t, k);
+        tt_world *w = tl_toworld(L, -1);
+        lua_pop(L, 1);
+        if (!w) continue;
+        uint32_t n = tt_world_particle_count(w);
+        double *xy = malloc((2 * (size_t)n + 2) * sizeof *xy);
+        if (!xy) continue;
+        n = tt_world_read_positions(w, xy, n);
+        for (uint32_t i = 0; i < n; i++) {
+            tt_vec2 p = { xy[2 * i], xy[2 * i + 1] };
+            if (!(fabs(p.x) < 1e9 && fabs(p.y) < 1e9)) continue;
+            if (!r->auto_set) { r->auto_lo = r->auto_hi = p; r->auto_set = true; }
+            r->auto_lo.x = fmin(r->auto_lo.x, p.x); r->auto_lo.y = fmin(r->auto_lo.y, p.y);
+            r->auto_hi.x = fmax(r->auto_hi.x, p.x); r->auto_hi.y = fmax(r->auto_hi.y, p.y);
+        }
+        free(xy);
+    }
+    if (r->auto_set) {
+        tt_vec2 lo = r->auto_lo, hi = r->auto_hi;
+        double ex = 1.2 * fmax(1.0, hi.x - lo.x), ey = 1.2 * fmax(1.0, hi.y - lo.y), cx = 0.5 * (lo.x + hi.x), cy = 0.5 * (lo.y + hi.y);
+        int W, H;
+        tt_canvas_size(c, &W, &H);
+        double margin = fmin(30.0, 0.2 * fmin(W, H));
+        tt_canvas_fit(c, (tt_vec2){ cx - 0.5 * ex, cy - 0.5 * ey }, (tt_vec2){ cx + 0.5 * ex, cy + 0.5 * ey }, margin);
+    }
+    double y = 6.0;
+    for (lua_Integer k = 1; k <= r->nworlds && lua_istable(L, t); k++) {
+        lua_rawgeti(L, t, k);
+        tt_world *w = tl_toworld(L, -1);
+        if (w && tt_canvas_draw_world(c, w, NULL) == TT_OK) {
+            remember(L, lua_gettop(L), c);
+            if (shown++ == 0) {
+                tt_stats st;
+                char buf[256];
+                tt_world_get_stats(w, &st);
+                snprintf(buf, sizeof buf, "t %.2f s   step %.3f ms\nparticles %u   springs %u\niterations %u   error %.1e",
+                         st.time, st.step_ms, st.particles, st.springs, st.iterations, st.max_error);
+                hud_panel(c, buf, &y);
+            }
+        }
+        lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    tt_layer layer = tt_canvas_get_layer(c);
+    tt_canvas_set_layer(c, TT_LAYER_SCREEN);
+    tt_canvas_set_color(c, (tt_color){ 170, 170, 170, 255 });
+    tt_canvas_text(c, (tt_vec2){ 8, y + 2 }, shown ? "no tether.draw(g): every world, automatic view"
+                                                   : "no tether.draw(g) and no world: nothing to show", 1);
+    tt_canvas_set_layer(c, layer);
+}
+
 /* --- registration and the runner's side ------------------------------------ */
 
 static const luaL_Reg gfx_funcs[] = {
@@ -491,6 +575,18 @@ void tl_render_register(lua_State *L)
         lua_setfield(L, -2, "__index");
     }
     lua_pop(L, 1);
+    /* tether.world remembers what it makes (weakly), for the automatic view */
+    lua_newtable(L);
+    lua_createtable(L, 0, 1);
+    lua_pushliteral(L, "v");
+    lua_setfield(L, -2, "__mode");
+    lua_setmetatable(L, -2);
+    lua_setfield(L, LUA_REGISTRYINDEX, WORLDS_KEY);
+    state(L)->nworlds = 0;
+    lua_getfield(L, -1, "world");
+    lua_pushcclosure(L, l_world_tracked, 1);
+    lua_setfield(L, -2, "world");
+
     lua_createtable(L, 0, (int)(sizeof gfx_funcs / sizeof gfx_funcs[0]));
     tl_setfuncs(L, gfx_funcs, "tether.gfx.");
     lua_setfield(L, -2, "gfx");

@@ -18,6 +18,9 @@ void tl_render_register(lua_State *L);
 void tl_render_begin(lua_State *L, tt_canvas *c);
 void tl_render_end(lua_State *L);
 void tl_render_done(lua_State *L);
+/* For a script without tether.draw: draws every live world it made (in the
+ * order made) with a view that grows to hold all their particles, and a HUD. */
+void tl_render_auto(lua_State *L);
 /* Pushes a tether.image userdata that owns img (the runner's load_image). */
 void tl_push_image(lua_State *L, tt_image *img);
 /* Mouse picking over the worlds drawn by the last frame: the live particle

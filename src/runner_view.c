@@ -67,9 +67,7 @@ static bool draw_frame(session *s, tt_canvas *c)
         lua_getfield(s->L, s->module, "gfx");
         ok = tr_docall(s->L, 1, 0);
     } else if (!bad) {
-        tt_canvas_set_layer(c, TT_LAYER_SCREEN);
-        tt_canvas_set_color(c, (tt_color){ 200, 200, 200, 255 });
-        tt_canvas_text(c, (tt_vec2){ 10, 10 }, "this script has no tether.draw(g): nothing to show", 2);
+        tl_render_auto(s->L); /* no tether.draw: every world the script made */
     }
     tl_render_end(s->L);
     tt_canvas_set_layer(c, TT_LAYER_WORLD);

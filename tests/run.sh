@@ -147,6 +147,8 @@ frames=$(mktemp -d "${TMPDIR:-/tmp}/tether-frames.XXXXXX") || exit 1
 trap 'rm -f "$tmp" "$tmp2"; rm -rf "$frames"' EXIT INT TERM
 run_counted "lua: tests/lua/test_render.lua (inside frames)" \
     "$RUNNER" --headless --frames 2 --size 200x150 --out "$frames/lua" tests/lua/test_render.lua
+run_counted "lua: tests/lua/auto_view.lua (no tether.draw: every world shown)" \
+    "$RUNNER" --headless --frames 2 --size 160x120 --out "$frames/auto" tests/lua/auto_view.lua
 
 # each demo as 3 headless PNG frames of 320x240, 10 steps apart
 demo_frames_ok() {
