@@ -165,10 +165,10 @@ for d in demos/*.lua; do
     run_check "demo frames: $d" demo_frames_ok "$d"
 done
 
-# the window: 20 frames under Xvfb, a screenshot of the last, exit status 0
+# the window: each demo for 20 frames under Xvfb, a screenshot of the last, exit status 0
 window_ok() {
-    shot="$frames/window.png"
-    SDL_VIDEODRIVER=x11 ASAN_OPTIONS="$window_asan" xvfb-run -a "$RUNNER" --frames 20 --size 320x240 --screenshot "$shot" demos/fountain.lua \
+    shot="$frames/window-$(basename "$1" .lua).png"
+    SDL_VIDEODRIVER=x11 ASAN_OPTIONS="$window_asan" xvfb-run -a "$RUNNER" --frames 20 --size 320x240 --screenshot "$shot" "$1" \
         >"$tmp2" 2>&1 || { cat "$tmp2"; return 1; }
     cat "$tmp2"
     grep -q '^tether: window: 20 frames' "$tmp2" && [ -s "$shot" ] && [ "$(od -An -c -N4 "$shot" | tr -d ' ')" = "211PNG" ]
@@ -185,11 +185,15 @@ if command -v xvfb-run >/dev/null 2>&1; then
         # driver is unloaded before exit, so no suppression can name it. Our
         # own code's leaks are checked by every other (headless) run above.
         window_asan="detect_leaks=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
-        run_check "window under Xvfb: demos/fountain.lua, 20 frames + screenshot (ASan, leak check off)" window_ok
+        for d in demos/*.lua; do
+            run_check "window under Xvfb: $d, 20 frames + screenshot (ASan, leak check off)" window_ok "$d"
+        done
         run_counted "window under Xvfb: keys and mouse drag, tests/window_input.lua (ASan, leak check off)" window_input
     else
         window_asan=${ASAN_OPTIONS:-}
-        run_check "window under Xvfb: demos/fountain.lua, 20 frames + screenshot" window_ok
+        for d in demos/*.lua; do
+            run_check "window under Xvfb: $d, 20 frames + screenshot" window_ok "$d"
+        done
         run_counted "window under Xvfb: keys and mouse drag, tests/window_input.lua" window_input
     fi
 else
