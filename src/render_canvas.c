@@ -204,7 +204,7 @@ static inline bool add_circle(tt_canvas *c, float cx, float cy, float r, float i
         return true;
     }
     if (!RESERVE(L->circles, 4)) return false;
-    float e = r + 1.0f; /* one pixel of room for the anti-aliased edge */
+    float e = r + 0.5f; /* room for the anti-aliased edge, which ends at r + 0.5 */
     static const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
     tt__vcircle *v = L->circles.v + L->circles.n;
     for (int i = 0; i < 4; i++) {

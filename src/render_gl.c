@@ -299,7 +299,7 @@ static bool points_as_quads(tt__gl *g, const tt__point_array *a, int w, int h)
     static const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
     for (size_t i = 0; i < a->n; i++) {
         const tt__vpoint *p = &a->v[i];
-        float e = p->r + 1.0f;
+        float e = p->r + 0.5f;
         for (int k = 0; k < 4; k++) {
             tt__vcircle *v = &q.v[4 * i + k];
             v->x = p->x + sx[k] * e;
