@@ -81,6 +81,7 @@ struct tt__gl {
     texslot *tex;
     size_t ntex, captex;
     uint64_t frame;
+    unsigned draw_calls;  /* glDraw* calls of the last frame */
 };
 
 enum { A_POS = 0, A_COLOR = 1, A_LOCAL = 2, A_RADIUS = 3, A_UV = 4 };
@@ -237,6 +238,7 @@ static void draw_solid(tt__gl *g, const tt__solid_array *a, int w, int h)
     g->VertexAttribPointer(A_POS, 2, GL_FLOAT, GL_FALSE, sizeof(tt__vsolid), (void *)offsetof(tt__vsolid, x));
     g->VertexAttribPointer(A_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(tt__vsolid), (void *)offsetof(tt__vsolid, rgba));
     g->DrawArrays(GL_TRIANGLES, 0, (GLsizei)a->n);
+    g->draw_calls++;
     g->DisableVertexAttribArray(A_POS);
     g->DisableVertexAttribArray(A_COLOR);
 }
@@ -281,6 +283,7 @@ static bool draw_circles(tt__gl *g, const tt__circle_array *a, int w, int h)
     g->VertexAttribPointer(A_RADIUS, 2, GL_FLOAT, GL_FALSE, (GLsizei)st, (void *)offsetof(tt__vcircle, r));
     g->VertexAttribPointer(A_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)st, (void *)offsetof(tt__vcircle, rgba));
     g->DrawElements(GL_TRIANGLES, (GLsizei)(quads * 6), GL_UNSIGNED_INT, NULL);
+    g->draw_calls++;
     g->DisableVertexAttribArray(A_POS);
     g->DisableVertexAttribArray(A_COLOR);
     g->DisableVertexAttribArray(A_LOCAL);
@@ -332,6 +335,7 @@ static bool draw_points(tt__gl *g, const tt__point_array *a, int w, int h)
     g->VertexAttribPointer(A_RADIUS, 2, GL_FLOAT, GL_FALSE, (GLsizei)st, (void *)offsetof(tt__vpoint, r));
     g->VertexAttribPointer(A_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)st, (void *)offsetof(tt__vpoint, rgba));
     g->DrawArrays(GL_POINTS, 0, (GLsizei)a->n);
+    g->draw_calls++;
     g->DisableVertexAttribArray(A_POS);
     g->DisableVertexAttribArray(A_COLOR);
     g->DisableVertexAttribArray(A_RADIUS);
@@ -392,6 +396,7 @@ static void draw_images(tt__gl *g, const tt__layer *L, int w, int h)
         g->VertexAttribPointer(A_UV, 2, GL_FLOAT, GL_FALSE, (GLsizei)st, (void *)offsetof(tt__vtex, u));
         g->VertexAttribPointer(A_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)st, (void *)offsetof(tt__vtex, rgba));
         g->DrawArrays(GL_TRIANGLE_FAN, 0, 4);
+        g->draw_calls++;
     }
     g->DisableVertexAttribArray(A_POS);
     g->DisableVertexAttribArray(A_COLOR);
@@ -401,6 +406,7 @@ static void draw_images(tt__gl *g, const tt__layer *L, int w, int h)
 tt_result tt__gl_draw(tt__gl *g, const tt_canvas *c, int w, int h, char *err, size_t n)
 {
     g->frame++;
+    g->draw_calls = 0;
     g->Viewport(0, 0, w, h);
     g->ClearColor(c->background.r / 255.0f, c->background.g / 255.0f, c->background.b / 255.0f, c->background.a / 255.0f);
     g->Clear(GL_COLOR_BUFFER_BIT);
@@ -444,3 +450,5 @@ void tt__gl_read(tt__gl *g, int w, int h, uint8_t *out)
 }
 
 void tt__gl_finish(tt__gl *g) { g->Finish(); }
+
+unsigned tt__gl_draw_calls(const tt__gl *g) { return g ? g->draw_calls : 0; }

@@ -90,6 +90,8 @@ tt_result tt__gl_draw(tt__gl *g, const tt_canvas *c, int w, int h, char *err, si
 void tt__gl_read(tt__gl *g, int w, int h, uint8_t *out);
 /* Waits until drawing is done. */
 void tt__gl_finish(tt__gl *g);
+/* glDraw* calls the last tt__gl_draw made. */
+unsigned tt__gl_draw_calls(const tt__gl *g);
 
 int tt__errf(char *buf, size_t n, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 

@@ -100,3 +100,5 @@ tt_result tt_headless_write_png(tt_headless *h, const char *path)
 }
 
 const char *tt_headless_error(const tt_headless *h) { return h ? h->error : "headless context is NULL"; }
+
+unsigned tt_headless_draw_calls(const tt_headless *h) { return h ? tt__gl_draw_calls(h->gl) : 0; }

@@ -102,3 +102,5 @@ tt_result tt_window_present(tt_window *w, const tt_canvas *c, const char *screen
 }
 
 const char *tt_window_error(const tt_window *w) { return w ? w->error : "window is NULL"; }
+
+unsigned tt_window_draw_calls(const tt_window *w) { return w ? tt__gl_draw_calls(w->gl) : 0; }

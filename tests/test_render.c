@@ -313,3 +313,38 @@ TEST(headless_frames_are_reproducible)
         tt_headless_destroy(hl);
     }
 }
+
+/* Batching: 20 000 particles and their 19 999 springs, a HUD: one GL draw
+ * call per layer and kind, however many primitives. */
+TEST(headless_frame_batches_one_draw_call_per_kind)
+{
+    tt_headless *hl = tt_headless_create(320, 240, NULL, 0);
+    ENSURE(hl != NULL);
+    tt_canvas *c = tt_canvas_create(320, 240);
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_spring_def sd = tt_spring_def_default();
+    tt_particle prev = {0, 0};
+    for (int i = 0; i < 20000; i++) {
+        pd.position = (tt_vec2){(i % 200) * 0.05 - 5, (i / 200) * 0.05 - 2.5};
+        tt_particle p = tt_particle_create(w, &pd);
+        if (i > 0) {
+            sd.a = prev;
+            sd.b = p;
+            ENSURE(tt_spring_create(w, &sd).gen != 0);
+        }
+        prev = p;
+    }
+    tt_canvas_clear(c, (tt_color){0, 0, 0, 255});
+    ENSURE_OK(tt_canvas_fit(c, (tt_vec2){-5, -2.5}, (tt_vec2){5, 2.5}, 0));
+    ENSURE_OK(tt_canvas_draw_world(c, w, NULL));
+    ENSURE_OK(tt_canvas_set_layer(c, TT_LAYER_SCREEN));
+    ENSURE_OK(tt_canvas_text(c, (tt_vec2){4, 4}, "20000 particles", 1));
+    ENSURE(tt_canvas_primitive_count(c) > 20000 + 2 * 19999);
+    ENSURE_OK(tt_headless_render(hl, c));
+    /* world: triangles (springs) + points (particles); screen: text */
+    ENSURE(tt_headless_draw_calls(hl) == 3);
+    tt_world_destroy(w);
+    tt_canvas_destroy(c);
+    tt_headless_destroy(hl);
+}

@@ -136,6 +136,8 @@ TT_API const uint8_t *tt_headless_pixels(const tt_headless *h, int *width, int *
 TT_API tt_result tt_headless_write_png(tt_headless *h, const char *path);
 /// The message of the last failed call on h.
 TT_API const char *tt_headless_error(const tt_headless *h);
+/// GL draw calls the last render made: one per layer and kind in use (images: one each).
+TT_API unsigned tt_headless_draw_calls(const tt_headless *h);
 
 /// Windowed back end: an SDL2 window with an OpenGL context. Events are the
 /// caller's (SDL_PollEvent); this only opens, draws, reads back and closes.
@@ -149,6 +151,8 @@ TT_API void tt_window_size(const tt_window *win, int *width, int *height);
 /// writes it to that PNG file; then shows it.
 TT_API tt_result tt_window_present(tt_window *win, const tt_canvas *c, const char *screenshot);
 TT_API const char *tt_window_error(const tt_window *win);
+/// GL draw calls the last present made (see tt_headless_draw_calls).
+TT_API unsigned tt_window_draw_calls(const tt_window *win);
 
 #ifdef __cplusplus
 }
