@@ -1,7 +1,7 @@
 /* tether — the runner: runs a Lua script with the tether module loaded.
  *
  *   tether [--headless] [--steps N] [--dt DT] [--frames N] [--every K] [--out DIR]
- *          [--size WxH] [--screenshot FILE] [--help] [--version] script.lua [args…]
+ *          [--size WxH] [--screenshot FILE] [--events FILE] [--help] [--version] script.lua [args…]
  *
  * Opens the standard libraries, preloads the module (package.preload.tether)
  * and sets the global `tether` to it, sets `arg` as lua5.4 does, and runs the

@@ -150,6 +150,20 @@ run_counted "lua: tests/lua/test_render.lua (inside frames)" \
 run_counted "lua: tests/lua/auto_view.lua (no tether.draw: every world shown)" \
     "$RUNNER" --headless --frames 2 --size 160x120 --out "$frames/auto" tests/lua/auto_view.lua
 
+# the renderer's command line: misuse exits 2 and says why
+bad_options_ok() {
+    for opts in "--headless --frames 3" "--out $frames/x" "--size 10x10" "--frames 0" "--headless --screenshot a.png" \
+                "--headless --events e.txt" "--every 0 --headless --out $frames/x"; do
+        # shellcheck disable=SC2086
+        "$RUNNER" $opts demos/fountain.lua >"$tmp2" 2>&1
+        rc=$?
+        if [ "$rc" -ne 2 ] || ! grep -q '^tether: .*--' "$tmp2"; then
+            echo "'$opts': exit $rc, expected 2 with a message naming the option"; cat "$tmp2"; return 1
+        fi
+    done
+}
+run_check "runner: misused frame/window options exit 2 with a message" bad_options_ok
+
 # each demo as 3 headless PNG frames of 320x240, 10 steps apart
 demo_frames_ok() {
     out="$frames/$(basename "$1" .lua)"
