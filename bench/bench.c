@@ -175,6 +175,7 @@ static const struct {
     {"integrate", bench_integrate},
     {"tradeoff", bench_tradeoff},
     {"collide", bench_collide},
+    {"render", bench_render},
 };
 
 int main(int argc, char **argv)

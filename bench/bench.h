@@ -14,5 +14,6 @@ FILE *bench_csv(const char *dir, const char *name, const char *header);
 void bench_integrate(const char *dir);
 void bench_tradeoff(const char *dir);
 void bench_collide(const char *dir);
+void bench_render(const char *dir);
 
 #endif

@@ -6,6 +6,7 @@
  *
  * Built into build/tether.so for stock lua5.4 and linked into the runner. */
 #include "lua_common.h"
+#include "lua_render.h"
 
 static const luaL_Reg tether_funcs[] = {
     { "world", tl_world_new },
@@ -26,5 +27,6 @@ TT_API int luaopen_tether(lua_State *L)
     lua_setfield(L, -2, "version");
     tl_push_integrators(L);
     lua_setfield(L, -2, "integrators");
+    tl_render_register(L);
     return 1;
 }
