@@ -48,6 +48,13 @@ function tether.update(dt)
   w:step(dt)
 end
 
+function tether.draw(g)
+  local half = BINS / 2 * SPACING
+  g.fit(-half - 1.5, BIN_TOP - 13.5, half + 1.5, 3)
+  w:draw()
+  g.hud(w, ("balls %d of %d"):format(made, BALLS))
+end
+
 function tether.unload()
   local hist, landed = {}, 0
   for b = 1, BINS do hist[b] = 0 end

@@ -44,6 +44,12 @@ function tether.update(dt)
   end
 end
 
+function tether.draw(g)
+  g.fit(-7, -13, 7, 25)
+  w:draw()
+  g.hud(w, ("%d grains"):format(GRAINS))
+end
+
 function tether.unload()
   local s = w:collision_stats()
   print(("hourglass: %d of %d grains passed the neck; %d particle pairs, %d shape contacts in the last substep")

@@ -53,6 +53,12 @@ function tether.update(dt)
   end
 end
 
+function tether.draw(g)
+  g.fit(X0 - 2, -8, X1 + 2, 22)
+  w:draw()
+  g.hud(w)
+end
+
 function tether.unload()
   -- valleys: local minima of the ground; each ball counts for the nearest one
   local valleys, count = {}, {}

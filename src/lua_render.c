@@ -294,7 +294,7 @@ static int g_hud(lua_State *L)
 
 /* --- world:draw([opts]) ------------------------------------------------------ */
 
-static const char *const draw_opts[] = { "particles", "springs", "color", "pinned", "min_radius", NULL };
+static const char *const draw_opts[] = { "particles", "springs", "constraints", "shapes", "color", "pinned", "min_radius", NULL };
 
 static tt_color opt_color(lua_State *L, int arg, const char *key, tt_color def)
 {
@@ -339,6 +339,8 @@ static int w_draw(lua_State *L)
     tt_debug_draw d = tt_debug_draw_default();
     d.particles = tl_optfield_boolean(L, 2, "particles", d.particles);
     d.springs = tl_optfield_boolean(L, 2, "springs", d.springs);
+    d.constraints = tl_optfield_boolean(L, 2, "constraints", d.constraints);
+    d.shapes = tl_optfield_boolean(L, 2, "shapes", d.shapes);
     static const tl_range r_px = { 0.0, 1000.0, false };
     d.min_radius_px = tl_optfield_number(L, 2, "min_radius", &r_px, d.min_radius_px);
     d.particle = opt_color(L, 2, "color", d.particle);

@@ -18,6 +18,10 @@ tt_debug_draw tt_debug_draw_default(void)
     d.strain_full = 0.1;
     d.particle = (tt_color){235, 200, 90, 255};
     d.pinned = (tt_color){230, 70, 70, 255};
+    d.constraints = true;
+    d.shapes = true;
+    d.constraint = (tt_color){120, 190, 230, 255};
+    d.shape = (tt_color){150, 220, 150, 255};
     return d;
 }
 
@@ -80,8 +84,49 @@ tt_result tt_canvas_draw_world(tt_canvas *c, const tt_world *w, const tt_debug_d
         }
     }
 
-    /* distance / angle constraints (issue 4) join here */
-    /* shapes (issue 5) join here, under the particles */
+    /* distance constraints and pins, as segments read in bulk */
+    if (o.constraints && r == TT_OK && tt_world_constraint_count(w) > 0) {
+        uint32_t n = tt_world_read_constraint_lines(w, NULL, 0);
+        double *xy = malloc(4 * (size_t)n * sizeof *xy + 1);
+        if (!xy) r = TT_ENOMEM;
+        else {
+            n = tt_world_read_constraint_lines(w, xy, n);
+            for (uint32_t i = 0; i < n && r == TT_OK; i++)
+                r = tt_canvas_line2(c, (tt_vec2){xy[4 * i], xy[4 * i + 1]}, (tt_vec2){xy[4 * i + 2], xy[4 * i + 3]},
+                                    o.constraint, o.constraint);
+            free(xy);
+        }
+    }
+
+    /* shapes, as outlines under the particles */
+    if (o.shapes && r == TT_OK && tt_world_shape_count(w) > 0) {
+        uint32_t n = tt_world_list_shapes(w, NULL, 0);
+        tt_shape *ids = malloc((size_t)n * sizeof *ids + 1);
+        tt_vec2 *pts = NULL;
+        uint32_t cap = 0;
+        if (!ids) r = TT_ENOMEM;
+        else n = tt_world_list_shapes(w, ids, n);
+        for (uint32_t i = 0; ids && i < n && r == TT_OK; i++) {
+            uint32_t count;
+            bool closed;
+            if (tt_shape_get_outline(w, ids[i], NULL, 0, &count, &closed) != TT_OK || count == 0) continue;
+            if (count > cap) {
+                tt_vec2 *p = realloc(pts, (size_t)count * sizeof *p);
+                if (!p) { r = TT_ENOMEM; break; }
+                pts = p;
+                cap = count;
+            }
+            tt_shape_get_outline(w, ids[i], pts, cap, &count, &closed);
+            bool sensor = false;
+            tt_shape_get_sensor(w, ids[i], &sensor);
+            tt_color k = o.shape;
+            if (sensor) k.a = (uint8_t)(k.a / 3);
+            for (uint32_t j = 0; j + 1 < count && r == TT_OK; j++) r = tt_canvas_line2(c, pts[j], pts[j + 1], k, k);
+            if (closed && count > 2 && r == TT_OK) r = tt_canvas_line2(c, pts[count - 1], pts[0], k, k);
+        }
+        free(pts);
+        free(ids);
+    }
 
     /* particles: positions in bulk, radius and pinned state per handle */
     if (o.particles && r == TT_OK) {

@@ -149,6 +149,14 @@ TT_API tt_result tt_shape_get_user(const tt_world *w, tt_shape s, uint64_t *out)
 TT_API tt_result tt_shape_get_aabb(const tt_world *w, tt_shape s, tt_vec2 *lo, tt_vec2 *hi);
 /// Live shapes.
 TT_API uint32_t tt_world_shape_count(const tt_world *w);
+/// Whether the shape is a sensor (reports overlaps, never pushes).
+TT_API tt_result tt_shape_get_sensor(const tt_world *w, tt_shape s, bool *out);
+/// Bulk: writes up to cap live shape handles in slot order into out (may be NULL to count); returns how many live.
+TT_API uint32_t tt_world_list_shapes(const tt_world *w, tt_shape *out, uint32_t cap);
+/// The shape's outline in world coordinates, for drawing: up to cap points into out
+/// (may be NULL to count), *count = points in the outline (circles and capsule ends as
+/// 32/26 points), *closed = whether the last point joins the first (false for segments and open chains).
+TT_API tt_result tt_shape_get_outline(const tt_world *w, tt_shape s, tt_vec2 *out, uint32_t cap, uint32_t *count, bool *closed);
 /// Name of a shape type ("segment", "chain", "aabb", "box", "circle", "capsule", "polygon").
 TT_API const char *tt_shape_type_name(tt_shape_type t);
 

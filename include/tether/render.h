@@ -46,10 +46,14 @@ typedef enum tt_layer {
 typedef struct tt_debug_draw {
     bool particles;        ///< default true
     bool springs;          ///< default true; coloured by strain (blue compressed, grey at rest, red stretched)
+    bool constraints;      ///< default true; distance constraints and pins as lines
+    bool shapes;           ///< default true; static and kinematic shapes as outlines (sensors dimmer)
     double min_radius_px;  ///< particles smaller than this on screen are drawn this big, px; default 1.5
     double strain_full;    ///< |length − rest| / rest that gets the full stress colour; default 0.1
     tt_color particle;     ///< default (235, 200, 90, 255)
     tt_color pinned;       ///< default (230, 70, 70, 255)
+    tt_color constraint;   ///< default (120, 190, 230, 255)
+    tt_color shape;        ///< default (150, 220, 150, 255)
 } tt_debug_draw;
 
 /// Makes a canvas of width × height pixels (1…16384 each); NULL if out of memory or out of range.
