@@ -176,6 +176,7 @@ static const struct {
     {"tradeoff", bench_tradeoff},
     {"collide", bench_collide},
     {"render", bench_render},
+    {"constraints", bench_constraints},
 };
 
 int main(int argc, char **argv)

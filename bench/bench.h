@@ -15,5 +15,6 @@ void bench_integrate(const char *dir);
 void bench_tradeoff(const char *dir);
 void bench_collide(const char *dir);
 void bench_render(const char *dir);
+void bench_constraints(const char *dir);
 
 #endif

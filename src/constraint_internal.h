@@ -72,6 +72,9 @@ typedef struct tt__cgroup {
     tt_break_event *ev_new, *ev_pub;
     uint32_t nnew, npub, cap_new, cap_pub;
 
+    uint32_t *refs;    /* per particle slot: how many constraint entries name it (0: removal skips the scan) */
+    uint32_t refs_cap;
+
     double *grad;      /* scratch gradients for area constraints */
     uint32_t grad_cap;
 

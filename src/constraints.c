@@ -193,6 +193,25 @@ static tt_result con_check(const tt_world *w, tt_constraint c, const char *fn, c
 static tt_constraint handle_of(const tt__cgroup *g, uint32_t slot) { return (tt_constraint){slot, g->pool.gen[slot]}; }
 static tt_particle particle_of(const tt_world *w, uint32_t i) { return (tt_particle){i, w->ppool.gen[i]}; }
 
+/* ---- particle reference counts --------------------------------------------- */
+
+static bool refs_reserve(const tt_world *w, tt__cgroup *g)
+{
+    if (g->refs_cap >= w->pcap) return true;
+    uint32_t *r = realloc(g->refs, (size_t)w->pcap * sizeof *r);
+    if (!r) return false;
+    memset(r + g->refs_cap, 0, (size_t)(w->pcap - g->refs_cap) * sizeof *r);
+    g->refs = r;
+    g->refs_cap = w->pcap;
+    return true;
+}
+
+static void gen_refs(tt__cgroup *g, const tt__gcon *c, int delta)
+{
+    const uint32_t *p = c->list ? c->list : c->p;
+    for (uint32_t k = 0; k < c->n; k++) g->refs[p[k]] += (uint32_t)delta;
+}
+
 /* ---- removal ------------------------------------------------------------- */
 
 static void dist_remove(tt__cgroup *g, uint32_t d)
@@ -200,6 +219,8 @@ static void dist_remove(tt__cgroup *g, uint32_t d)
     tt__dist *c = &g->dist[d];
     tt__dist_x *x = &g->dx[d];
     if (!x->collide) pair_remove(g, c->a, c->b);
+    g->refs[c->a]--;
+    g->refs[c->b]--;
     if (x->break_strain > 0) g->nbreakable--;
     if (c->alpha > 0) g->nxpbd--;
     g->slots[x->slot].kind = 0;
@@ -216,6 +237,7 @@ static void dist_remove(tt__cgroup *g, uint32_t d)
 static void gen_remove(tt__cgroup *g, uint32_t d)
 {
     tt__gcon *c = &g->gen[d];
+    gen_refs(g, c, -1);
     free(c->list);
     g->slots[c->slot].kind = 0;
     tt_pool_free(&g->pool, c->slot);
@@ -378,7 +400,7 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
         return NONE;
     }
     tt__cgroup *g = tt__cgroup_get(w, true);
-    if (!g || !grow((void **)&g->dist, sizeof *g->dist, &g->dist_cap, g->ndist + 1) ||
+    if (!g || !refs_reserve(w, g) || !grow((void **)&g->dist, sizeof *g->dist, &g->dist_cap, g->ndist + 1) ||
         !grow((void **)&g->dx, sizeof *g->dx, &g->dx_cap, g->ndist + 1))
         goto nomem;
     if (!d->collide && !pair_add(g, d->a.index, d->b.index)) goto nomem;
@@ -397,6 +419,8 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     c->alpha = d->compliance;
     g->dx[g->ndist] = (tt__dist_x){0.0, len, d->break_strain, slot, (uint8_t)d->mode, d->collide};
     g->ndist++;
+    g->refs[c->a]++;
+    g->refs[c->b]++;
     if (d->break_strain > 0) g->nbreakable++;
     if (d->compliance > 0) g->nxpbd++;
     return handle_of(g, slot);
@@ -410,7 +434,7 @@ static tt__gcon *gen_new(tt_world *w, uint8_t kind, tt_constraint *h, const char
 {
     tt__cgroup *g = tt__cgroup_get(w, true);
     uint32_t slot;
-    if (!g || !grow((void **)&g->gen, sizeof *g->gen, &g->gen_cap, g->ngen + 1) ||
+    if (!g || !refs_reserve(w, g) || !grow((void **)&g->gen, sizeof *g->gen, &g->gen_cap, g->ngen + 1) ||
         !slot_new(g, kind, g->ngen, &slot)) {
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
         return NULL;
@@ -444,6 +468,7 @@ tt_constraint tt_pin_create(tt_world *w, const tt_pin_def *d)
     c->alpha = d->compliance;
     c->v[0] = d->anchor_here ? w->px[i] : d->anchor.x;
     c->v[1] = d->anchor_here ? w->py[i] : d->anchor.y;
+    gen_refs(tt__cgroup_get(w, false), c, +1);
     return h;
 }
 
@@ -505,6 +530,7 @@ tt_constraint tt_bounds_create(tt_world *w, const tt_bounds_def *d)
     c->v[1] = d->min.y;
     c->v[2] = d->max.x;
     c->v[3] = d->max.y;
+    gen_refs(tt__cgroup_get(w, false), c, +1);
     return h;
 }
 
@@ -532,6 +558,7 @@ tt_constraint tt_angle_create(tt_world *w, const tt_angle_def *d)
     double th = angle_at(w, c->p[0], c->p[1], c->p[2]);
     c->v[0] = d->use_current ? th : d->min;
     c->v[1] = d->use_current ? th : d->max;
+    gen_refs(tt__cgroup_get(w, false), c, +1);
     return h;
 }
 
@@ -573,6 +600,7 @@ tt_constraint tt_area_create(tt_world *w, const tt_area_def *d)
     c->alpha = d->compliance;
     c->v[0] = d->use_current ? polygon_area(w, list, d->count) : d->area;
     c->v[1] = d->pressure;
+    gen_refs(tt__cgroup_get(w, false), c, +1);
     return h;
 }
 
@@ -593,6 +621,7 @@ tt_constraint tt_collinear_create(tt_world *w, const tt_collinear_def *d)
     c->p[2] = d->c.index;
     c->k = d->stiffness;
     c->alpha = d->compliance;
+    gen_refs(tt__cgroup_get(w, false), c, +1);
     return h;
 }
 
@@ -876,7 +905,7 @@ static void group_begin(tt_world *w, void *self, double h)
 
 /* One sweep over the distance constraints. `jacobi` is a constant at each
  * call site, so the compiler makes a lean in-place loop for Gauss-Seidel. */
-static inline double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi)
+static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi)
 {
     double *px = w->px, *py = w->py;
     const double *im = w->inv_mass;
@@ -1015,11 +1044,14 @@ static double relax_collinear(tt_world *w, tt__gcon *c, double h)
     return L > 0.0 ? fabs(C) / L : fabs(C);
 }
 
+static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h) { return sweep_distance(w, g, h, false); }
+static double sweep_distance_jacobi(tt_world *w, tt__cgroup *g, double h) { return sweep_distance(w, g, h, true); }
+
 static double group_relax(tt_world *w, void *self, double h)
 {
     tt__cgroup *g = self;
     bool jacobi = w->jn && w->order == TT_JACOBI;
-    double err = jacobi ? sweep_distance(w, g, h, true) : sweep_distance(w, g, h, false);
+    double err = jacobi ? sweep_distance_jacobi(w, g, h) : sweep_distance_gs(w, g, h);
     for (uint32_t i = 0; i < g->ngen; i++) {
         tt__gcon *c = &g->gen[i];
         double e = 0.0;
@@ -1119,6 +1151,7 @@ static void group_particle_removed(tt_world *w, void *self, uint32_t index)
 {
     (void)w;
     tt__cgroup *g = self;
+    if (index >= g->refs_cap || g->refs[index] == 0) return; /* named by no constraint: nothing to scan */
     for (uint32_t i = g->ndist; i-- > 0;)
         if (g->dist[i].a == index || g->dist[i].b == index) dist_remove(g, i);
     for (uint32_t i = g->ngen; i-- > 0;) {
@@ -1128,8 +1161,9 @@ static void group_particle_removed(tt_world *w, void *self, uint32_t index)
             for (; k < c->n; k++)
                 if (c->list[k] != index) c->list[m++] = c->list[k];
             if (m == c->n) continue;
+            g->refs[index] -= c->n - m; /* the entries dropped from the list */
+            c->n = m;
             if (c->kind == TT_CONSTRAINT_AREA || m == 0) gen_remove(g, i); /* a broken polygon; an emptied bounds */
-            else c->n = m;
         } else if (c->kind != TT_CONSTRAINT_BOUNDS) {
             for (uint32_t k = 0; k < c->n; k++)
                 if (c->p[k] == index) {
@@ -1179,7 +1213,7 @@ static size_t group_memory(const tt_world *w, const void *self)
         if (g->gen[i].list) b += (size_t)g->gen[i].n * sizeof(uint32_t);
     b += (size_t)g->pair_cap * (sizeof(uint64_t) + sizeof(uint32_t));
     b += (size_t)(g->cap_new + g->cap_pub) * sizeof(tt_break_event);
-    b += (size_t)g->grad_cap * 2 * sizeof(double);
+    b += (size_t)g->grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
     return b + tt__composites_memory(g);
 }
 
@@ -1197,6 +1231,7 @@ static void group_destroy(tt_world *w, void *self)
     free(g->ev_new);
     free(g->ev_pub);
     free(g->grad);
+    free(g->refs);
     tt_pool_destroy(&g->pool);
     tt__composites_free(g);
     free(g);

@@ -640,3 +640,43 @@ TEST(constraint_worlds_are_deterministic_and_cost_nothing_unused)
     ENSURE(tt_world_read_constraint_lines(w, NULL, 0) == 0);
     tt_world_destroy(w);
 }
+
+TEST(removing_particles_keeps_constraint_references_exact)
+{
+    /* a 64² cloth and 2000 free particles (removing those skips the scan of the links) */
+    tt_world *w = tt_world_create(NULL);
+    tt_cloth_def cd = tt_cloth_def_default();
+    cd.columns = cd.rows = 64;
+    tt_composite c = tt_cloth_create(w, &cd);
+    tt_particle free_ps[2000];
+    for (int i = 0; i < 2000; i++) free_ps[i] = add(w, i, 10, 1, false);
+    const uint32_t links = tt_world_constraint_count(w);
+    for (int i = 0; i < 2000; i++) ENSURE_OK(tt_particle_destroy(w, free_ps[i]));
+    ENSURE(tt_world_constraint_count(w) == links);
+    /* removing a cloth particle still drops exactly its links: a corner has 2 + 1 + 2 */
+    tt_particle corner;
+    uint32_t n;
+    tt_composite_get_particles(w, c, &corner, 1, &n);
+    ENSURE_OK(tt_particle_destroy(w, corner));
+    ENSURE(tt_world_constraint_count(w) == links - 5);
+    ENSURE_OK(tt_composite_destroy(w, c)); /* its links first, then particles: no scans */
+    ENSURE(tt_world_constraint_count(w) == 0 && tt_world_particle_count(w) == 0);
+    /* a bounds list and an area that lose a member */
+    tt_particle p[4] = {add(w, 0, 0, 1, false), add(w, 1, 0, 1, false), add(w, 1, 1, 1, false), add(w, 0, 1, 1, false)};
+    tt_bounds_def bd = tt_bounds_def_default();
+    bd.particles = p;
+    bd.count = 4;
+    tt_constraint box = tt_bounds_create(w, &bd);
+    tt_area_def ad = tt_area_def_default();
+    ad.particles = p;
+    ad.count = 4;
+    tt_constraint area = tt_area_create(w, &ad);
+    ENSURE_OK(tt_particle_destroy(w, p[2]));
+    ENSURE(tt_constraint_is_valid(w, box) && !tt_constraint_is_valid(w, area));
+    ENSURE_OK(tt_particle_destroy(w, p[0]));
+    ENSURE_OK(tt_particle_destroy(w, p[1]));
+    ENSURE_OK(tt_particle_destroy(w, p[3]));
+    ENSURE(!tt_constraint_is_valid(w, box)); /* emptied */
+    ENSURE(tt_world_constraint_count(w) == 0);
+    tt_world_destroy(w);
+}

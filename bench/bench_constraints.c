@@ -1,0 +1,150 @@
+/* tether — constraint solver benchmarks: hanging cloth 32² … 256² (structural +
+ * shear + bend links) at 10 sweeps, Gauss-Seidel vs Jacobi, and substeps vs
+ * iterations at equal cost. */
+#include "bench.h"
+#include "tether.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static tt_world *cloth_world(uint32_t n, tt_solver_order order, uint32_t substeps, uint32_t iterations, bool top_row, tt_composite *out)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.order = order;
+    wd.substeps = substeps;
+    wd.iterations = iterations;
+    wd.tolerance = 0; /* the whole budget every step: fixed work */
+    wd.capacity = n * n;
+    tt_world *w = tt_world_create(&wd);
+    tt_cloth_def cd = tt_cloth_def_default();
+    cd.columns = cd.rows = n;
+    cd.width = cd.height = 0.02 * (n - 1); /* 2 cm between particles */
+    cd.common.mass = 0.001;
+    cd.pin_top_row = top_row;
+    tt_composite c = tt_cloth_create(w, &cd);
+    if (out) *out = c;
+    return w;
+}
+
+/* Mean relative stretch of the structural links (the first 2n(n−1) links). */
+static double cloth_stretch(const tt_world *w, tt_composite c, uint32_t n)
+{
+    uint32_t nc;
+    tt_composite_get_constraints(w, c, NULL, 0, &nc);
+    tt_constraint *cs = malloc(nc * sizeof *cs);
+    tt_composite_get_constraints(w, c, cs, nc, &nc);
+    double worst = 0;
+    for (uint32_t i = 0; i < 2 * n * (n - 1) && i < nc; i++) {
+        tt_particle ps[2];
+        uint32_t k;
+        double rest;
+        tt_constraint_get_particles(w, cs[i], ps, 2, &k);
+        tt_distance_get_length(w, cs[i], &rest);
+        tt_vec2 a, b;
+        tt_particle_get_position(w, ps[0], &a);
+        tt_particle_get_position(w, ps[1], &b);
+        worst += fabs(hypot(a.x - b.x, a.y - b.y) / rest - 1);
+    }
+    free(cs);
+    return worst / (2.0 * n * (n - 1));
+}
+
+void bench_constraints(const char *dir)
+{
+    const double dt = 1.0 / 60;
+    printf("\n== Constraints: hanging cloth (structural + shear + bend links), 10 sweeps per step, tolerance 0 ==\n");
+    printf("target: 128x128 (16k particles) <= 2 ms per step on one core, Gauss-Seidel\n");
+    printf("%6s %9s %12s %8s %12s %12s %16s %8s\n", "cloth", "particles", "constraints", "order", "step ms",
+           "solve ms", "ns/constr-iter", "target");
+    FILE *csv = bench_csv(dir, "constraints_scale.csv", "n,particles,constraints,order,step_ms,solve_ms,ns_per_constraint_iteration");
+    const uint32_t sizes[] = {32, 64, 128, 256};
+    for (int s = 0; s < 4; s++) {
+        for (int order = 0; order < 2; order++) {
+            uint32_t n = sizes[s];
+            tt_world *w = cloth_world(n, (tt_solver_order)order, 1, 10, false, NULL);
+            for (int k = 0; k < 30; k++) tt_world_step(w, dt); /* let it fall into a hanging state */
+            int reps = n >= 256 ? 21 : n >= 128 ? 41 : 101;
+            double *ts = malloc(reps * sizeof *ts), *tv = malloc(reps * sizeof *tv);
+            for (int r = 0; r < reps; r++) {
+                double t0 = bench_now_ns();
+                tt_world_step(w, dt);
+                ts[r] = (bench_now_ns() - t0) * 1e-6;
+                tt_stats st;
+                tt_world_get_stats(w, &st);
+                tv[r] = st.stage_ms[TT_STAGE_SOLVE];
+            }
+            double step = bench_median(ts, reps), solve = bench_median(tv, reps);
+            uint32_t nc = tt_world_constraint_count(w);
+            double ns = solve * 1e6 / ((double)nc * 10);
+            const char *name = order ? "jacobi" : "gs";
+            printf("%4ux%-3u %9u %12u %8s %12.3f %12.3f %16.2f %8s\n", n, n, n * n, nc, name, step, solve, ns,
+                   n == 128 && order == 0 ? (step <= 2.0 ? "<=2 ok" : "<=2 MISS") : "");
+            fprintf(csv, "%u,%u,%u,%s,%.4f,%.4f,%.3f\n", n, n * n, nc, name, step, solve, ns);
+            free(ts);
+            free(tv);
+            tt_world_destroy(w);
+        }
+    }
+    fclose(csv);
+
+    printf("\n== Gauss-Seidel vs Jacobi: sweeps to converge in step 31 of a chain of 32 unit links falling from horizontal, tolerance 1e-6 m ==\n");
+    printf("target (a measured fact the tests check): Gauss-Seidel needs fewer sweeps\n");
+    printf("%8s %12s %14s %12s\n", "order", "sweeps", "max error m", "ms/step");
+    FILE *csv2 = bench_csv(dir, "constraints_orders.csv", "order,iterations,error_gs,error_jacobi");
+    for (int order = 0; order < 2; order++) {
+        tt_world_def wd = tt_world_def_default();
+        wd.order = (tt_solver_order)order;
+        wd.iterations = 10000;
+        tt_world *w = tt_world_create(&wd);
+        tt_rope_def rd = tt_rope_def_default();
+        rd.segments = 32;
+        rd.end = (tt_vec2){32, 0};
+        tt_rope_create(w, &rd);
+        for (int k = 0; k < 30; k++) tt_world_step(w, dt); /* swinging down */
+        double t0 = bench_now_ns();
+        tt_world_step(w, dt);
+        double ms = (bench_now_ns() - t0) * 1e-6;
+        tt_stats st;
+        tt_world_get_stats(w, &st);
+        printf("%8s %12u %14.2e %12.3f\n", order ? "jacobi" : "gs", st.iterations, st.max_error, ms);
+        tt_world_destroy(w);
+    }
+    /* error left after k sweeps, both orders, on a 64x64 cloth after 30 steps */
+    printf("%10s %16s %16s   (64x64 cloth, top row pinned: mean structural stretch after 60 steps)\n", "sweeps", "gs stretch", "jacobi stretch");
+    for (uint32_t it = 1; it <= 64; it *= 2) {
+        double e[2];
+        for (int order = 0; order < 2; order++) {
+            tt_composite c;
+            tt_world *w = cloth_world(64, (tt_solver_order)order, 1, it, true, &c);
+            for (int k = 0; k < 60; k++) tt_world_step(w, dt);
+            e[order] = cloth_stretch(w, c, 64);
+            tt_world_destroy(w);
+        }
+        printf("%10u %16.3e %16.3e\n", it, e[0], e[1]);
+        fprintf(csv2, "gs_vs_jacobi,%u,%.6e,%.6e\n", it, e[0], e[1]);
+    }
+    fclose(csv2);
+
+    printf("\n== Substeps vs iterations at equal cost: 64x64 cloth, top row pinned, 24 sweeps per step in all, 60 steps ==\n");
+    printf("target (Small Steps, Macklin et al. 2019): more substeps with fewer sweeps give less stretch at equal cost\n");
+    printf("%9s %11s %12s %18s\n", "substeps", "iterations", "ms/step", "mean stretch");
+    FILE *csv3 = bench_csv(dir, "constraints_substeps.csv", "substeps,iterations,ms_per_step,stretch");
+    const uint32_t split[][2] = {{1, 24}, {2, 12}, {3, 8}, {4, 6}, {6, 4}, {8, 3}, {12, 2}, {24, 1}};
+    for (int k = 0; k < 8; k++) {
+        tt_composite c;
+        tt_world *w = cloth_world(64, TT_GAUSS_SEIDEL, split[k][0], split[k][1], true, &c);
+        double *ts = malloc(60 * sizeof *ts);
+        for (int s = 0; s < 60; s++) {
+            double t0 = bench_now_ns();
+            tt_world_step(w, dt);
+            ts[s] = (bench_now_ns() - t0) * 1e-6;
+        }
+        double ms = bench_median(ts, 60), e = cloth_stretch(w, c, 64);
+        printf("%9u %11u %12.3f %18.3e\n", split[k][0], split[k][1], ms, e);
+        fprintf(csv3, "%u,%u,%.4f,%.6e\n", split[k][0], split[k][1], ms, e);
+        free(ts);
+        tt_world_destroy(w);
+    }
+    fclose(csv3);
+}
