@@ -33,8 +33,18 @@ LUA_LIBS   := $(call PC_LIBS,lua5.4)
 
 # Core engine: every src/*.c that is not a binding, the runner or a back end
 # needing an optional library.
-CORE_SRC := $(filter-out src/lua_%.c src/runner.c,$(wildcard src/*.c))
+CORE_SRC := $(filter-out src/lua_%.c src/runner.c src/runner_%.c src/render_%.c,$(wildcard src/*.c))
 LUA_SRC  := $(wildcard src/lua_*.c)
+# Drawing (libtether_render.a): the canvas part is plain C (the Lua module
+# carries it); the GL back ends need OSMesa, SDL2 and libpng.
+CANVAS_SRC := src/render_canvas.c src/render_font.c src/render_debug.c
+RENDER_SRC := $(wildcard src/render_*.c)
+CANVAS_OBJ := $(CANVAS_SRC:src/%.c=$(BUILD)/obj/%.o)
+RENDER_OBJ := $(RENDER_SRC:src/%.c=$(BUILD)/obj/%.o)
+RENDER_CFLAGS := $(call PC_CFLAGS,sdl2 libpng)
+# OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
+RENDER_LIBS := $(call PC_LIBS,osmesa sdl2 libpng)
+RUNNER_OBJ := $(BUILD)/obj/runner.o $(BUILD)/obj/runner_view.o
 CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
 LUA_OBJ  := $(LUA_SRC:src/%.c=$(BUILD)/obj/%.o)
 TEST_SRC := $(wildcard tests/*.c)
@@ -43,13 +53,14 @@ BENCH_SRC := $(wildcard bench/*.c)
 
 LIB_A   := $(BUILD)/libtether.a
 LIB_SO  := $(BUILD)/libtether.so
+RENDER_A := $(BUILD)/libtether_render.a
 LUA_MOD := $(BUILD)/tether.so
 RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 BENCH   := $(BUILD)/bench
 
-.PHONY: all deps demo test test-c test-lua bench install uninstall clean
-all: deps $(LIB_A) $(LIB_SO) $(LUA_MOD) $(RUNNER)
+.PHONY: all deps demo pictures test test-c test-lua bench install uninstall clean
+all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER)
 
 # --- dependencies -----------------------------------------------------------
 # Installs what is missing when run as root on Debian; otherwise prints the
@@ -84,8 +95,14 @@ $(BUILD)/obj/lua_%.o: src/lua_%.c | $(BUILD)/obj
 $(BUILD)/obj/runner.o: src/runner.c | $(BUILD)/obj
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
+$(BUILD)/obj/runner_%.o: src/runner_%.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
+
+$(BUILD)/obj/render_%.o: src/render_%.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -MMD -c $< -o $@
+
 $(BUILD)/obj/tests/%.o: tests/%.c | $(BUILD)/obj/tests
-	$(CC) $(CFLAGS_ALL) -Itests -MMD -c $< -o $@
+	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Itests -MMD -c $< -o $@
 
 $(BUILD)/obj $(BUILD)/obj/tests:
 	mkdir -p $@
@@ -98,23 +115,54 @@ $(LIB_SO): $(CORE_OBJ)
 
 # The Lua module is not linked against liblua: the host (lua5.4 or our runner)
 # provides the Lua API, and a second copy of Lua in one process breaks it.
-$(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ)
+$(RENDER_A): $(RENDER_OBJ)
+	rm -f $@; ar rcs $@ $^
+
+$(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
 
-$(RUNNER): $(BUILD)/obj/runner.o $(LUA_OBJ) $(LIB_A)
-	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) -lm
+$(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) $(RENDER_LIBS) -lm
 
-$(TEST_C): $(TEST_OBJ) $(LIB_A)
-	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
+$(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(RENDER_LIBS) -lm
 
-$(BENCH): $(BENCH_SRC) $(LIB_A)
-	$(CC) $(CFLAGS_ALL) -Ibench -o $@ $(BENCH_SRC) $(LIB_A) $(LDFLAGS_ALL) -lm
+# Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
+BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
+$(BOX2D_OBJ): bench/box2d_scene.cpp | $(BUILD)/obj
+	$(CXX) -O2 $(SANFLAGS) $(call PC_CFLAGS,box2d) -c $< -o $@
+
+$(BENCH): $(BENCH_SRC) $(RENDER_A) $(LIB_A) $(BOX2D_OBJ)
+	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Ibench -o $@ $(BENCH_SRC) $(BOX2D_OBJ) $(RENDER_A) $(LIB_A) $(LDFLAGS_ALL) \
+	  $(RENDER_LIBS) $(call PC_LIBS,box2d) -lstdc++ -lm
 
 -include $(wildcard $(BUILD)/obj/*.d $(BUILD)/obj/tests/*.d)
 
 # --- run --------------------------------------------------------------------
+# `make demo` renders DEMO headless to PNG frames in $(BUILD)/demo/ (100 frames,
+# one every 6 steps: 10 s of simulated time at 10 frames per second), then an
+# MP4 (ffmpeg) or an animated GIF (ImageMagick) when one of them is installed.
+DEMO ?= demos/fountain.lua
+DEMO_OUT := $(BUILD)/demo
 demo: all
-	$(RUNNER) --headless --steps 600 demos/fountain.lua
+	@rm -f $(DEMO_OUT)/frame_*.png
+	$(RUNNER) --headless --frames 100 --every 6 --size 800x600 --out $(DEMO_OUT) $(DEMO)
+	@name=$$(basename $(DEMO) .lua); \
+	if command -v ffmpeg >/dev/null 2>&1; then \
+	  ffmpeg -loglevel error -y -framerate 10 -i $(DEMO_OUT)/frame_%05d.png -pix_fmt yuv420p $(DEMO_OUT)/$$name.mp4 && \
+	  echo "demo: video $(DEMO_OUT)/$$name.mp4"; \
+	elif convert -version 2>/dev/null | grep -q ImageMagick; then \
+	  convert -delay 10 -loop 0 -resize 400x300 $(DEMO_OUT)/frame_*.png -layers Optimize $(DEMO_OUT)/$$name.gif && \
+	  echo "demo: animated GIF $(DEMO_OUT)/$$name.gif"; \
+	else echo "demo: PNG frames in $(DEMO_OUT)/ (install ffmpeg or ImageMagick for a video)"; fi
+
+# `make pictures`: one small PNG per demo (400x300, after 5 s of simulated
+# time) into docs/img/, the pictures the README and docs/render.md show.
+pictures: all
+	@mkdir -p docs/img
+	@for d in demos/*.lua; do n=$$(basename $$d .lua); \
+	  $(RUNNER) --headless --frames 1 --every 300 --size 400x300 --out $(BUILD)/pictures/$$n $$d >/dev/null 2>&1 && \
+	  cp $(BUILD)/pictures/$$n/frame_00000.png docs/img/$$n.png && echo "docs/img/$$n.png" || echo "$$d: FAILED"; done
 
 test: all $(TEST_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh
@@ -130,7 +178,7 @@ bench: deps $(BENCH) $(RUNNER)
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/bin \
 	  $(DESTDIR)$(PREFIX)/lib/lua/5.4 $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/share/lua/5.4
-	install -m 644 $(LIB_A) $(LIB_SO) $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 $(LIB_A) $(LIB_SO) $(RENDER_A) $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 include/tether.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 include/tether/*.h $(DESTDIR)$(PREFIX)/include/tether/
 	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
@@ -141,7 +189,7 @@ install: all
 
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/include/tether.h
-	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so \
+	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so $(DESTDIR)$(PREFIX)/lib/libtether_render.a \
 	  $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so $(DESTDIR)$(PREFIX)/bin/tether \
 	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
 

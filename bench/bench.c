@@ -174,6 +174,8 @@ static const struct {
 } sections[] = {
     {"integrate", bench_integrate},
     {"tradeoff", bench_tradeoff},
+    {"collide", bench_collide},
+    {"render", bench_render},
     {"constraints", bench_constraints},
 };
 

@@ -13,6 +13,8 @@ FILE *bench_csv(const char *dir, const char *name, const char *header);
 /* Sections: each prints a table (with its target) and writes CSV into dir. */
 void bench_integrate(const char *dir);
 void bench_tradeoff(const char *dir);
+void bench_collide(const char *dir);
+void bench_render(const char *dir);
 void bench_constraints(const char *dir);
 
 #endif

@@ -1,5 +1,7 @@
 -- demos/fountain.lua — a particle fountain, with an explosion now and then.
 --
+--   build/tether demos/fountain.lua                       (a window)
+--   build/tether --headless --frames 60 --every 10 --out build/demo demos/fountain.lua   (PNG frames)
 --   build/tether --headless --steps 600 demos/fountain.lua [emit_per_step]
 --   LUA_CPATH='build/?.so' lua5.4 demos/fountain.lua      (stock Lua: runs 600 steps itself)
 --
@@ -76,6 +78,14 @@ function tether.update(dt)
     print(("t=%6.2f s  particles %5d  emitted %6d  removed %6d  top %6.2f m  E %9.3f J  explosions %d")
       :format(world:stats().time, world:count(), emitted, removed, top, e.total, explosions))
   end
+end
+
+function tether.draw(g)
+  g.fit(-5, FLOOR - 0.5, 5, 8.5)
+  g.color(0.35, 0.38, 0.45)
+  g.line(-5, FLOOR, 5, FLOOR)
+  world:draw()
+  g.hud(world, ("emitted %d  removed %d  explosions %d"):format(emitted, removed, explosions))
 end
 
 function tether.unload()

@@ -3,10 +3,8 @@
 --   build/tether --headless --steps 600 demos/ragdoll.lua [count]
 --   LUA_CPATH='build/?.so' lua5.4 demos/ragdoll.lua      (stock Lua: runs 600 steps itself)
 --
--- Collisions with static shapes are being built separately: until they land,
--- each step is a solid bounds block (outside = true, with friction) and the
--- ground a bounds box. Ragdolls do not collide with each other yet. Every
--- second it prints where each ragdoll is, how far it leans and the angle
+-- Each stair is a static box shape, the ground a box, and the ragdolls
+-- collide with each other (particle contacts). Every second it prints where each ragdoll is, how far it leans and the angle
 -- limit errors; at the end the state hash.
 local tether = require "tether"
 
@@ -18,10 +16,13 @@ function tether.load(args)
   local count = math.tointeger(tonumber(args[1] or "")) or 3
   world = tether.world { iterations = 20, substeps = 2, damping = 0.05 }
   -- the staircase: step k spans x in [k·TREAD, (k+1)·TREAD], top at (STEPS − k)·RISE
+  world:set_collision { friction = 0.6 }
   for k = 0, STEPS - 1 do
-    world:bounds(k * TREAD, -1, (k + 1) * TREAD, (STEPS - k) * RISE, { outside = true, friction = 0.6 })
+    world:aabb(k * TREAD, -1, (k + 1) * TREAD, (STEPS - k) * RISE, { friction = 0.6 })
   end
-  world:bounds(-2, 0, 12, 30, { friction = 0.8 }) -- ground and walls
+  world:aabb(-2, -1, 12, 0, { friction = 0.8 })   -- ground
+  world:aabb(-3, -1, -2, 30, { friction = 0.8 })  -- walls
+  world:aabb(12, -1, 13, 30, { friction = 0.8 })
   for i = 1, count do
     local d = world:ragdoll { position = { 0.2 + 0.3 * i, STEPS * RISE + 1.2 + 1.5 * i }, height = 1.2,
                               mass = 2, radius = 0.05 }
@@ -48,6 +49,12 @@ function tether.update(dt)
     for _, c in ipairs(limits) do worst = math.max(worst, world:constraint_error(c)) end
     print(("t=%5.2f s  %s  worst limit error %.3f rad"):format(world:stats().time, table.concat(parts, "  "), worst))
   end
+end
+
+function tether.draw(g)
+  g.fit(-2.5, -0.5, 12.5, STEPS * RISE + 6)
+  world:draw()
+  g.hud(world)
 end
 
 function tether.unload()

@@ -4,10 +4,9 @@
 --   build/tether --headless --steps 600 demos/soft_bodies.lua [count]
 --   LUA_CPATH='build/?.so' lua5.4 demos/soft_bodies.lua      (stock Lua: runs 600 steps itself)
 --
--- Particle-particle contact is being built separately: until it lands the
--- bodies do not touch each other, so instead of a pile they settle side by
--- side on the floor and on two solid ledges (bounds blocks), squashed by
--- their fall and kept round by pressure. Every second it prints each body's
+-- The box and the two ledges are static shapes; the bodies touch each other
+-- through particle contacts, so they pile up, squashed by their fall and kept
+-- round by pressure. Every second it prints each body's
 -- area against its rest area; at the end the state hash.
 local tether = require "tether"
 
@@ -27,13 +26,16 @@ end
 function tether.load(args)
   local count = math.tointeger(tonumber(args[1] or "")) or 5
   world = tether.world { iterations = 20, substeps = 2, damping = 0.2 }
-  world:bounds(-5, 0, 5, 40, { friction = 0.7 })                          -- floor and walls
-  world:bounds(-5, 2, -2.5, 2.3, { outside = true, friction = 0.7 })       -- left ledge
-  world:bounds(2.5, 3, 5, 3.3, { outside = true, friction = 0.7 })         -- right ledge
+  world:set_collision { friction = 0.7 }
+  world:aabb(-6, -1, 6, 0, { friction = 0.7 })                            -- floor
+  world:aabb(-6, 0, -5, 40, { friction = 0.7 })                           -- walls
+  world:aabb(5, 0, 6, 40, { friction = 0.7 })
+  world:aabb(-5, 2, -2.5, 2.3, { friction = 0.7 })                        -- left ledge
+  world:aabb(2.5, 3, 5, 3.3, { friction = 0.7 })                          -- right ledge
   for i = 1, count do
     local x = -4 + 8 * (i - 1) / math.max(count - 1, 1)
     local b = world:soft_body { center = { x, 6 + i }, size = 0.4 + 0.1 * (i % 3), segments = 20,
-                                pressure = 1 + 0.1 * (i % 2), stiffness = 0.6, mass = 0.05, radius = 0.02 }
+                                pressure = 1 + 0.1 * (i % 2), stiffness = 0.6, mass = 0.05, radius = 0.06 }
     bodies[#bodies + 1] = b
     rest[#rest + 1] = area(world:composite_particles(b))
   end
@@ -55,6 +57,12 @@ function tether.update(dt)
     print(("t=%5.2f s  area/rest %s  jelly at (%.2f, %.2f) tilted %+.1f deg")
       :format(world:stats().time, table.concat(parts, " "), jx, jy, math.deg(world:composite_angle(bodies[#bodies]))))
   end
+end
+
+function tether.draw(g)
+  g.fit(-6.5, -1.5, 6.5, 13)
+  world:draw()
+  g.hud(world)
 end
 
 function tether.unload()

@@ -14,5 +14,6 @@
 #include "tether/spring.h"
 #include "tether/constraint.h"
 #include "tether/composite.h"
+#include "tether/collide.h"
 
 #endif

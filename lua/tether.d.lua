@@ -466,5 +466,291 @@ function world:composite_center(h) end
 function world:composite_angle(h) end
 ---@return integer
 function world:composite_count() end
+-- Collisions (src/lua_collide.c; docs/collisions.md) --------------------------
+
+---@alias tether.shape integer
+
+---@class tether.shape_options
+---@field restitution? number bounce 0..1, default 0
+---@field friction? number sets friction_static and friction_kinetic
+---@field friction_static? number default 0.6
+---@field friction_kinetic? number default 0.5
+---@field category? integer layer bits, default 1
+---@field mask? integer default 0xFFFF
+---@field sensor? boolean reports overlaps, never pushes; default false
+---@field angle? number rad (box, polygon)
+---@field loop? boolean chain: close it
+
+---@class tether.collision_settings
+---@field particles? boolean particle-particle contacts, default true
+---@field broadphase? "grid"|"brute"
+---@field cell_size? number m, 0 = auto
+---@field restitution? number particles' default bounce
+---@field friction? number particles' default friction (both)
+---@field friction_static? number
+---@field friction_kinetic? number
+---@field restitution_threshold? number m/s
+---@field events? ("begin"|"persist"|"end")[]
+
+---@class tether.ray_hit
+---@field particle? tether.particle
+---@field shape? tether.shape
+---@field x number
+---@field y number
+---@field nx number
+---@field ny number
+---@field fraction number
+
+---@class tether.contact
+---@field kind "begin"|"persist"|"end"
+---@field a tether.particle
+---@field b? tether.particle
+---@field shape? tether.shape
+---@field x number
+---@field y number
+---@field nx number
+---@field ny number
+---@field impulse number N·s
+---@field sensor boolean
+
+---A two-sided segment.
+---@return tether.shape
+function world:segment(x1, y1, x2, y2, opts) end
+---A polyline through {x1, y1, x2, y2, ...}.
+---@param points number[]
+---@param opts? tether.shape_options
+---@return tether.shape
+function world:chain(points, opts) end
+---Axis-aligned box from min to max corner.
+---@return tether.shape
+function world:aabb(x1, y1, x2, y2, opts) end
+---Oriented box: centre, half extents, opts.angle.
+---@return tether.shape
+function world:box(cx, cy, half_w, half_h, opts) end
+---A static circle.
+---@return tether.shape
+function world:circle(x, y, r, opts) end
+---A segment with a radius.
+---@return tether.shape
+function world:capsule(x1, y1, x2, y2, r, opts) end
+---A convex polygon {x1, y1, ...}, 3..64 points.
+---@param points number[]
+---@param opts? tether.shape_options
+---@return tether.shape
+function world:polygon(points, opts) end
+---@param s tether.shape
+function world:remove_shape(s) end
+---@param s tether.shape
+---@return boolean
+function world:shape_is_valid(s) end
+---@return integer
+function world:shape_count() end
+---@param s tether.shape
+---@return string
+function world:shape_type(s) end
+---@param s tether.shape
+---@return number x, number y, number angle
+function world:shape_transform(s) end
+---Kinematic move of a shape.
+---@param s tether.shape
+function world:set_shape_transform(s, x, y, angle) end
+---@param s tether.shape
+function world:set_shape_material(s, restitution, friction_static, friction_kinetic) end
+---@param s tether.shape
+function world:set_shape_filter(s, category, mask) end
+---@param s tether.shape
+---@param sensor boolean
+function world:set_shape_sensor(s, sensor) end
+---@param s tether.shape
+---@return number x1, number y1, number x2, number y2
+function world:shape_aabb(s) end
+---Switches collisions on.
+---@param opts? tether.collision_settings
+function world:set_collision(opts) end
+---@return tether.collision_settings
+function world:collision() end
+---@return table
+function world:collision_stats() end
+---@param p tether.particle
+function world:set_material(p, restitution, friction_static, friction_kinetic) end
+---@param p tether.particle
+---@return number restitution, number friction_static, number friction_kinetic
+function world:material(p) end
+---Continuous detection against shapes for this particle.
+---@param p tether.particle
+---@param bullet boolean
+function world:set_bullet(p, bullet) end
+---@param p tether.particle
+---@return boolean
+function world:bullet(p) end
+---@param a tether.particle
+---@param b tether.particle
+---@param enabled boolean
+function world:set_pair_collision(a, b, enabled) end
+---First hit along the segment, or nil.
+---@return tether.ray_hit?
+function world:raycast(x1, y1, x2, y2, mask) end
+---@return tether.particle[] particles, tether.shape[] shapes
+function world:query_point(x, y, mask) end
+---@return tether.particle[] particles, tether.shape[] shapes
+function world:query_aabb(x1, y1, x2, y2, mask) end
+---Contact events of the last step.
+---@return tether.contact[]
+function world:contacts() end
+-- ---------------------------------------------------------------------------
+-- Drawing (runner only): tether.draw(g), tether.gfx, world:draw(), tether.runner.
+-- Reference: the section "Drawing, the window and PNG frames" of docs/lua-api.md.
+
+---@alias tether.draw_mode
+---| "fill" # filled (the default)
+---| "line" # outline, of the current line width
+
+---@alias tether.layer
+---| "world"  # world units through the camera, y up (the default each frame)
+---| "screen" # pixels from the top-left corner, y down: for a HUD
+
+---Called once per frame by the runner (window, or --headless --out DIR), after
+---the frame's tether.update calls; g is tether.gfx.
+---@type fun(g: tether.gfx)?
+tether.draw = nil
+
+---How the runner shows this script; nil under stock lua5.4.
+---@class tether.runner_info
+---@field mode "window"|"frames"|"headless"
+---@field width integer frame or window width, px
+---@field height integer frame or window height, px
+---@field dt number the fixed step, s
+---@field every integer tether.update calls per frame (frames mode)
+---@field frames? integer frames to draw, when given
+---@field out? string folder of the PNG frames (frames mode)
+
+---@type tether.runner_info?
+tether.runner = nil
+
+---Drawing functions; valid only inside tether.draw(g) under the runner.
+---@class tether.gfx
+tether.gfx = {}
+
+---Sets the colour of what follows (numbers in [0, 1], a default 1); without arguments returns it.
+---@param r? number
+---@param g? number
+---@param b? number
+---@param a? number
+---@return number? r, number? g, number? b, number? a
+function tether.gfx.color(r, g, b, a) end
+
+---Starts the frame over on this background colour.
+---@param r number
+---@param g number
+---@param b number
+function tether.gfx.clear(r, g, b) end
+
+---A circle; r >= 0 in layer units.
+---@param x number
+---@param y number
+---@param r number
+---@param mode? tether.draw_mode default "fill"
+function tether.gfx.circle(x, y, r, mode) end
+
+---A polyline through 2 or more points: g.line(x1, y1, x2, y2, ...).
+---@param ... number
+function tether.gfx.line(...) end
+
+---A polygon of 3 or more points {x1, y1, x2, y2, ...}, either winding, concave allowed.
+---@param points number[]
+---@param mode? tether.draw_mode default "fill"
+function tether.gfx.polygon(points, mode) end
+
+---Text in the built-in 5x7 font, top-left corner at (x, y).
+---@param x number
+---@param y number
+---@param text string
+---@param scale? integer 1..64 px per font pixel; default 1
+function tether.gfx.text(x, y, text, scale) end
+
+---Width of lines and outlines, px in [0.1, 1000]; default 1.5.
+---@param px number
+function tether.gfx.line_width(px) end
+
+---Layer of what follows.
+---@param name tether.layer
+function tether.gfx.layer(name) end
+
+---Sets the camera (world point at the centre, zoom in px per world unit); without arguments returns it.
+---@param x? number
+---@param y? number
+---@param zoom? number in (0, 1e9]
+---@return number? x, number? y, number? zoom
+function tether.gfx.camera(x, y, zoom) end
+
+---Camera so the world rectangle fills the frame.
+---@param x1 number
+---@param y1 number
+---@param x2 number > x1
+---@param y2 number > y1
+---@param margin? number px; default 10
+function tether.gfx.fit(x1, y1, x2, y2, margin) end
+
+---The frame size in pixels.
+---@return integer width, integer height
+function tether.gfx.size() end
+
+---World point to pixel (through the current camera).
+---@return number px, number py
+function tether.gfx.to_screen(x, y) end
+
+---Pixel to world point (through the current camera).
+---@return number x, number y
+function tether.gfx.to_world(px, py) end
+
+---A HUD panel at the top-left: time, step time, particles, springs, iterations, error (+ text).
+---@param w tether.world
+---@param text? string
+function tether.gfx.hud(w, text) end
+
+---An RGBA image, drawn as a texture with g.image.
+---@class tether.image
+local image = {}
+---@return integer width, integer height
+function image:size() end
+---Colour of pixel (x, y), x in [0, width-1], y in [0, height-1] from the top; numbers in [0, 1].
+---@return number r, number g, number b, number a
+function image:pixel(x, y) end
+---@param a? number default 1
+function image:set_pixel(x, y, r, g, b, a) end
+---@param a? number default 1
+function image:fill(r, g, b, a) end
+
+---A new image, 1..8192 pixels a side, transparent black.
+---@param width integer
+---@param height integer
+---@return tether.image
+function tether.gfx.new_image(width, height) end
+
+---Reads a PNG file (runner only: absent under stock lua5.4).
+---@param path string
+---@return tether.image? image
+---@return string? message
+function tether.gfx.load_image(path) end
+
+---Draws an image stretched over the rectangle (its first row at the top), tinted by the current colour.
+---@param img tether.image
+---@param x1 number
+---@param y1 number
+---@param x2 number
+---@param y2 number
+function tether.gfx.image(img, x1, y1, x2, y2) end
+
+---@class tether.draw_options
+---@field particles? boolean default true
+---@field springs? boolean default true; coloured by strain
+---@field color? number[] {r, g, b [, a]} of particles
+---@field pinned? number[] {r, g, b [, a]} of pinned particles
+---@field min_radius? number px, in [0, 1000]; default 1.5
+
+---Debug draw of the whole world (springs, particles) on the world layer;
+---the world becomes draggable with the mouse in the window.
+---@param opts? tether.draw_options
+function world:draw(opts) end
 
 return tether

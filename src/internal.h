@@ -107,6 +107,7 @@ struct tt_world {
     uint32_t scap, springs_alive;
 
     tt_stats stats;
+    uint64_t epoch;       /* bumped when particles appear, move or change radius outside a step, and by each step (query caches) */
     char error[256];
 };
 

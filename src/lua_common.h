@@ -131,8 +131,11 @@ tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg);
 /* Raises "fname: <tt_last_error(w)>" unless r is TT_OK. */
 void tl_check_result(lua_State *L, const tt_world *w, tt_result r);
 void tl_push_particle(lua_State *L, tt_particle p);
+/* The live world of the world userdata at idx, or NULL (not a world, or destroyed): never raises. */
+tt_world *tl_toworld(lua_State *L, int idx);
 
 /* --- feature bindings: each adds its methods to the world class ------------- */
 void tl_constraints_register(lua_State *L); /* lua_constraints.c */
+void tl_collide_register(lua_State *L);     /* lua_collide.c */
 
 #endif

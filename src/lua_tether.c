@@ -6,6 +6,7 @@
  *
  * Built into build/tether.so for stock lua5.4 and linked into the runner. */
 #include "lua_common.h"
+#include "lua_render.h"
 
 static const luaL_Reg tether_funcs[] = {
     { "world", tl_world_new },
@@ -19,11 +20,13 @@ TT_API int luaopen_tether(lua_State *L)
     luaL_checkversion(L);
     tl_world_register(L);
     tl_constraints_register(L);
+    tl_collide_register(L);
     lua_createtable(L, 0, 4);
     tl_setfuncs(L, tether_funcs, "tether.");
     lua_pushstring(L, tt_version());
     lua_setfield(L, -2, "version");
     tl_push_integrators(L);
     lua_setfield(L, -2, "integrators");
+    tl_render_register(L);
     return 1;
 }

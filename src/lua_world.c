@@ -40,6 +40,12 @@ tt_world *tl_check_world(lua_State *L, int arg)
     return u->w;
 }
 
+tt_world *tl_toworld(lua_State *L, int idx)
+{
+    lw_world *u = luaL_testudata(L, idx, TL_WORLD_CLASS);
+    return u ? u->w : NULL;
+}
+
 /* The handle checker: a live particle (or spring) of w at arg. */
 tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg)
 {

@@ -179,6 +179,7 @@ tt_particle tt_particle_create(tt_world *w, const tt_particle_def *d)
     if (w->user) w->user[i] = d->user;
     tt__set_velocity(w, i, d->pinned ? (tt_vec2){0, 0} : d->velocity);
     w->alive++;
+    w->epoch++;
     return (tt_particle){i, w->ppool.gen[i]};
 }
 
@@ -226,6 +227,7 @@ tt_result tt_particle_set_position(tt_world *w, tt_particle p, tt_vec2 pos, tt_m
     }
     w->px[i] = pos.x;
     w->py[i] = pos.y;
+    w->epoch++;
     if (mode == TT_MOVE_RESET_VELOCITY) tt__set_velocity(w, i, (tt_vec2){0, 0});
     return TT_OK;
 }
@@ -298,6 +300,7 @@ tt_result tt_particle_set_radius(tt_world *w, tt_particle p, double radius)
     if (!tt__in_range(radius, 0.0, TT_MAX_VALUE))
         return tt__fail(w, TT_EINVAL, "tt_particle_set_radius: radius must be in [0, %g], got %g", TT_MAX_VALUE, radius);
     w->radius[i] = (float)radius;
+    w->epoch++;
     return TT_OK;
 }
 

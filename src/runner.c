@@ -1,6 +1,7 @@
 /* tether — the runner: runs a Lua script with the tether module loaded.
  *
- *   tether [--headless] [--steps N] [--dt DT] [--help] [--version] script.lua [args…]
+ *   tether [--headless] [--steps N] [--dt DT] [--frames N] [--every K] [--out DIR]
+ *          [--size WxH] [--screenshot FILE] [--events FILE] [--help] [--version] script.lua [args…]
  *
  * Opens the standard libraries, preloads the module (package.preload.tether)
  * and sets the global `tether` to it, sets `arg` as lua5.4 does, and runs the
@@ -8,7 +9,11 @@
  * defined), then tether.update(dt) at a fixed dt for N steps (or until
  * tether.quit()), then tether.unload() (if defined), and prints one summary
  * line. A script without callbacks just runs. An error prints the traceback
- * and exits with status 1. */
+ * and exits with status 1.
+ *
+ * With a tether.draw(g) callback the script is also seen: in a window
+ * (SDL2, the default when the script has callbacks) or, with --headless
+ * --out DIR, as PNG frames DIR/frame_00000.png … (runner_view.c). */
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
@@ -23,23 +28,16 @@
 #include <lualib.h>
 
 #include "tether.h"
+#include "runner.h"
 
 int luaopen_tether(lua_State *L);
 
-#define PROGNAME "tether"
 #define MAX_STEPS 10000000L
-
-typedef struct options {
-    bool headless;
-    long steps;       /* callback steps, default 600 */
-    double dt;        /* s, default 1/60 */
-    int script;       /* index of the script in argv, 0 if none */
-} options;
 
 /* --- Ctrl-C: stop the loop (or the script) cleanly, as lua.c does --------- */
 
 static lua_State *g_state = NULL;
-static volatile sig_atomic_t g_interrupted = 0;
+volatile sig_atomic_t g_interrupted = 0;
 
 static void stop_hook(lua_State *L, lua_Debug *ar)
 {
@@ -59,7 +57,7 @@ static void on_sigint(int sig)
 
 /* --- helpers --------------------------------------------------------------- */
 
-static double now_s(void)
+double tr_now_s(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -74,9 +72,16 @@ static void usage(FILE *f)
             "If the script defines tether.update(dt), it is called at a fixed step:\n"
             "tether.load(args) first, tether.unload() last; tether.quit() stops early.\n"
             "Options:\n"
-            "  --headless   no window (the default for now: the window arrives with the renderer)\n"
-            "  --steps N    number of tether.update calls, 1..%ld (default 600)\n"
+            "  --headless   no window; with --out, frames go to PNG files\n"
+            "  --steps N    number of tether.update calls, 1..%ld (default 600; headless, no --out)\n"
             "  --dt DT      fixed step in seconds, 0 < DT <= 10 (default 1/60)\n"
+            "  --frames N   frames to draw, 1..1000000: headless, N PNG files; in a window, quit after N\n"
+            "  --every K    tether.update calls per frame with --out, 1..100000 (default 1)\n"
+            "  --out DIR    (with --headless) write DIR/frame_00000.png ... (default 60 frames)\n"
+            "  --size WxH   frame or window size in pixels (default 800x600)\n"
+            "  --screenshot FILE  (window) write the last frame shown to FILE (PNG)\n"
+            "  --events FILE      (window) scripted input: lines 'FRAME key NAME', 'FRAME down X Y',\n"
+            "               'FRAME move X Y', 'FRAME up X Y', 'FRAME quit' (X, Y window pixels)\n"
             "  --help       show this help and exit\n"
             "  --version    show the version and exit\n"
             "  --           stop handling options\n",
@@ -100,6 +105,13 @@ static int parse_args(int argc, char **argv, options *o)
     o->steps = 600;
     o->dt = 1.0 / 60.0;
     o->script = 0;
+    o->frames = 0;
+    o->every = 1;
+    o->out = NULL;
+    o->width = 800;
+    o->height = 600;
+    o->screenshot = NULL;
+    o->events = NULL;
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = NULL;
@@ -142,10 +154,79 @@ static int parse_args(int argc, char **argv, options *o)
                 return bad_usage("--dt: a number in (0, 10] expected, got '%s'", val);
             continue;
         }
+        if (strncmp(a, "--frames", 8) == 0 && (a[8] == '\0' || a[8] == '=')) {
+            val = a[8] == '=' ? a + 9 : (i + 1 < argc ? argv[++i] : NULL);
+            if (val == NULL)
+                return bad_usage("%s needs a value", "--frames");
+            errno = 0;
+            o->frames = strtol(val, &end, 10);
+            if (errno != 0 || end == val || *end != '\0' || o->frames < 1 || o->frames > 1000000)
+                return bad_usage("--frames: an integer in [1, 1000000] expected, got '%s'", val);
+            continue;
+        }
+        if (strncmp(a, "--every", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
+            val = a[7] == '=' ? a + 8 : (i + 1 < argc ? argv[++i] : NULL);
+            if (val == NULL)
+                return bad_usage("%s needs a value", "--every");
+            errno = 0;
+            o->every = strtol(val, &end, 10);
+            if (errno != 0 || end == val || *end != '\0' || o->every < 1 || o->every > 100000)
+                return bad_usage("--every: an integer in [1, 100000] expected, got '%s'", val);
+            continue;
+        }
+        if (strncmp(a, "--out", 5) == 0 && (a[5] == '\0' || a[5] == '=')) {
+            val = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
+            if (val == NULL || *val == '\0')
+                return bad_usage("%s needs a folder", "--out");
+            o->out = val;
+            continue;
+        }
+        if (strncmp(a, "--screenshot", 12) == 0 && (a[12] == '\0' || a[12] == '=')) {
+            val = a[12] == '=' ? a + 13 : (i + 1 < argc ? argv[++i] : NULL);
+            if (val == NULL || *val == '\0')
+                return bad_usage("%s needs a file name", "--screenshot");
+            o->screenshot = val;
+            continue;
+        }
+        if (strncmp(a, "--events", 8) == 0 && (a[8] == '\0' || a[8] == '=')) {
+            val = a[8] == '=' ? a + 9 : (i + 1 < argc ? argv[++i] : NULL);
+            if (val == NULL || *val == '\0')
+                return bad_usage("%s needs a file name", "--events");
+            o->events = val;
+            continue;
+        }
+        if (strncmp(a, "--size", 6) == 0 && (a[6] == '\0' || a[6] == '=')) {
+            long w, h;
+            val = a[6] == '=' ? a + 7 : (i + 1 < argc ? argv[++i] : NULL);
+            if (val == NULL)
+                return bad_usage("%s needs a value", "--size");
+            errno = 0;
+            w = strtol(val, &end, 10);
+            if (errno == 0 && end != val && (*end == 'x' || *end == 'X')) {
+                const char *hs = end + 1;
+                h = strtol(hs, &end, 10);
+                if (errno == 0 && end != hs && *end == '\0' && w >= 16 && w <= 8192 && h >= 16 && h <= 8192) {
+                    o->width = (int)w;
+                    o->height = (int)h;
+                    continue;
+                }
+            }
+            return bad_usage("--size: WxH with each side in [16, 8192] expected, got '%s'", val);
+        }
         return bad_usage("unknown option '%s'", a);
     }
     if (i >= argc)
         return bad_usage("%s", "no script given");
+    if (o->headless && o->frames > 0 && o->out == NULL)
+        return bad_usage("%s", "--frames with --headless needs --out DIR (where the PNG frames go)");
+    if (!o->headless && o->out != NULL)
+        return bad_usage("%s", "--out needs --headless (a window shows its frames; --screenshot saves one)");
+    if (o->headless && o->events != NULL)
+        return bad_usage("%s", "--events is for the window");
+    if (o->headless && o->screenshot != NULL)
+        return bad_usage("%s", "--screenshot is for the window; headless frames go to --out DIR");
+    if (o->out != NULL && o->frames == 0)
+        o->frames = 60;
     o->script = i;
     return -1;
 }
@@ -165,7 +246,7 @@ static int msghandler(lua_State *L)
 
 /* Calls the function below its nargs arguments; on error prints the
  * traceback and returns false. */
-static bool docall(lua_State *L, int nargs, int nres)
+bool tr_docall(lua_State *L, int nargs, int nres)
 {
     int base = lua_gettop(L) - nargs;
     int status;
@@ -186,7 +267,7 @@ static bool docall(lua_State *L, int nargs, int nres)
 
 /* Pushes module field `name` if it is a function and returns true; nil is
  * false; anything else is an error (returned as status 2 in *bad). */
-static bool get_callback(lua_State *L, int module, const char *name, bool *bad)
+bool tr_get_callback(lua_State *L, int module, const char *name, bool *bad)
 {
     int t = lua_getfield(L, module, name);
     if (t == LUA_TFUNCTION)
@@ -200,7 +281,7 @@ static bool get_callback(lua_State *L, int module, const char *name, bool *bad)
 }
 
 /* tether.quit() — ends the update loop after the current call. */
-static bool g_quit = false;
+bool g_quit = false;
 
 static int l_quit(lua_State *L)
 {
@@ -215,33 +296,46 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The fixed-step loop. Returns the exit status. */
-static int run_loop(lua_State *L, int module, const options *o, int nscriptargs, int argtable)
+double tr_median(double *v, size_t n)
 {
+    if (n == 0)
+        return 0.0;
+    qsort(v, n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+bool tr_call_load(session *s)
+{
+    bool bad = false;
+    if (tr_get_callback(s->L, s->module, "load", &bad)) {
+        lua_createtable(s->L, s->nscriptargs, 0);
+        for (int i = 1; i <= s->nscriptargs; i++) {
+            lua_rawgeti(s->L, s->argtable, i);
+            lua_rawseti(s->L, -2, i);
+        }
+        if (!tr_docall(s->L, 1, 0))
+            return false;
+    }
+    return !bad;
+}
+
+/* The fixed-step loop. Returns the exit status. */
+static int run_loop(session *s, const options *o)
+{
+    lua_State *L = s->L;
+    int module = s->module;
     bool bad = false, ok = true, progress = isatty(STDERR_FILENO) != 0, shown = false;
     double *ms = NULL, total = 0.0, t0, next_progress = 1.0;
     size_t cap = 0;
     long done = 0;
 
-    if (!o->headless)
-        fprintf(stderr, PROGNAME ": no window yet (it arrives with the renderer): running headless\n");
-
-    if (get_callback(L, module, "load", &bad)) {
-        lua_createtable(L, nscriptargs, 0);
-        for (int i = 1; i <= nscriptargs; i++) {
-            lua_rawgeti(L, argtable, i);
-            lua_rawseti(L, -2, i);
-        }
-        if (!docall(L, 1, 0))
-            return 1;
-    }
-    if (bad)
+    if (!tr_call_load(s))
         return 1;
 
-    t0 = now_s();
+    t0 = tr_now_s();
     while (done < o->steps && !g_quit && !g_interrupted) {
         double a, b;
-        if (!get_callback(L, module, "update", &bad)) {
+        if (!tr_get_callback(L, module, "update", &bad)) {
             if (!bad)
                 fprintf(stderr, PROGNAME ": tether.update disappeared at step %ld\n", done + 1);
             ok = false;
@@ -261,9 +355,9 @@ static int run_loop(lua_State *L, int module, const options *o, int nscriptargs,
             cap = ncap;
         }
         lua_pushnumber(L, o->dt);
-        a = now_s();
-        ok = docall(L, 1, 0);
-        b = now_s();
+        a = tr_now_s();
+        ok = tr_docall(L, 1, 0);
+        b = tr_now_s();
         if (!ok)
             break;
         ms[done++] = (b - a) * 1e3;
@@ -285,8 +379,8 @@ static int run_loop(lua_State *L, int module, const options *o, int nscriptargs,
     }
     if (ok && g_interrupted)
         fprintf(stderr, PROGNAME ": interrupted after %ld steps\n", done);
-    if (ok && get_callback(L, module, "unload", &bad))
-        ok = docall(L, 0, 0);
+    if (ok && tr_get_callback(L, module, "unload", &bad))
+        ok = tr_docall(L, 0, 0);
     if (bad)
         ok = false;
 
@@ -309,25 +403,19 @@ static int run_loop(lua_State *L, int module, const options *o, int nscriptargs,
     return ok ? 0 : 1;
 }
 
-int main(int argc, char **argv)
+bool tr_session_open(session *s, const options *o, int argc, char **argv)
 {
-    options o;
     lua_State *L;
-    int status, module, argtable, nscriptargs;
-    const char *script;
-    bool has_update, bad = false;
+    const char *script = argv[o->script];
 
-    status = parse_args(argc, argv, &o);
-    if (status >= 0)
-        return status;
-    script = argv[o.script];
-
+    memset(s, 0, sizeof *s);
+    s->argc = argc;
+    s->argv = argv;
     L = luaL_newstate();
     if (L == NULL) {
         fprintf(stderr, PROGNAME ": cannot create a Lua state: not enough memory\n");
-        return 1;
+        return false;
     }
-    signal(SIGINT, on_sigint);
     luaL_openlibs(L);
 
     /* package.preload.tether = luaopen_tether; tether = require "tether" */
@@ -337,49 +425,121 @@ int main(int argc, char **argv)
     lua_pop(L, 1);
     lua_getglobal(L, "require");
     lua_pushliteral(L, "tether");
-    if (!docall(L, 1, 1)) {
+    if (!tr_docall(L, 1, 1)) {
         lua_close(L);
-        return 1;
+        return false;
     }
     lua_pushcfunction(L, l_quit);
     lua_setfield(L, -2, "quit");
+    /* tether.runner: how this run shows the script (read-only by convention) */
+    lua_createtable(L, 0, 8);
+    lua_pushstring(L, o->out != NULL ? "frames" : o->headless ? "headless" : "window");
+    lua_setfield(L, -2, "mode");
+    lua_pushinteger(L, o->width);
+    lua_setfield(L, -2, "width");
+    lua_pushinteger(L, o->height);
+    lua_setfield(L, -2, "height");
+    lua_pushnumber(L, o->dt);
+    lua_setfield(L, -2, "dt");
+    if (o->frames > 0) {
+        lua_pushinteger(L, o->frames);
+        lua_setfield(L, -2, "frames");
+    }
+    lua_pushinteger(L, o->every);
+    lua_setfield(L, -2, "every");
+    if (o->out != NULL) {
+        lua_pushstring(L, o->out);
+        lua_setfield(L, -2, "out");
+    }
+    lua_setfield(L, -2, "runner");
+    tr_register_gfx(L, lua_gettop(L));
     lua_pushvalue(L, -1);
     lua_setglobal(L, "tether");
-    module = lua_gettop(L);
+    s->module = lua_gettop(L);
 
     /* arg: arg[0] = script, arg[1..] = its arguments, arg[-k] = what came before */
-    nscriptargs = argc - o.script - 1;
-    lua_createtable(L, nscriptargs, o.script + 1);
+    s->nscriptargs = argc - o->script - 1;
+    lua_createtable(L, s->nscriptargs, o->script + 1);
     for (int i = 0; i < argc; i++) {
         lua_pushstring(L, argv[i]);
-        lua_rawseti(L, -2, i - o.script);
+        lua_rawseti(L, -2, i - o->script);
     }
     lua_pushvalue(L, -1);
     lua_setglobal(L, "arg");
-    argtable = lua_gettop(L);
+    s->argtable = lua_gettop(L);
 
     /* the script, called with its arguments as ... */
     if (luaL_loadfile(L, strcmp(script, "-") == 0 ? NULL : script) != LUA_OK) {
         fprintf(stderr, PROGNAME ": %s\n", lua_tostring(L, -1));
         lua_close(L);
-        return 1;
+        return false;
     }
-    luaL_checkstack(L, nscriptargs + 3, "too many arguments to script");
-    for (int i = 1; i <= nscriptargs; i++)
-        lua_rawgeti(L, argtable, i);
-    if (!docall(L, nscriptargs, 0)) {
+    luaL_checkstack(L, s->nscriptargs + 3, "too many arguments to script");
+    for (int i = 1; i <= s->nscriptargs; i++)
+        lua_rawgeti(L, s->argtable, i);
+    if (!tr_docall(L, s->nscriptargs, 0)) {
         lua_close(L);
-        return 1;
+        return false;
     }
+    s->L = L;
+    return true;
+}
+
+void tr_session_close(session *s)
+{
+    if (s->L != NULL)
+        lua_close(s->L);
+    s->L = NULL;
+}
+
+/* A window can open: an X11 or Wayland display, or a video driver chosen explicitly. */
+static bool has_display(void)
+{
+    const char *v[] = { "DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER" };
+    for (int i = 0; i < 3; i++) {
+        const char *e = getenv(v[i]);
+        if (e != NULL && *e != '\0')
+            return true;
+    }
+    return false;
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    session s;
+    int status;
+    bool has_update, has_draw, bad = false;
+
+    status = parse_args(argc, argv, &o);
+    if (status >= 0)
+        return status;
+    signal(SIGINT, on_sigint);
+    if (!tr_session_open(&s, &o, argc, argv))
+        return 1;
 
     status = 0;
-    has_update = get_callback(L, module, "update", &bad);
-    if (has_update) {
-        lua_pop(L, 1);
-        status = run_loop(L, module, &o, nscriptargs, argtable);
-    } else if (bad) {
+    has_update = tr_get_callback(s.L, s.module, "update", &bad);
+    if (has_update)
+        lua_pop(s.L, 1);
+    has_draw = tr_get_callback(s.L, s.module, "draw", &bad);
+    if (has_draw)
+        lua_pop(s.L, 1);
+    if (bad)
         status = 1;
-    }
-    lua_close(L);
+    else if (o.out != NULL)
+        status = tr_run_frames(&s, &o);
+    else if (!o.headless && (has_update || has_draw) && !has_display() && o.frames == 0 && o.screenshot == NULL &&
+             o.events == NULL) {
+        /* no display to open a window on (a CI job, ssh): the plain loop, as --headless */
+        fprintf(stderr, PROGNAME ": no display (DISPLAY and WAYLAND_DISPLAY are not set): running headless; "
+                        "--headless --out DIR writes PNG frames\n");
+        if (has_update)
+            status = run_loop(&s, &o);
+    } else if (!o.headless && (has_update || has_draw))
+        status = tr_run_window(&s, &o);
+    else if (has_update)
+        status = run_loop(&s, &o);
+    tr_session_close(&s);
     return status;
 }

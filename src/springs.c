@@ -141,6 +141,15 @@ tt_result tt_spring_get_length(const tt_world *w, tt_spring s, double *out)
 
 uint32_t tt_world_spring_count(const tt_world *w) { return w ? w->springs_alive : 0; }
 
+uint32_t tt_world_list_springs(const tt_world *w, tt_spring *out, uint32_t cap)
+{
+    if (!w) return 0;
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < w->spool.count && out && k < cap; i++)
+        if (w->springs[i].alive) out[k++] = (tt_spring){i, w->spool.gen[i]};
+    return w->springs_alive;
+}
+
 void tt__springs_detach(tt_world *w, uint32_t particle)
 {
     for (uint32_t i = 0; i < w->spool.count; i++) {

@@ -170,6 +170,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     }
     w->stats.steps++;
     w->stats.time += dt;
+    w->epoch++;
     w->stats.step_ms = tt__now_ms() - t0;
     if (w->stats.diverged)
         tt__fail(w, TT_OK, "tt_world_step: %u particle(s) passed |x| or |v| > %g and were stopped",

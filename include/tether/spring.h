@@ -32,6 +32,9 @@ TT_API tt_result tt_spring_set_rest_length(tt_world *w, tt_spring s, double l); 
 TT_API tt_result tt_spring_get_length(const tt_world *w, tt_spring s, double *out);
 /// Live springs in the world.
 TT_API uint32_t tt_world_spring_count(const tt_world *w);
+/// Bulk: writes up to `cap` live spring handles in slot order into out (may
+/// be NULL to count); returns the number of live springs.
+TT_API uint32_t tt_world_list_springs(const tt_world *w, tt_spring *out, uint32_t cap);
 
 #ifdef __cplusplus
 }

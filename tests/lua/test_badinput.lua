@@ -67,6 +67,10 @@ local S1 = W:spring(P1, P2, { stiffness = 50 })
 local gone = W:particle(5, 5)
 local gone_s = W:spring(P2, gone)
 W:remove(gone)                   -- also removes gone_s
+local SH1 = W:segment(-50, -5, 50, -5)                 -- collisions (lua_collide.c)
+local gone_sh = W:circle(20, 20, 1)
+W:remove_shape(gone_sh)
+local STALE_SH = { gone_sh, 0, 987654321, -1, math.maxinteger, SH1 + (1 << 40) }
 local STALE_P = { gone, 0, 987654321, -1, math.maxinteger, math.mininteger, (3 << 32) | 1 }
 local STALE_S = { gone_s, 0, 987654321, -1, math.maxinteger, S1 + (1 << 40) }
 local C1 = W:distance(P1, P2)      -- constraints and composites (lua_constraints.c)
@@ -140,6 +144,18 @@ K.handles3 = table_kind(false, "table of particle handles")
 K.handles3.good = function() return { P1, P2, P3 } end
 K.xy = table_kind(false, "table of numbers")
 K.xy.good = function() return { 1, 2, 3, 4 } end
+-- collisions (lua_collide.c)
+K.SH = { good = function() return SH1 end, bad = handle_bad("shape", STALE_SH) }
+K.SHq = { good = function() return SH1 end, bad = handle_bad("shape") }
+K.pos = { good = function() return 0.5 end, bad = number_bad("(0, 1e+12]", { 0, -1, 1e300, 2e12 }) }
+K.unit = { good = function() return 0.5 end, bad = number_bad("[0, 1]", { -0.1, 1.5, 1e300 }) }
+K.optcoord = { good = function() return 0.5 end, optional = true, bad = number_bad(COORD, { 1e300, -2e12 }) }
+K.optnonneg = { good = function() return 0.5 end, optional = true, bad = number_bad(NONNEG, { -1, 1e300 }) }
+K.optu16 = { good = function() return 3 end, optional = true, bad = integer_bad("[0, 65535]", { -1, 65536, 1e300 }) }
+K.shopts = table_kind(true, "table or nil")
+K.copts = table_kind(true, "table or nil")
+K.points = table_kind(false, "table of coordinates {x1, y1, x2, y2, ...}")
+K.points.good = function() return { 0, 0, 1, 0, 0, 1 } end
 
 -- Every method and the kinds of its arguments after self.
 local METHODS = {
@@ -226,6 +242,36 @@ local METHODS = {
   { "composite_center", "H" },
   { "composite_angle", "H" },
   { "composite_count" },
+  -- collisions (lua_collide.c)
+  { "segment", "coord", "coord", "coord", "coord", "shopts" },
+  { "capsule", "coord", "coord", "coord", "coord", "nonneg", "shopts" },
+  { "aabb", "coord", "coord", "coord", "coord", "shopts" },
+  { "box", "coord", "coord", "pos", "pos", "shopts" },
+  { "circle", "coord", "coord", "pos", "shopts" },
+  { "chain", "points", "shopts" },
+  { "polygon", "points", "shopts" },
+  { "remove_shape", "SH" },
+  { "shape_is_valid", "SHq" },
+  { "shape_count" },
+  { "shape_type", "SH" },
+  { "shape_transform", "SH" },
+  { "set_shape_transform", "SH", "coord", "coord", "optcoord" },
+  { "set_shape_material", "SH", "unit", "nonneg", "optnonneg" },
+  { "set_shape_filter", "SH", "u16", "u16" },
+  { "set_shape_sensor", "SH", "bool" },
+  { "shape_aabb", "SH" },
+  { "set_collision", "copts" },
+  { "collision" },
+  { "collision_stats" },
+  { "set_material", "P", "unit", "nonneg", "optnonneg" },
+  { "material", "P" },
+  { "set_bullet", "P", "bool" },
+  { "bullet", "P" },
+  { "set_pair_collision", "P", "P2", "bool" },
+  { "raycast", "coord", "coord", "coord", "coord", "optu16" },
+  { "query_point", "coord", "coord", "optu16" },
+  { "query_aabb", "coord", "coord", "coord", "coord", "optu16" },
+  { "contacts" },
 }
 
 -- Option tables: fields and their kinds.
@@ -234,6 +280,11 @@ local OPTIONS = {
                                    category = "u16", mask = "u16" } },
   spring = { arg = 4, fields = { stiffness = "nonneg", damping = "nonneg", rest = "nonneg" } },
   set_spring = { arg = 3, fields = { stiffness = "nonneg", damping = "nonneg", rest = "nonneg" } },
+  circle = { arg = 5, fields = { restitution = "unit", friction = "nonneg", friction_static = "nonneg",
+                                 friction_kinetic = "nonneg", category = "u16", mask = "u16", sensor = "bool" } },
+  set_collision = { arg = 2, fields = { particles = "bool", cell_size = "nonneg", restitution = "unit",
+                                        friction = "nonneg", friction_static = "nonneg", friction_kinetic = "nonneg",
+                                        restitution_threshold = "nonneg" } },
 }
 
 local function good_args(spec)
@@ -302,7 +353,9 @@ T.test("good arguments work (the baseline of every case)", function()
       local a = w:particle(0, 0); local b = w:particle(1, 0)
       local s = w:spring(a, b)
       local c3 = w:particle(2, 0)
-      local fix = { [P1] = a, [P2] = b, [P3] = c3, [S1] = s, [C1] = w:distance(a, b), [PIN1] = w:pin(c3), [H1] = w:lattice() }
+      local sh = w:segment(-1, -3, 1, -3)
+      local fix = { [P1] = a, [P2] = b, [P3] = c3, [S1] = s, [C1] = w:distance(a, b), [PIN1] = w:pin(c3),
+                    [H1] = w:lattice(), [SH1] = sh }
       -- map the fixtures of W onto w
       for i = 1, n do
         if fix[args[i]] then args[i] = fix[args[i]] end
@@ -316,9 +369,14 @@ T.test("good arguments work (the baseline of every case)", function()
   end
 end)
 
+-- Methods that work only inside the runner's tether.draw(g) (no frame here),
+-- with their bad-input cases in the file named.
+local FRAME_ONLY = { draw = "tests/lua/test_render.lua" }
+
 T.test("the table above lists every method of the world class", function()
   local listed = {}
   for _, m in ipairs(METHODS) do listed[m[1]] = true end
+  for name in pairs(FRAME_ONLY) do listed[name] = true end
   local index = getmetatable(tether.world()).__index
   for name in pairs(index) do
     T.ok(listed[name], "method '" .. name .. "' has no bad-input row in METHODS")
@@ -547,6 +605,9 @@ T.test("random calls never crash or poison the world", function()
     for i = 1, n do
       if rand(3) == 1 then args[i] = handles[rand(#handles)] else args[i] = values[rand(#values)] end
     end
+    -- Random composites can pile thousands of particles on one spot (an O(n²) cell for any
+    -- broadphase): a valid step count there is minutes of work, so keep steps to one.
+    if name == "step" and n >= 2 and type(args[2]) == "number" and args[2] == args[2] and args[2] > 1 then args[2] = 1 end
     local ok, r = pcall(w[name], w, unpack_args(args, n))
     if not ok then
       errors = errors + 1

@@ -1,0 +1,145 @@
+/* tether — collision benchmarks: ms/step against particle count (grid and
+ * brute force, equal radii and a 1:4 mix), the grid's scaling slope,
+ * broadphase memory per particle, and 10 000 circles settling in a box
+ * against Box2D 2.4.1 doing the same (bench/box2d_scene.cpp). */
+#include "bench.h"
+#include "tether.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+double box2d_settle_ms(int n, double radius, double width, int steps, double *max_step_ms, double *top);
+
+/* Walls of a box `width` wide (inner faces at ±width/2, floor top at 0). */
+static void box(tt_world *w, double width)
+{
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    double h = width / 2;
+    sd.a = (tt_vec2){-h - 1, -1}; sd.b = (tt_vec2){h + 1, 0}; tt_shape_create(w, &sd);
+    sd.a = (tt_vec2){-h - 1, 0}; sd.b = (tt_vec2){-h, 1e4}; tt_shape_create(w, &sd);
+    sd.a = (tt_vec2){h, 0}; sd.b = (tt_vec2){h + 1, 1e4}; tt_shape_create(w, &sd);
+}
+
+/* n particles packed on a square lattice in a box, touching (equal radii r =
+ * 0.5) or, for the mix, radii 0.25 and 1 (one in four big) at spacing 2. */
+static tt_world *packed(uint32_t n, bool mix, tt_broadphase bp, uint32_t iterations)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.capacity = n;
+    wd.iterations = iterations;
+    tt_world *w = tt_world_create(&wd);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.broadphase = bp;
+    tt_world_set_collision(w, &cs);
+    double spacing = mix ? 2.0 : 1.0;
+    uint32_t cols = (uint32_t)ceil(sqrt((double)n));
+    box(w, cols * spacing);
+    tt_particle_def pd = tt_particle_def_default();
+    for (uint32_t i = 0; i < n; i++) {
+        pd.radius = mix ? (i % 4 == 0 ? 1.0 : 0.25) : 0.5;
+        pd.position = (tt_vec2){-(cols * spacing) / 2 + spacing * (0.5 + i % cols), spacing * (0.5 + i / cols)};
+        tt_particle_create(w, &pd);
+    }
+    return w;
+}
+
+static double step_ms(tt_world *w, int warm, int reps)
+{
+    for (int s = 0; s < warm; s++) tt_world_step(w, 1.0 / 60);
+    double *t = malloc((size_t)reps * sizeof *t);
+    for (int r = 0; r < reps; r++) {
+        double t0 = bench_now_ns();
+        tt_world_step(w, 1.0 / 60);
+        t[r] = (bench_now_ns() - t0) * 1e-6;
+    }
+    double m = bench_median(t, reps);
+    free(t);
+    return m;
+}
+
+void bench_collide(const char *dir)
+{
+    printf("\n== Collisions: colliding particles packed in a box under gravity (1 substep, 1 iteration) ==\n");
+    printf("target: 100k particles <= 5 ms/step (grid); grid cost linear in N, log-log slope 1 +- 0.1 from 1k to 1M\n");
+    printf("%9s %6s %12s %12s %12s %14s %14s\n", "particles", "radii", "grid ms", "brute ms", "ns/particle", "grid B/p", "collide B/p");
+    FILE *csv = bench_csv(dir, "collide.csv", "particles,radii,grid_ms,brute_ms,grid_bytes_per_particle,collide_bytes_per_particle");
+    const uint32_t sizes[] = {1000, 10000, 100000, 1000000};
+    double grid_ms[2][4];
+    for (int mix = 0; mix < 2; mix++) {
+        bool brute_on = true;
+        for (int k = 0; k < 4; k++) {
+            uint32_t n = sizes[k];
+            tt_world *w = packed(n, mix, TT_BROADPHASE_GRID, 1);
+            int reps = n >= 1000000 ? 15 : n >= 100000 ? 41 : 101;
+            double g = step_ms(w, 10, reps);
+            tt_collision_stats cst;
+            tt_world_get_collision_stats(w, &cst);
+            double total_bp = (double)cst.total_bytes / n;
+            tt_world_destroy(w);
+            grid_ms[mix][k] = g;
+            double b = NAN;
+            if (brute_on) { /* until one brute-force step passes a second */
+                tt_world *wb = packed(n, mix, TT_BROADPHASE_BRUTE, 1);
+                b = step_ms(wb, 1, n >= 100000 ? 1 : 5);
+                tt_world_destroy(wb);
+                if (b > 1000.0) brute_on = false;
+            }
+            printf("%9u %6s %12.3f %12.3f %12.1f %14.1f %14.1f\n", n, mix ? "1:4" : "equal", g, b, g * 1e6 / n,
+                   cst.broadphase_bytes_per_particle, total_bp);
+            fprintf(csv, "%u,%s,%.4f,%.4f,%.1f,%.1f\n", n, mix ? "mix" : "equal", g, b, cst.broadphase_bytes_per_particle, total_bp);
+            fflush(stdout);
+        }
+    }
+    fclose(csv);
+    for (int mix = 0; mix < 2; mix++) {
+        double slope = log(grid_ms[mix][3] / grid_ms[mix][0]) / log(1000.0);
+        printf("grid log-log slope 1k..1M (%s radii): %.3f   target 1 +- 0.1: %s\n", mix ? "1:4" : "equal", slope,
+               fabs(slope - 1) <= 0.1 ? "met" : "NOT met");
+    }
+    printf("100k equal radii: %.3f ms/step   target <= 5 ms: %s\n", grid_ms[0][2], grid_ms[0][2] <= 5 ? "met" : "NOT met");
+
+    printf("\n== 10 000 circles (r = 0.5) settling in a 100-wide box, 300 steps of 1/60 s: tether vs Box2D 2.4.1 ==\n");
+    printf("Box2D: 8 velocity / 3 position iterations, continuous off, sleeping on. tether: Verlet, 1 substep, 8 iterations\n");
+    printf("target: tether >= 20x faster than Box2D\n");
+    const int n = 10000, steps = 300;
+    double b2max, b2top;
+    double b2 = box2d_settle_ms(n, 0.5, 100.0, steps, &b2max, &b2top);
+    tt_world_def wd = tt_world_def_default();
+    wd.iterations = 8;
+    tt_world *w = tt_world_create(&wd);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = cs.friction_kinetic = 0.6;
+    tt_world_set_collision(w, &cs);
+    box(w, 100.0);
+    const double r = 0.5, width = 100.0;
+    const int cols = (int)(width / (2.4 * r));
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = r;
+    for (int i = 0; i < n; i++) { /* the same start as box2d_scene.cpp */
+        pd.position = (tt_vec2){-width / 2 + 1.2 * r + (i % cols) * 2.4 * r + ((i / cols) % 2) * 0.3 * r, r * 1.2 + (i / cols) * 2.4 * r};
+        tt_particle_create(w, &pd);
+    }
+    double total = 0, worst = 0;
+    for (int s = 0; s < steps; s++) {
+        double t0 = bench_now_ns();
+        tt_world_step(w, 1.0 / 60);
+        double ms = (bench_now_ns() - t0) * 1e-6;
+        total += ms;
+        worst = fmax(worst, ms);
+    }
+    uint32_t np = tt_world_particle_count(w);
+    double *xy = malloc(2 * (size_t)np * sizeof *xy), top = 0;
+    tt_world_read_positions(w, xy, np);
+    for (uint32_t i = 0; i < np; i++) top = fmax(top, xy[2 * i + 1]);
+    free(xy);
+    tt_world_destroy(w);
+    double tt = total / steps;
+    printf("%10s %14s %14s %14s\n", "engine", "mean ms/step", "worst ms", "pile top m");
+    printf("%10s %14.3f %14.3f %14.2f\n", "Box2D", b2, b2max, b2top);
+    printf("%10s %14.3f %14.3f %14.2f\n", "tether", tt, worst, top);
+    printf("speed-up %.1fx   target >= 20x: %s\n", b2 / tt, b2 / tt >= 20 ? "met" : "NOT met");
+    FILE *c2 = bench_csv(dir, "collide_box2d.csv", "engine,mean_ms,worst_ms,top");
+    fprintf(c2, "box2d,%.4f,%.4f,%.3f\ntether,%.4f,%.4f,%.3f\n", b2, b2max, b2top, tt, worst, top);
+    fclose(c2);
+}

@@ -1,0 +1,186 @@
+/* tether — private declarations of the collision feature (grid.c,
+ * broadphase_brute.c, shapes.c, narrowphase.c, contacts.c, ccd.c, query.c). */
+#ifndef TETHER_COLLIDE_INTERNAL_H
+#define TETHER_COLLIDE_INTERNAL_H
+
+#include "internal.h"
+#include "tether/collide.h"
+
+/* Candidate pairs are kept when their gap is under this fraction of the
+ * radii sum, so pairs that close during the sweeps are solved at once. */
+#define TT__CONTACT_MARGIN 0.1
+
+/* Every shape becomes primitives: rounded segments (capsule; a circle has
+ * a == b, a segment r == 0) or convex polygons (radius 0). */
+enum { TT__PRIM_CAPSULE = 0, TT__PRIM_POLY = 1 };
+
+typedef struct tt__prim {
+    uint32_t shape;       /* shape slot */
+    uint32_t kind;
+    uint32_t v0, nv;      /* polygon: vertex range in verts/norms */
+    double ax, ay, bx, by, r;
+    double lox, loy, hix, hiy; /* bounding box, radius included */
+} tt__prim;
+
+typedef struct tt__shape {
+    tt_shape_def def;     /* def.points is NULL: the points live in pts */
+    tt_vec2 *pts;
+    bool alive;
+} tt__shape;
+
+/* Static index: a uniform grid over the primitives' boxes, built once and
+ * rebuilt only when shapes are added, removed or moved. */
+typedef struct tt__sgrid {
+    double ox, oy, cs, inv;
+    int32_t nx, ny;
+    uint32_t *start, *items; /* CSR: cell → primitive indices */
+    uint32_t *big, nbig;     /* primitives covering too many cells: always tested */
+    uint32_t cap_cells, cap_items, cap_big;
+} tt__sgrid;
+
+/* Particle grid: counting sort of the live particles into cells. */
+typedef struct tt__grid {
+    double ox, oy, cs, inv, rmax;
+    int32_t nx, ny;
+    uint32_t ncell, n;            /* cells, particles sorted */
+    uint32_t *start;              /* ncell + 1 */
+    uint32_t *cell;               /* per gathered particle: its (clamped) cell */
+    uint32_t *idx;                /* sorted: particle slot */
+    double *sx, *sy, *sr;         /* sorted copies of position and radius */
+    uint8_t *outside;             /* sorted: centre outside the grid (clamped into a border cell) */
+    uint32_t *out_list, nout;     /* particle slots outside the grid */
+    uint32_t cap_cells, cap_n;
+    uint64_t epoch;               /* w->epoch the grid reflects (queries), or UINT64_MAX */
+} tt__grid;
+
+typedef struct tt__pair { /* 24 bytes: hundreds of thousands are written every substep */
+    uint32_t a, b;
+    float rs;             /* radii sum (the radii are floats already) */
+    float nx, ny;         /* last normal, from b to a */
+    float lambda;         /* normal correction applied this substep, m */
+} tt__pair;
+
+typedef struct tt__scontact {
+    uint32_t a, prim;
+    double nx, ny, lambda;
+    uint32_t ccd;         /* found by the swept test: velocity restarts from the pre-solve one */
+} tt__scontact;
+
+typedef struct tt__record {  /* one contact of the step, for events */
+    uint64_t key;
+    tt_contact_event ev;
+} tt__record;
+
+typedef struct tt__collide {
+    tt_collision_settings set;
+    /* shapes */
+    tt_pool spool;
+    tt__shape *shapes;
+    uint32_t shcap, shapes_alive;
+    bool dirty;
+    tt__prim *prims;
+    uint32_t nprim, primcap;
+    tt_vec2 *verts, *norms;
+    uint32_t nvert, vertcap, normcap;
+    tt__sgrid sgrid;
+    uint32_t *pstamp, pstamp_cap, stamp; /* per primitive: dedupe while visiting several cells */
+    uint32_t *sstamp, sstamp_cap, sstamp_id; /* per shape slot */
+    uint32_t static_rebuilds;
+    /* particles */
+    tt__grid grid;
+    double *vx0, *vy0;    /* pre-solve velocity per particle slot (this substep) */
+    uint32_t vcap;
+    double *sx0, *sy0;    /* velocity integrators: position at the start of the substep (Verlet has x_old) */
+    uint32_t scap, s_count;
+    uint64_t s_epoch;     /* the world epoch at which sx0/sy0 hold the last substep's end positions */
+    float *mat;           /* per slot: restitution, μs, μk (−1 = world default); NULL until used */
+    uint32_t matcap;
+    uint8_t *bullet;      /* NULL until used */
+    uint32_t bulletcap, nbullets;
+    int32_t *ccd_prim;    /* per slot: primitive hit by the sweep this substep, −1 none (bullets only) */
+    uint64_t *excl;       /* sorted keys of particle pairs that do not collide */
+    uint32_t nexcl, exclcap;
+    /* contacts of the current substep */
+    tt__pair *pairs;
+    uint32_t npairs, paircap;
+    tt__scontact *sc;
+    uint32_t nsc, sccap;
+    /* events */
+    tt__record *rec, *prev;
+    uint32_t nrec, reccap, nprev, prevcap;
+    tt_contact_event *events;
+    uint32_t nevents, evcap;
+    uint32_t cells_used;
+} tt__collide;
+
+extern const tt__group_ops tt__contacts_ops;
+/* The collision state of w, made and registered on first use when create is true. */
+tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
+static inline tt__collide *tt__collide_peek(const tt_world *w)
+{
+    return (tt__collide *)tt__group_find(w, &tt__contacts_ops);
+}
+bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem);
+
+/* Filters: the one place that decides whether two particles may collide
+ * (layers, two pinned, switched-off pairs, particles joined by a constraint
+ * that does not let them collide). */
+bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b);
+static inline bool tt__pair_filter(const tt_world *w, const tt__collide *c, uint32_t a, uint32_t b)
+{
+    if (!((w->category[a] & w->mask[b]) && (w->category[b] & w->mask[a]))) return false;
+    if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0) return false;
+    if (c->nexcl && tt__pair_excluded(c, a, b)) return false;
+    if (tt__constraint_pair_excluded(w, a, b)) return false;
+    return true;
+}
+static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, uint32_t a)
+{
+    return (w->category[a] & d->mask) && (d->category & w->mask[a]);
+}
+
+/* Grid (grid.c). */
+bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell);
+/* Appends candidate pairs (gap < margin) to c->pairs; false on no memory. */
+bool tt__grid_pairs(tt_world *w, tt__collide *c);
+void tt__grid_free(tt__grid *g);
+size_t tt__grid_bytes(const tt__grid *g);
+static inline int32_t tt__cell_coord(double v, double o, double inv)
+{
+    double f = (v - o) * inv;
+    if (f >= 0.0 && f < 1e9) return (int32_t)f; /* truncation is floor here, and much cheaper */
+    f = floor(f);
+    if (f < -1e9) return -1000000000;
+    if (f > 1e9) return 1000000000;
+    return (int32_t)f;
+}
+/* Brute force (broadphase_brute.c): the same candidate set, every pair tested. */
+bool tt__brute_pairs(tt_world *w, tt__collide *c);
+
+/* Shapes (shapes.c). */
+tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
+void tt__shapes_free(tt__collide *c);
+size_t tt__shapes_bytes(const tt__collide *c);
+/* Calls visit for each primitive whose cell range meets the box (each at most once per call). */
+typedef void (*tt__prim_visit)(void *ctx, uint32_t prim);
+void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double hiy, tt__prim_visit visit, void *ctx);
+bool tt__shape_ok(const tt__collide *c, tt_shape s);
+
+/* Narrowphase (narrowphase.c). depth > 0 is penetration; the nearest valid
+ * position is (x, y) + n·depth. Always filled (depth may be negative). */
+typedef struct tt__hit {
+    double nx, ny, depth;
+} tt__hit;
+void tt__circle_vs_prim(const tt__collide *c, const tt__prim *p, double x, double y, double r, tt__hit *out);
+/* Ray o + t·d, t in [0, tmax], against the primitive inflated by rr; the first t and the normal. */
+bool tt__ray_vs_prim(const tt__collide *c, const tt__prim *p, double ox, double oy, double dx, double dy,
+                     double rr, double tmax, double *t, double *nx, double *ny);
+bool tt__ray_vs_circle(double ox, double oy, double dx, double dy, double cx, double cy, double r, double tmax,
+                       double *t, double *nx, double *ny);
+bool tt__prim_vs_aabb(const tt__collide *c, const tt__prim *p, double lox, double loy, double hix, double hiy);
+
+/* Continuous detection (ccd.c): sweeps bullets from their start to their
+ * position, stops them at the first static hit and records the contact. */
+void tt__ccd(tt_world *w, tt__collide *c, double h);
+
+#endif

@@ -1,0 +1,36 @@
+/* tether — the Lua drawing API (lua_render.c): what the module registers and
+ * what the runner calls around each frame. No GL here: the runner owns the
+ * canvas and the back end; the module only appends to the canvas. */
+#ifndef TETHER_LUA_RENDER_H
+#define TETHER_LUA_RENDER_H
+
+#include "lua_common.h"
+#include "tether/render.h"
+
+/* Adds tether.gfx to the module table on the top of the stack, and
+ * world:draw() to the world class (tl_world_register must have run). */
+void tl_render_register(lua_State *L);
+#define TL_IMAGE_CLASS "tether.image"
+
+/* Drawing calls go to c until tl_render_end (c is cleared by the caller).
+ * Images drawn stay referenced until tl_render_done, to be called once the
+ * back end has drawn the canvas. */
+void tl_render_begin(lua_State *L, tt_canvas *c);
+void tl_render_end(lua_State *L);
+void tl_render_done(lua_State *L);
+/* For a script without tether.draw: draws every live world it made (in the
+ * order made) with a view that grows to hold all their particles, and a HUD. */
+void tl_render_auto(lua_State *L);
+/* Pushes a tether.image userdata that owns img (the runner's load_image). */
+void tl_push_image(lua_State *L, tt_image *img);
+/* Mouse picking over the worlds drawn by the last frame: the live particle
+ * nearest to pixel (px, py), within max_px on screen. On success the world
+ * is remembered (kept alive) as the drag target and true is returned. */
+bool tl_render_pick(lua_State *L, double px, double py, double max_px, tt_particle *out);
+/* The drag target's world (NULL when destroyed or none), and in *pos the
+ * pixel (px, py) in its world coordinates, through the camera it was last drawn with. */
+tt_world *tl_render_drag_world(lua_State *L, double px, double py, tt_vec2 *pos);
+/* Forgets the drag target. */
+void tl_render_drag_end(lua_State *L);
+
+#endif

@@ -1,0 +1,59 @@
+/* tether — the runner's pieces shared between runner.c (options, the Lua
+ * session, the plain fixed-step loop) and runner_view.c (headless PNG frames
+ * and the SDL2 window). */
+#ifndef TETHER_RUNNER_H
+#define TETHER_RUNNER_H
+
+#include <signal.h>
+#include <stdbool.h>
+
+#include <lua.h>
+
+#define PROGNAME "tether"
+
+typedef struct options {
+    bool headless;
+    long steps;       /* callback steps, default 600 */
+    double dt;        /* s, default 1/60 */
+    int script;       /* index of the script in argv, 0 if none */
+    long frames;      /* frames to render (0: not given) */
+    long every;       /* steps per frame, default 1 */
+    const char *out;  /* folder for PNG frames (headless) */
+    int width, height;/* frame / window size, default 800 x 600 */
+    const char *screenshot; /* window: PNG of the last frame */
+    const char *events;     /* window: scripted input, "FRAME key NAME | down X Y | move X Y | up X Y | quit" */
+} options;
+
+/* One run of the script: its Lua state and where things are on its stack. */
+typedef struct session {
+    lua_State *L;
+    int module;       /* stack index of the tether table */
+    int argtable;     /* stack index of arg */
+    int nscriptargs;
+    int argc;
+    char **argv;
+} session;
+
+extern volatile sig_atomic_t g_interrupted;
+extern bool g_quit;
+
+/* Makes the state, loads the module, runs the script; false (message
+ * printed, nothing left open) on failure. */
+bool tr_session_open(session *s, const options *o, int argc, char **argv);
+void tr_session_close(session *s);
+/* Calls tether.load(args) if defined; false on error (printed). */
+bool tr_call_load(session *s);
+/* Calls the function below its nargs arguments; on error prints the traceback. */
+bool tr_docall(lua_State *L, int nargs, int nres);
+/* Pushes tether.<name> if it is a function; nil → false; anything else → *bad. */
+bool tr_get_callback(lua_State *L, int module, const char *name, bool *bad);
+double tr_now_s(void);
+double tr_median(double *v, size_t n);
+
+/* runner_view.c */
+/* Adds the runner-only drawing functions (tether.gfx.load_image) to the module at stack index module. */
+void tr_register_gfx(lua_State *L, int module);
+int tr_run_frames(session *s, const options *o);
+int tr_run_window(session *s, const options *o);
+
+#endif

@@ -1,0 +1,144 @@
+-- tests/lua/test_collide.lua — collisions from Lua: shapes, settings,
+-- bounce and rest, friction, bullets, queries and contact events (with the
+-- world changed while reading them).
+package.path = "tests/lua/?.lua;" .. package.path
+local T = require "harness"
+local tether = require "tether"
+
+T.test("collisions are off until asked for", function()
+  local w = tether.world()
+  local c = w:collision()
+  T.eq(c.particles, false, "particles off")
+  local a = w:particle(0, 0, { radius = 1 }); local b = w:particle(0.5, 0, { radius = 1 })
+  w:set_gravity(0, 0)
+  w:step(1 / 60)
+  T.near(select(1, w:position(b)) - select(1, w:position(a)), 0.5, 0, "no push without collisions")
+  w:set_collision()
+  T.eq(w:collision().particles, true, "particles on")
+  w:step(1 / 60)
+  T.near(select(1, w:position(b)) - select(1, w:position(a)), 2, 1e-9, "pushed apart to the radii sum")
+end)
+
+T.test("every shape kind is made, typed and bounded", function()
+  local w = tether.world()
+  local s = {
+    segment = w:segment(0, 0, 2, 0),
+    chain = w:chain({ 0, 0, 1, 1, 2, 0 }, { loop = true }),
+    aabb = w:aabb(0, 0, 1, 2),
+    box = w:box(5, 5, 1, 0.5, { angle = math.pi / 2 }),
+    circle = w:circle(3, 3, 0.5, { restitution = 0.5, friction = 0.1 }),
+    capsule = w:capsule(0, 0, 1, 0, 0.25),
+    polygon = w:polygon({ 0, 0, 1, 0, 0, 1 }, { sensor = true }),
+  }
+  T.eq(w:shape_count(), 7, "count")
+  for kind, h in pairs(s) do T.eq(w:shape_type(h), kind, "type of " .. kind) end
+  local x1, y1, x2, y2 = w:shape_aabb(s.box)
+  T.near(x1, 4.5, 1e-12, "box x1"); T.near(y2, 6, 1e-12, "box y2")
+  w:set_shape_transform(s.circle, 10, 10)
+  local x, y = w:shape_transform(s.circle)
+  T.eq(x, 10, "moved x"); T.eq(y, 10, "moved y")
+  w:remove_shape(s.segment)
+  T.eq(w:shape_is_valid(s.segment), false, "stale after removal")
+  T.checkerror("bad argument #2 to 'shape_type' (stale shape handle)", w.shape_type, w, s.segment)
+  T.checkerror("polygon must be convex", w.polygon, w, { 0, 0, 2, 0, 1, 0.5, 1, 2 })
+  T.checkerror("circle: unknown option 'radius'", w.circle, w, 0, 0, 1, { radius = 2 })
+  T.checkerror("option 'angle' is not valid", w.circle, w, 0, 0, 1, { angle = 2 })
+  T.checkerror("bad argument #2 to 'chain' (an even number of coordinates expected, got 3)", w.chain, w, { 0, 0, 1 })
+  T.checkerror("invalid event 'start'", w.set_collision, w, { events = { "start" } })
+  T.checkerror("invalid broadphase 'tree'", w.set_collision, w, { broadphase = "tree" })
+end)
+
+T.test("a dropped ball rebounds to e^2 of its height", function()
+  local w = tether.world { substeps = 8 }
+  w:aabb(-10, -1, 10, 0, { restitution = 0.8 })
+  local p = w:particle(0, 1.1, { radius = 0.1 })
+  w:set_material(p, 0.8, 0.6)
+  local top, up = 0, false
+  for _ = 1, 150 do
+    w:step(1 / 60)
+    local _, y = w:position(p)
+    local _, vy = w:velocity(p)
+    if vy > 0 then up = true end
+    if up and vy < 0 and y < 0.12 then break end
+    if up then top = math.max(top, y - 0.1) end
+  end
+  T.near(top / 0.64, 1, 0.02, "rebound / e^2")
+end)
+
+T.test("slope: sticks when tan < mu, slides when greater", function()
+  for _, case in ipairs { { 0.4, false }, { 0.6, true } } do
+    local w = tether.world()
+    local th = math.atan(case[1])
+    w:segment(-50 * math.cos(th), -50 * math.sin(th), 50 * math.cos(th), 50 * math.sin(th), { friction = 0.5 })
+    local p = w:particle(-0.5 * math.sin(th), 0.5 * math.cos(th), { radius = 0.5 })
+    w:set_material(p, 0, 0.5)
+    w:step(1 / 60, 60)
+    local x = w:position(p)
+    T.eq(math.abs(x + 0.5 * math.sin(th)) > 1e-6, case[2], "slides for tan = " .. case[1])
+  end
+end)
+
+T.test("a bullet does not tunnel, a plain particle does", function()
+  for _, bullet in ipairs { true, false } do
+    local w = tether.world { gravity = { 0, 0 } }
+    w:box(0.0025, 0, 0.0025, 10)
+    local p = w:particle(-20, 0, { radius = 0.05, vx = 3000 }) -- 1000 radii per step
+    w:set_bullet(p, bullet)
+    T.eq(w:bullet(p), bullet, "flag")
+    w:step(1 / 60, 5)
+    local x = w:position(p)
+    T.eq(x < 0, bullet, "stays on its side when a bullet")
+  end
+end)
+
+T.test("queries find particles and shapes", function()
+  local w = tether.world()
+  local s = w:aabb(0, 0, 1, 1)
+  local p = w:particle(5, 0.5, { radius = 0.5 })
+  local hit = w:raycast(-1, 0.5, 10, 0.5)
+  T.eq(hit.shape, s, "ray hits the box first"); T.near(hit.x, 0, 1e-12, "at x = 0"); T.eq(hit.nx, -1, "normal")
+  hit = w:raycast(2, 0.5, 10, 0.5)
+  T.eq(hit.particle, p, "then the particle"); T.near(hit.x, 4.5, 1e-12, "at its surface")
+  T.eq(w:raycast(-1, 5, 10, 5), nil, "a miss is nil")
+  local ps, ss = w:query_point(0.5, 0.5)
+  T.eq(#ps, 0, "no particle there"); T.eq(ss[1], s, "the box")
+  ps, ss = w:query_aabb(0.5, 0, 4.6, 1)
+  T.eq(ps[1], p, "particle in the box query"); T.eq(ss[1], s, "shape in the box query")
+end)
+
+T.test("contact events arrive after the step; removing while reading is safe", function()
+  local w = tether.world()
+  w:set_collision { events = { "begin", "persist", "end" } }
+  local ground = w:aabb(-20, -1, 20, 0)
+  for i = 0, 99 do w:particle(-10 + (i % 20), 1 + (i // 20), { radius = 0.4 }) end
+  local begins, removed, moved, stale = 0, 0, 0, 0
+  for _ = 1, 120 do
+    w:step(1 / 60)
+    for i, c in ipairs(w:contacts()) do
+      if not w:is_valid(c.a) then stale = stale + 1
+      elseif c.kind == "begin" then
+        begins = begins + 1
+        if i % 2 == 0 then w:remove(c.a); removed = removed + 1
+        elseif c.b and w:is_valid(c.b) then w:set_position(c.b, 0, 30, "reset"); moved = moved + 1 end
+        if c.shape then T.eq(c.shape, ground, "the ground"); T.near(c.ny, 1, 1e-9, "normal up") end
+      end
+    end
+  end
+  T.ok(begins > 50 and removed > 20 and moved > 5, ("begins %d removed %d moved %d"):format(begins, removed, moved))
+  T.ok(stale > 0, "stale handles were seen and reported as such")
+  T.eq(w:stats().diverged, 0, "nothing ran away")
+end)
+
+T.test("deterministic: same script, same hash", function()
+  local function run()
+    local w = tether.world()
+    w:set_collision { restitution = 0.2 }
+    w:aabb(-10, -1, 10, 0)
+    for i = 0, 199 do w:particle(-8 + (i % 17) * 0.9, 1 + (i // 17) * 0.9, { radius = 0.2 + 0.1 * (i % 3) }) end
+    w:step(1 / 60, 120)
+    return w:hash()
+  end
+  T.eq(run(), run(), "hash")
+end)
+
+T.done()

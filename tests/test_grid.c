@@ -1,0 +1,168 @@
+/* The particle broadphase: grid and brute force give the same pair set on
+ * random scenes (varied radii, far outside the grid, on cell edges,
+ * coincident centres, layers and exclusions); no per-step malloc after
+ * warm-up; a world without collisions has no collision state at all. */
+#include "test.h"
+#include "collide_internal.h"
+
+#include <stdlib.h>
+
+static uint64_t rng_state;
+static double rnd(void) /* xorshift64*, deterministic */
+{
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return (double)((rng_state * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* The pair set as sorted (min, max) keys. */
+static uint64_t *pair_set(const tt__collide *c)
+{
+    uint64_t *k = malloc((c->npairs + 1) * sizeof *k);
+    for (uint32_t i = 0; i < c->npairs; i++) {
+        uint32_t a = c->pairs[i].a, b = c->pairs[i].b;
+        k[i] = a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
+    }
+    qsort(k, c->npairs, sizeof *k, cmp_u64);
+    return k;
+}
+
+static tt_world *random_scene(uint64_t seed, int n, tt_particle *ps)
+{
+    rng_state = seed * 0x9E3779B97F4A7C15ull + 1;
+    tt_world *w = tt_world_create(NULL);
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_world_set_collision(w, &cs);
+    for (int i = 0; i < n; i++) {
+        tt_particle_def pd = tt_particle_def_default();
+        double kind = rnd();
+        pd.radius = kind < 0.05 ? 0.0 : 0.05 + rnd() * (kind < 0.5 ? 0.3 : 1.2);
+        pd.position = (tt_vec2){rnd() * 24 - 12, rnd() * 24 - 12};
+        if (kind > 0.97) pd.position = (tt_vec2){(rnd() - 0.5) * 2e6, (rnd() - 0.5) * 2e6}; /* far outside */
+        if (kind > 0.9 && kind <= 0.93) pd.position = (tt_vec2){floor(pd.position.x), floor(pd.position.y)}; /* grid lines */
+        if (i > 0 && kind > 0.85 && kind <= 0.9) { /* coincident with an earlier one */
+            tt_particle_get_position(w, ps[(int)(rnd() * i)], &pd.position);
+        }
+        if (kind > 0.8 && kind <= 0.82) pd.pinned = true;
+        pd.category = (uint16_t)(rnd() < 0.1 ? 2 : 1);
+        pd.mask = (uint16_t)(rnd() < 0.1 ? 1 : 0xFFFF);
+        ps[i] = tt_particle_create(w, &pd);
+    }
+    for (int k = 0; k < n / 50; k++) { /* a few switched-off pairs */
+        int a = (int)(rnd() * n), b = (int)(rnd() * n);
+        if (a != b) tt_world_set_pair_collision(w, ps[a], ps[b], false);
+    }
+    return w;
+}
+
+TEST(grid_and_brute_force_give_identical_pair_sets_on_random_scenes)
+{
+    enum { N = 1000 };
+    tt_particle *ps = malloc(N * sizeof *ps);
+    uint64_t total = 0;
+    for (uint64_t seed = 1; seed <= 24; seed++) {
+        tt_world *w = random_scene(seed, N, ps);
+        if (seed % 3 == 0) tt_particle_destroy(w, ps[7]); /* a hole in the slots */
+        tt__collide *c = tt__collide_peek(w);
+        ENSURE(c);
+        c->npairs = 0;
+        ENSURE(tt__grid_build(w, &c->grid, seed % 2 ? 0.0 : 3.0) && tt__grid_pairs(w, c));
+        ENSURE(c->grid.nout > 0);                                /* some are outside the grid */
+        ENSURE(c->grid.ncell <= 4 * c->grid.n + 1024);           /* and the grid stayed small */
+        uint32_t ng = c->npairs;
+        uint64_t *g = pair_set(c);
+        c->npairs = 0;
+        ENSURE(tt__brute_pairs(w, c));
+        uint64_t *b = pair_set(c);
+        ENSURE(ng == c->npairs);
+        for (uint32_t i = 0; i < ng; i++) ENSURE(g[i] == b[i]);
+        for (uint32_t i = 1; i < ng; i++) ENSURE(g[i] != g[i - 1]); /* no pair twice */
+        total += ng;
+        free(g);
+        free(b);
+        tt_world_destroy(w);
+    }
+    ENSURE(total > 24 * 1000); /* the scenes are not trivially empty */
+    free(ps);
+}
+
+TEST(grid_arrays_are_reused_step_after_step)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_world_set_collision(w, &cs);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    sd.a = (tt_vec2){-20, -1};
+    sd.b = (tt_vec2){20, 0};
+    tt_shape_create(w, &sd);
+    for (int i = 0; i < 400; i++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = 0.5;
+        pd.position = (tt_vec2){-10 + (i % 20), 0.5 + (i / 20)};
+        tt_particle_create(w, &pd);
+    }
+    for (int s = 0; s < 30; s++) tt_world_step(w, 1.0 / 60);
+    tt__collide *c = tt__collide_peek(w);
+    void *p0 = c->grid.idx, *p1 = c->grid.start, *p2 = c->pairs, *p3 = c->sc;
+    uint32_t caps[4] = {c->grid.cap_n, c->grid.cap_cells, c->paircap, c->sccap};
+    for (int s = 0; s < 60; s++) tt_world_step(w, 1.0 / 60);
+    ENSURE(p0 == c->grid.idx && p1 == c->grid.start && p2 == c->pairs && p3 == c->sc);
+    ENSURE(caps[0] == c->grid.cap_n && caps[1] == c->grid.cap_cells && caps[2] == c->paircap && caps[3] == c->sccap);
+    tt_collision_stats st;
+    ENSURE_OK(tt_world_get_collision_stats(w, &st));
+    ENSURE(st.static_rebuilds == 1); /* the static index was built once */
+    ENSURE(st.broadphase_bytes_per_particle > 0 && st.broadphase_bytes_per_particle < 200);
+    tt_world_destroy(w);
+}
+
+TEST(a_world_without_collisions_has_no_collision_state)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 1;
+    tt_particle a = tt_particle_create(w, &pd);
+    tt_particle b = tt_particle_create(w, &pd); /* same place: would be pushed apart if collisions were on */
+    tt_world_step(w, 1.0 / 60);
+    ENSURE(tt__collide_peek(w) == NULL);
+    ENSURE(w->group_count == 0);
+    tt_vec2 xa, xb;
+    tt_particle_get_position(w, a, &xa);
+    tt_particle_get_position(w, b, &xb);
+    ENSURE(xa.x == xb.x && xa.y == xb.y);
+    tt_collision_settings s;
+    ENSURE_OK(tt_world_get_collision(w, &s));
+    ENSURE(!s.particles);
+    tt_world_destroy(w);
+}
+
+TEST(far_away_particles_still_collide)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_world_set_gravity(w, (tt_vec2){0, 0});
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_world_set_collision(w, &cs);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.5;
+    for (int i = 0; i < 200; i++) { /* a crowd near the origin */
+        pd.position = (tt_vec2){(i % 20) * 1.5, (i / 20) * 1.5};
+        tt_particle_create(w, &pd);
+    }
+    pd.position = (tt_vec2){1e9, -1e9};
+    tt_particle a = tt_particle_create(w, &pd);
+    pd.position = (tt_vec2){1e9 + 0.5, -1e9};
+    tt_particle b = tt_particle_create(w, &pd);
+    tt_world_step(w, 1.0 / 60);
+    tt_vec2 xa, xb;
+    tt_particle_get_position(w, a, &xa);
+    tt_particle_get_position(w, b, &xb);
+    ENSURE_NEAR(xb.x - xa.x, 1.0, 1e-6);
+    tt_world_destroy(w);
+}
