@@ -53,28 +53,6 @@ bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b)
 
 /* --- velocity helpers (h: the substep) ---------------------------------- */
 
-static inline void vel(const tt_world *w, uint32_t i, double h, double *vx, double *vy)
-{
-    if (w->integrator == TT_VERLET) {
-        *vx = (w->px[i] - w->qx[i]) / h;
-        *vy = (w->py[i] - w->qy[i]) / h;
-    } else {
-        *vx = w->qx[i];
-        *vy = w->qy[i];
-    }
-}
-
-static inline void add_vel(tt_world *w, uint32_t i, double h, double dvx, double dvy)
-{
-    if (w->integrator == TT_VERLET) {
-        w->qx[i] -= dvx * h;
-        w->qy[i] -= dvy * h;
-    } else {
-        w->qx[i] += dvx;
-        w->qy[i] += dvy;
-    }
-}
-
 /* Static friction: undo the tangential part t (relative to n) of the
  * particle's displacement in this substep, and its tangential velocity vt.
  * Verlet: moving x does both. Others: x moves back by what it slid. */
@@ -340,9 +318,8 @@ static void end(tt_world *w, void *self, double h)
         double ia = inv[a], ib = inv[b], ws = ia + ib;
         if (ws == 0.0) continue;
         double wa = ia / ws, wb = ib / ws;
-        double vax, vay, vbx, vby;
-        vel(w, a, h, &vax, &vay);
-        vel(w, b, h, &vbx, &vby);
+        tt_vec2 va = tt__velocity(w, a), vb = tt__velocity(w, b);
+        double vax = va.x, vay = va.y, vbx = vb.x, vby = vb.y;
         double ea = mat(c, a, 0), eb = mat(c, b, 0), e = ea > eb ? ea : eb;
         double mus = sqrt(mat(c, a, 1) * mat(c, b, 1)), muk = sqrt(mat(c, a, 2) * mat(c, b, 2));
         double dvx, dvy, sx, sy, dvn;
@@ -352,8 +329,8 @@ static void end(tt_world *w, void *self, double h)
             unslide(w, c, a, h, p->nx, p->ny, wa, sx, sy);
             unslide(w, c, b, h, p->nx, p->ny, wb, -sx, -sy);
         }
-        add_vel(w, a, h, dvx * wa, dvy * wa);
-        add_vel(w, b, h, -dvx * wb, -dvy * wb);
+        tt__add_velocity(w, a, dvx * wa, dvy * wa);
+        tt__add_velocity(w, b, -dvx * wb, -dvy * wb);
         if (events) record(w, c, pair_key(a, b), a < b ? a : b, a < b ? b : a, UINT32_MAX, false,
                            a < b ? p->nx : -p->nx, a < b ? p->ny : -p->ny, dvn / ws);
     }
@@ -375,7 +352,9 @@ static void end(tt_world *w, void *self, double h)
                 w->qy[a] = vy;
             }
         } else {
-            vel(w, a, h, &vx, &vy);
+            tt_vec2 v = tt__velocity(w, a);
+            vx = v.x;
+            vy = v.y;
         }
         double ea = mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
         double mus = sqrt(mat(c, a, 1) * sd->friction_static), muk = sqrt(mat(c, a, 2) * sd->friction_kinetic);
@@ -387,7 +366,7 @@ static void end(tt_world *w, void *self, double h)
         } else if (sx != 0.0 || sy != 0.0) {
             unslide(w, c, a, h, s->nx, s->ny, 1.0, sx, sy);
         }
-        add_vel(w, a, h, dvx, dvy);
+        tt__add_velocity(w, a, dvx, dvy);
         if (events) {
             uint32_t shape = c->prims[s->prim].shape;
             record(w, c, shape_key(shape, a), a, UINT32_MAX, shape, false, s->nx, s->ny, dvn / inv[a]);

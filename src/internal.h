@@ -130,6 +130,8 @@ tt_result tt__particle_check(const tt_world *w, tt_particle p, const char *fn);
 void tt__mark_fresh(tt_world *w, uint32_t i);
 tt_vec2 tt__velocity(const tt_world *w, uint32_t i);
 void tt__set_velocity(tt_world *w, uint32_t i, tt_vec2 v);
+/* Velocity change Δv, as an impulse makes it (Verlet: x_old moves by Δv·dt_prev; no fresh start). */
+void tt__add_velocity(tt_world *w, uint32_t i, double dvx, double dvy);
 double *tt__scratch(tt_world *w, int which);
 
 /* Springs. */

@@ -350,7 +350,7 @@ tt_result tt_particle_apply_force(tt_world *w, tt_particle p, tt_vec2 f)
     return TT_OK;
 }
 
-static void add_velocity(tt_world *w, uint32_t i, double dvx, double dvy)
+void tt__add_velocity(tt_world *w, uint32_t i, double dvx, double dvy)
 {
     if (w->integrator == TT_VERLET) {
         w->qx[i] -= dvx * w->dt_prev;
@@ -365,7 +365,7 @@ tt_result tt_particle_apply_impulse(tt_world *w, tt_particle p, tt_vec2 j)
 {
     CHECK("tt_particle_apply_impulse");
     if (!tt__vec_ok(j)) return tt__fail(w, TT_EINVAL, "tt_particle_apply_impulse: impulse must be finite, |j| <= %g", TT_MAX_VALUE);
-    add_velocity(w, i, j.x * w->inv_mass[i], j.y * w->inv_mass[i]);
+    tt__add_velocity(w, i, j.x * w->inv_mass[i], j.y * w->inv_mass[i]);
     return TT_OK;
 }
 
@@ -381,7 +381,7 @@ tt_result tt_world_explode(tt_world *w, tt_vec2 c, double radius, double impulse
         double d = sqrt(dx * dx + dy * dy);
         if (!(d > 0.0 && d < radius)) continue;
         double s = impulse * (1.0 - d / radius) * w->inv_mass[i] / d;
-        add_velocity(w, i, s * dx, s * dy);
+        tt__add_velocity(w, i, s * dx, s * dy);
     }
     return TT_OK;
 }
