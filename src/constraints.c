@@ -534,6 +534,19 @@ tt_constraint tt_bounds_create(tt_world *w, const tt_bounds_def *d)
     return h;
 }
 
+/* A constraint on three particles (angle, collinear), made after its def was checked. */
+static tt__gcon *gen_new_triple(tt_world *w, uint8_t kind, const tt_particle abc[3], double k, double alpha,
+                                tt_constraint *h, const char *fn)
+{
+    tt__gcon *c = gen_new(w, kind, h, fn);
+    if (!c) return NULL;
+    c->n = 3;
+    for (int i = 0; i < 3; i++) c->p[i] = abc[i].index;
+    c->k = k;
+    c->alpha = alpha;
+    return c;
+}
+
 tt_constraint tt_angle_create(tt_world *w, const tt_angle_def *d)
 {
     const char *fn = "tt_angle_create";
@@ -547,14 +560,8 @@ tt_constraint tt_angle_create(tt_world *w, const tt_angle_def *d)
     }
     if (check_soft(w, d->stiffness, d->compliance, fn) != TT_OK) return NONE;
     tt_constraint h;
-    tt__gcon *c = gen_new(w, TT_CONSTRAINT_ANGLE, &h, fn);
+    tt__gcon *c = gen_new_triple(w, TT_CONSTRAINT_ANGLE, abc, d->stiffness, d->compliance, &h, fn);
     if (!c) return NONE;
-    c->n = 3;
-    c->p[0] = d->a.index;
-    c->p[1] = d->b.index;
-    c->p[2] = d->c.index;
-    c->k = d->stiffness;
-    c->alpha = d->compliance;
     double th = angle_at(w, c->p[0], c->p[1], c->p[2]);
     c->v[0] = d->use_current ? th : d->min;
     c->v[1] = d->use_current ? th : d->max;
@@ -613,14 +620,8 @@ tt_constraint tt_collinear_create(tt_world *w, const tt_collinear_def *d)
     if (check_distinct(w, abc, 3, fn) != TT_OK) return NONE;
     if (check_soft(w, d->stiffness, d->compliance, fn) != TT_OK) return NONE;
     tt_constraint h;
-    tt__gcon *c = gen_new(w, TT_CONSTRAINT_COLLINEAR, &h, fn);
+    tt__gcon *c = gen_new_triple(w, TT_CONSTRAINT_COLLINEAR, abc, d->stiffness, d->compliance, &h, fn);
     if (!c) return NONE;
-    c->n = 3;
-    c->p[0] = d->a.index;
-    c->p[1] = d->b.index;
-    c->p[2] = d->c.index;
-    c->k = d->stiffness;
-    c->alpha = d->compliance;
     gen_refs(tt__cgroup_get(w, false), c, +1);
     return h;
 }
