@@ -549,28 +549,33 @@ static double centres(const tt_world *w, const tt__composite *k, double c[2], do
     return m;
 }
 
-tt_result tt_composite_get_center(const tt_world *w, tt_composite c, tt_vec2 *out)
+/* The checks both readers below share, then the centres of mass now (cc) and at rest (r0). */
+static tt_result comp_frame(const tt_world *w, tt_composite c, const char *fn, const void *out,
+                            const tt__composite **k, double cc[2], double r0[2])
 {
-    const char *fn = "tt_composite_get_center";
-    const tt__composite *k;
-    tt_result r = comp_check(w, c, fn, &k);
+    tt_result r = comp_check(w, c, fn, k);
     if (r != TT_OK) return r;
     if (!out) return tt__fail(w, TT_EINVAL, "%s: out is NULL", fn);
+    if (centres(w, *k, cc, r0) == 0) return tt__fail(w, TT_ESTATE, "%s: the composite has no particles left", fn);
+    return TT_OK;
+}
+
+tt_result tt_composite_get_center(const tt_world *w, tt_composite c, tt_vec2 *out)
+{
+    const tt__composite *k;
     double cc[2], r0[2];
-    if (centres(w, k, cc, r0) == 0) return tt__fail(w, TT_ESTATE, "%s: the composite has no particles left", fn);
+    tt_result r = comp_frame(w, c, "tt_composite_get_center", out, &k, cc, r0);
+    if (r != TT_OK) return r;
     *out = (tt_vec2){cc[0], cc[1]};
     return TT_OK;
 }
 
 tt_result tt_composite_get_angle(const tt_world *w, tt_composite c, double *out)
 {
-    const char *fn = "tt_composite_get_angle";
     const tt__composite *k;
-    tt_result r = comp_check(w, c, fn, &k);
-    if (r != TT_OK) return r;
-    if (!out) return tt__fail(w, TT_EINVAL, "%s: out is NULL", fn);
     double cc[2], r0[2];
-    if (centres(w, k, cc, r0) == 0) return tt__fail(w, TT_ESTATE, "%s: the composite has no particles left", fn);
+    tt_result r = comp_frame(w, c, "tt_composite_get_angle", out, &k, cc, r0);
+    if (r != TT_OK) return r;
     double sc = 0, ss = 0; /* Σ m (q·p), Σ m (q×p): q rest offset, p current offset */
     for (uint32_t i = 0; i < k->np; i++) {
         if (!tt_particle_is_valid(w, k->parts[i])) continue;
