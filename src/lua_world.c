@@ -139,8 +139,8 @@ int tl_world_new(lua_State *L)
     def.wind = tl_optfield_vec2(L, 1, "wind", &TL_R_COORD, def.wind);
     def.dt_hint = tl_optfield_number(L, 1, "dt_hint", &TL_R_DT, def.dt_hint);
     def.capacity = (uint32_t)tl_optfield_integer(L, 1, "capacity", 0, TL_MAX_CAPACITY, def.capacity);
-    def.substeps = (uint32_t)tl_optfield_integer(L, 1, "substeps", 1, 1000, def.substeps);
-    def.iterations = (uint32_t)tl_optfield_integer(L, 1, "iterations", 1, 10000, def.iterations);
+    def.substeps = (uint32_t)tl_optfield_integer(L, 1, "substeps", 1, TT_MAX_SUBSTEPS, def.substeps);
+    def.iterations = (uint32_t)tl_optfield_integer(L, 1, "iterations", 1, TT_MAX_ITERATIONS, def.iterations);
     def.tolerance = tl_optfield_number(L, 1, "tolerance", &TL_R_NONNEG, def.tolerance);
     def.order = (tt_solver_order)tl_optfield_option(L, 1, "solver", "solver", solver_names, (int)def.order);
 
@@ -624,7 +624,7 @@ static int w_substeps(lua_State *L)
 static int w_set_substeps(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    tl_check_result(L, w, tt_world_set_substeps(w, (uint32_t)tl_checkinteger(L, 2, 1, 1000)));
+    tl_check_result(L, w, tt_world_set_substeps(w, (uint32_t)tl_checkinteger(L, 2, 1, TT_MAX_SUBSTEPS)));
     return 0;
 }
 
@@ -637,7 +637,7 @@ static int w_iterations(lua_State *L)
 static int w_set_iterations(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    tl_check_result(L, w, tt_world_set_iterations(w, (uint32_t)tl_checkinteger(L, 2, 1, 10000)));
+    tl_check_result(L, w, tt_world_set_iterations(w, (uint32_t)tl_checkinteger(L, 2, 1, TT_MAX_ITERATIONS)));
     return 0;
 }
 

@@ -100,8 +100,8 @@ tt_world *tt_world_create(const tt_world_def *def)
     if ((unsigned)d.integrator >= TT_INTEGRATOR_COUNT) { tt__fail(NULL, TT_EINVAL, "%s: unknown integrator %d", fn, (int)d.integrator); return NULL; }
     if (check_dt(NULL, d.dt_hint, fn) != TT_OK) return NULL;
     if (d.max_particles == 0 || d.max_particles > (1u << 30)) { tt__fail(NULL, TT_EINVAL, "%s: max_particles must be in [1, 2^30]", fn); return NULL; }
-    if (d.substeps < 1 || d.substeps > 1000) { tt__fail(NULL, TT_EINVAL, "%s: substeps must be in [1, 1000], got %u", fn, d.substeps); return NULL; }
-    if (d.iterations < 1 || d.iterations > 10000) { tt__fail(NULL, TT_EINVAL, "%s: iterations must be in [1, 10000], got %u", fn, d.iterations); return NULL; }
+    if (d.substeps < 1 || d.substeps > TT_MAX_SUBSTEPS) { tt__fail(NULL, TT_EINVAL, "%s: substeps must be in [1, %d], got %u", fn, TT_MAX_SUBSTEPS, d.substeps); return NULL; }
+    if (d.iterations < 1 || d.iterations > TT_MAX_ITERATIONS) { tt__fail(NULL, TT_EINVAL, "%s: iterations must be in [1, %d], got %u", fn, TT_MAX_ITERATIONS, d.iterations); return NULL; }
     if (!tt__in_range(d.tolerance, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: tolerance must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.tolerance); return NULL; }
     if (d.order != TT_GAUSS_SEIDEL && d.order != TT_JACOBI) { tt__fail(NULL, TT_EINVAL, "%s: unknown solver order %d", fn, (int)d.order); return NULL; }
     if (d.capacity > d.max_particles) { tt__fail(NULL, TT_EINVAL, "%s: capacity %u is over max_particles %u", fn, d.capacity, d.max_particles); return NULL; }
@@ -225,8 +225,8 @@ tt_integrator tt_world_get_integrator(const tt_world *w) { return w ? w->integra
 tt_result tt_world_set_substeps(tt_world *w, uint32_t substeps)
 {
     TT_CHECK_WORLD(w, "tt_world_set_substeps");
-    if (substeps < 1 || substeps > 1000)
-        return tt__fail(w, TT_EINVAL, "tt_world_set_substeps: substeps must be in [1, 1000], got %u", substeps);
+    if (substeps < 1 || substeps > TT_MAX_SUBSTEPS)
+        return tt__fail(w, TT_EINVAL, "tt_world_set_substeps: substeps must be in [1, %d], got %u", TT_MAX_SUBSTEPS, substeps);
     w->substeps = substeps;
     return TT_OK;
 }
@@ -236,8 +236,8 @@ uint32_t tt_world_get_substeps(const tt_world *w) { return w ? w->substeps : 1; 
 tt_result tt_world_set_iterations(tt_world *w, uint32_t iterations)
 {
     TT_CHECK_WORLD(w, "tt_world_set_iterations");
-    if (iterations < 1 || iterations > 10000)
-        return tt__fail(w, TT_EINVAL, "tt_world_set_iterations: iterations must be in [1, 10000], got %u", iterations);
+    if (iterations < 1 || iterations > TT_MAX_ITERATIONS)
+        return tt__fail(w, TT_EINVAL, "tt_world_set_iterations: iterations must be in [1, %d], got %u", TT_MAX_ITERATIONS, iterations);
     w->iterations = iterations;
     return TT_OK;
 }

@@ -24,6 +24,8 @@
 #define TT_MIN_MASS 1e-9        ///< smallest particle mass, kg
 #define TT_MAX_MASS 1e9         ///< largest particle mass, kg
 #define TT_MAX_DT 10.0          ///< largest step, s
+#define TT_MAX_SUBSTEPS 1000    ///< most substeps per step
+#define TT_MAX_ITERATIONS 10000 ///< most relaxation sweeps per substep
 #define TT_DIVERGED 1e15        ///< a particle whose |x| or |v| passes this in a step is stopped (stats.diverged)
 
 #ifdef __cplusplus
