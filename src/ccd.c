@@ -53,6 +53,6 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
         w->py[i] = y0 + dy * s.best;
         c->ccd_prim[i] = s.prim;
         if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) continue;
-        c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)s.prim, s.nx, s.ny, 0.0, 1};
+        c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)s.prim, s.nx, s.ny, 0.0, 0.0, 0.0, 1};
     }
 }

@@ -62,7 +62,8 @@ typedef struct tt__pair { /* 24 bytes: hundreds of thousands are written every s
 
 typedef struct tt__scontact {
     uint32_t a, prim;
-    double nx, ny, lambda;
+    double nx, ny, lambda; /* normal, normal correction accumulated this substep (m) */
+    double lambda_t, mu;  /* friction correction along (−ny, nx) this substep (m), |lambda_t| ≤ mu·lambda; μs */
     uint32_t ccd;         /* found by the swept test: velocity restarts from the pre-solve one */
 } tt__scontact;
 

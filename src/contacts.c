@@ -51,11 +51,70 @@ bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b)
     return excluded(c, pair_key(a, b));
 }
 
-/* --- velocity helpers (h: the substep) ---------------------------------- */
+/* --- friction ------------------------------------------------------------ */
 
-/* Static friction: undo the tangential part t (relative to n) of the
- * particle's displacement in this substep, and its tangential velocity vt.
- * Verlet: moving x does both. Others: x moves back by what it slid. */
+static inline double mat(const tt__collide *c, uint32_t i, int k)
+{
+    if (c->mat && i < c->matcap && c->mat[3 * (size_t)i + k] >= 0.0f) return c->mat[3 * (size_t)i + k];
+    return k == 0 ? c->set.restitution : k == 1 ? c->set.friction_static : c->set.friction_kinetic;
+}
+
+/* Friction against shapes. With Verlet and symplectic Euler, whose
+ * positions move by the velocity they end the substep with, Coulomb
+ * friction is a position constraint solved in the sweeps beside the normal
+ * projection (rub): the tangential slide since the substep began is undone
+ * as far as the friction correction accumulated this substep (lt) stays
+ * within μs·ln, ln the normal correction accumulated. Bounding accumulated
+ * corrections, not one sweep's, lets the load carried through constraints
+ * (the upper rows of a lattice block on a slope) be held by the contact
+ * particles. The sweeps clamp at μs only: a contact dropping to μk mid-
+ * sweep would pass its load to its neighbours and start them slipping in
+ * cascade. A contact still at the bound and slipping when the sweeps end
+ * slides: end gives back the (μs − μk)·ln it was held by too much.
+ * Euler, leapfrog and RK4 move positions by a velocity that lags, so ln
+ * under-measures the load; their friction stays in the velocity pass
+ * (respond) as an impulse bounded by μ·Δvn, as does friction between two
+ * particles: grains that cannot roll would otherwise stand in columns. */
+static inline bool rub_in_sweeps(const tt_world *w)
+{
+    return w->integrator == TT_VERLET || w->integrator == TT_SYMPLECTIC_EULER;
+}
+
+/* slide: relative tangential displacement since the substep began; returns the correction. */
+static inline double rub(double slide, double ln, double mu, double *lt)
+{
+    double want = *lt - slide, lim = mu * ln;
+    want = want > lim ? lim : want < -lim ? -lim : want;
+    double d = want - *lt;
+    *lt = want;
+    return d;
+}
+
+/* The correction that turns the static bound into the kinetic one where
+ * the contact slides: at the bound (float λ: a margin) and still slipping
+ * after the sweeps (slide, the relative tangential displacement left, over
+ * SLIP of what the bound held: a contact at its bound on a body that others
+ * hold does not slip). Else 0. */
+#define SLIP 0.1
+static inline double unrub(double slide, double lt, double ln, double mus, double muk)
+{
+    return muk < mus && fabs(lt) >= 0.999 * mus * ln && fabs(slide) > SLIP * fabs(lt) ? lt * (muk / mus - 1.0) : 0.0;
+}
+
+/* Moves particle i by (dx, dy) after the sweeps, its velocity with it. */
+static inline void shift(tt_world *w, uint32_t i, double dx, double dy, double h)
+{
+    w->px[i] += dx;
+    w->py[i] += dy;
+    if (w->integrator != TT_VERLET) {
+        w->qx[i] += dx / h;
+        w->qy[i] += dy / h;
+    }
+}
+
+/* Velocity-pass static friction: undo the tangential part of the
+ * particle's displacement in this substep (share s of it) and its
+ * tangential velocity vt. Verlet: moving x does both. */
 static inline void unslide(tt_world *w, const tt__collide *c, uint32_t i, double h, double nx, double ny, double s,
                            double vtx, double vty)
 {
@@ -69,12 +128,6 @@ static inline void unslide(tt_world *w, const tt__collide *c, uint32_t i, double
     w->py[i] -= (dy - dn * ny) * s;
     w->qx[i] -= vtx * s;
     w->qy[i] -= vty * s;
-}
-
-static inline double mat(const tt__collide *c, uint32_t i, int k)
-{
-    if (c->mat && i < c->matcap && c->mat[3 * (size_t)i + k] >= 0.0f) return c->mat[3 * (size_t)i + k];
-    return k == 0 ? c->set.restitution : k == 1 ? c->set.friction_static : c->set.friction_kinetic;
 }
 
 /* --- events -------------------------------------------------------------- */
@@ -128,7 +181,7 @@ static void detect_visit(void *ctx, uint32_t k)
         d->ok = false;
         return;
     }
-    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0};
+    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0};
 }
 
 static void begin(tt_world *w, void *self, double h)
@@ -239,49 +292,62 @@ static double relax(tt_world *w, void *self, double h)
     double err = 0.0;
     double *px = w->px, *py = w->py;
     const double *inv = w->inv_mass;
+    /* where each particle began the substep: Verlet's x_old, or the copy begin made */
+    const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
+    const bool fr = rub_in_sweeps(w);
     for (uint32_t k = 0; k < c->npairs; k++) {
         tt__pair *p = &c->pairs[k];
         const uint32_t a = p->a, b = p->b;
-        double dx = px[a] - px[b], dy = py[a] - py[b], d2 = dx * dx + dy * dy, rs = p->rs;
-        if (d2 >= rs * rs) continue;
-        double d = sqrt(d2), nx, ny;
-        if (d > 0.0) {
-            nx = dx / d;
-            ny = dy / d;
-        } else { /* same centre: a direction from the pair's slots, fixed and deterministic */
-            double ang = (double)(a * 2654435761u ^ b * 40503u) * (6.283185307179586 / 4294967296.0);
-            nx = cos(ang);
-            ny = sin(ang);
-        }
-        double ia = inv[a], ib = inv[b], ws = ia + ib;
+        const double ia = inv[a], ib = inv[b], ws = ia + ib;
         if (ws == 0.0) continue;
-        double pen = rs - d, s = pen / ws;
-        tt__correct(w, a, nx * s * ia, ny * s * ia);
-        tt__correct(w, b, -nx * s * ib, -ny * s * ib);
-        p->nx = (float)nx;
-        p->ny = (float)ny;
-        p->lambda += (float)pen;
-        if (pen > err) err = pen;
+        double dx = px[a] - px[b], dy = py[a] - py[b], d2 = dx * dx + dy * dy, rs = p->rs;
+        if (d2 < rs * rs) {
+            double d = sqrt(d2), nx, ny;
+            if (d > 0.0) {
+                nx = dx / d;
+                ny = dy / d;
+            } else { /* same centre: a direction from the pair's slots, fixed and deterministic */
+                double ang = (double)(a * 2654435761u ^ b * 40503u) * (6.283185307179586 / 4294967296.0);
+                nx = cos(ang);
+                ny = sin(ang);
+            }
+            double pen = rs - d, s = pen / ws;
+            tt__correct(w, a, nx * s * ia, ny * s * ia);
+            tt__correct(w, b, -nx * s * ib, -ny * s * ib);
+            p->nx = (float)nx;
+            p->ny = (float)ny;
+            p->lambda += (float)pen;
+            if (pen > err) err = pen;
+        }
     }
     for (uint32_t k = 0; k < c->nsc; k++) {
         tt__scontact *s = &c->sc[k];
         const uint32_t a = s->a;
         tt__hit hit;
         tt__circle_vs_prim(c, &c->prims[s->prim], px[a], py[a], w->radius[a], &hit);
-        if (hit.depth <= 0.0) continue;
-        tt__correct(w, a, hit.nx * hit.depth, hit.ny * hit.depth);
-        s->nx = hit.nx;
-        s->ny = hit.ny;
-        s->lambda += hit.depth;
-        if (hit.depth > err) err = hit.depth;
+        if (hit.depth > 0.0) {
+            tt__correct(w, a, hit.nx * hit.depth, hit.ny * hit.depth);
+            s->nx = hit.nx;
+            s->ny = hit.ny;
+            if (s->lambda == 0.0) s->mu = sqrt(mat(c, a, 1) * c->shapes[c->prims[s->prim].shape].def.friction_static);
+            s->lambda += hit.depth;
+            if (hit.depth > err) err = hit.depth;
+        }
+        if (s->lambda == 0.0 || s->ccd || !fr) continue; /* a sweep's contact gets its friction with its restart, in end */
+        const double tx = -s->ny, ty = s->nx;
+        double f = rub((px[a] - sx[a]) * tx + (py[a] - sy[a]) * ty, s->lambda, s->mu, &s->lambda_t);
+        if (f != 0.0) tt__correct(w, a, tx * f, ty * f);
     }
     return err;
 }
 
 /* --- velocity pass -------------------------------------------------------- */
 
-/* Normal target and friction for relative velocity v (pre-solve v0) along n.
- * Writes the velocity change dv and the tangential slide to undo (static). */
+/* Normal target for relative velocity v (pre-solve v0) along n: restitution
+ * for an impact, else no approach. With μ > 0 (the velocity-pass friction:
+ * Euler, leapfrog, RK4, and a sweep's contact whose velocity restarts
+ * here) also Coulomb friction: static (tangential v under μs·Δvn) writes
+ * the tangential velocity to undo into stick, kinetic reduces it by μk·Δvn. */
 static void respond(double vx, double vy, double v0x, double v0y, double nx, double ny, double e, double mus,
                     double muk, double thr, double *dvx, double *dvy, double *stick_x, double *stick_y, double *dvn)
 {
@@ -290,11 +356,12 @@ static void respond(double vx, double vy, double v0x, double v0y, double nx, dou
     double change = target - vn0;
     if (change < 0.0) change = 0.0;
     *dvn = change;
-    double tx = vx - vn * nx, ty = vy - vn * ny, tl = sqrt(tx * tx + ty * ty);
     *dvx = (target - vn) * nx;
     *dvy = (target - vn) * ny;
     *stick_x = *stick_y = 0.0;
-    if (tl <= mus * change) { /* static: no slide this substep */
+    if (mus == 0.0 && muk == 0.0) return;
+    double tx = vx - vn * nx, ty = vy - vn * ny, tl = sqrt(tx * tx + ty * ty);
+    if (tl <= mus * change) {
         *stick_x = tx;
         *stick_y = ty;
     } else if (tl > 0.0) {
@@ -309,7 +376,7 @@ static void end(tt_world *w, void *self, double h)
     tt__collide *c = self;
     const double g = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
     const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
-    const bool events = c->set.events != 0;
+    const bool events = c->set.events != 0, fr = rub_in_sweeps(w);
     const double *inv = w->inv_mass;
     for (uint32_t k = 0; k < c->npairs; k++) {
         const tt__pair *p = &c->pairs[k];
@@ -318,12 +385,12 @@ static void end(tt_world *w, void *self, double h)
         double ia = inv[a], ib = inv[b], ws = ia + ib;
         if (ws == 0.0) continue;
         double wa = ia / ws, wb = ib / ws;
+        double mus = c->mat ? sqrt(mat(c, a, 1) * mat(c, b, 1)) : c->set.friction_static;
+        double muk = c->mat ? sqrt(mat(c, a, 2) * mat(c, b, 2)) : c->set.friction_kinetic;
         tt_vec2 va = tt__velocity(w, a), vb = tt__velocity(w, b);
-        double vax = va.x, vay = va.y, vbx = vb.x, vby = vb.y;
         double ea = mat(c, a, 0), eb = mat(c, b, 0), e = ea > eb ? ea : eb;
-        double mus = sqrt(mat(c, a, 1) * mat(c, b, 1)), muk = sqrt(mat(c, a, 2) * mat(c, b, 2));
         double dvx, dvy, sx, sy, dvn;
-        respond(vax - vbx, vay - vby, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], p->nx, p->ny, e, mus, muk, thr,
+        respond(va.x - vb.x, va.y - vb.y, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], p->nx, p->ny, e, mus, muk, thr,
                 &dvx, &dvy, &sx, &sy, &dvn);
         if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
             unslide(w, c, a, h, p->nx, p->ny, wa, sx, sy);
@@ -340,6 +407,7 @@ static void end(tt_world *w, void *self, double h)
         const uint32_t a = s->a;
         if (inv[a] == 0.0) continue;
         const tt_shape_def *sd = &c->shapes[c->prims[s->prim].shape].def;
+        double mus = sqrt(mat(c, a, 1) * sd->friction_static), muk = sqrt(mat(c, a, 2) * sd->friction_kinetic);
         double vx, vy;
         if (s->ccd) { /* the sweep cut the substep's motion short: restart from the velocity before it */
             vx = c->vx0[a];
@@ -352,12 +420,18 @@ static void end(tt_world *w, void *self, double h)
                 w->qy[a] = vy;
             }
         } else {
+            if (fr) {
+                const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
+                double slide = (w->px[a] - sx[a]) * -s->ny + (w->py[a] - sy[a]) * s->nx;
+                double d = unrub(slide, s->lambda_t, s->lambda, mus, muk);
+                if (d != 0.0) shift(w, a, -s->ny * d, s->nx * d, h);
+                mus = muk = 0.0;
+            }
             tt_vec2 v = tt__velocity(w, a);
             vx = v.x;
             vy = v.y;
         }
         double ea = mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
-        double mus = sqrt(mat(c, a, 1) * sd->friction_static), muk = sqrt(mat(c, a, 2) * sd->friction_kinetic);
         double dvx, dvy, sx, sy, dvn;
         respond(vx, vy, c->vx0[a], c->vy0[a], s->nx, s->ny, e, mus, muk, thr, &dvx, &dvy, &sx, &sy, &dvn);
         if (s->ccd) {

@@ -78,6 +78,28 @@ T.test("slope: sticks when tan < mu, slides when greater", function()
   end
 end)
 
+T.test("a lattice block on a slope sticks when tan(slope) < mu_s and slides when greater", function()
+  local MU, R = 0.5, 0.05
+  local function slide(deg)
+    local th = math.rad(deg)
+    local w = tether.world { substeps = 4, iterations = 20 }
+    w:set_collision { friction_static = MU, friction_kinetic = 0.4 }
+    local c, s = math.cos(th), math.sin(th)
+    w:segment(-20 * c, -20 * s, 20 * c, 20 * s, { friction_static = MU, friction_kinetic = 0.4 })
+    local h = 0.25 + R
+    local block = w:lattice { center = { -s * h, c * h }, width = 1, height = 0.5, columns = 5, rows = 3, angle = th, radius = R }
+    local x0, y0 = w:composite_center(block)
+    w:step(1 / 60, 120)
+    local x1, y1 = w:composite_center(block)
+    return -((x1 - x0) * c + (y1 - y0) * s), w:composite_angle(block) -- the angle is relative to the rest pose
+  end
+  local still, turn1 = slide(20)
+  local moved, turn2 = slide(35)
+  T.ok(math.abs(still) < 0.01, ("20 deg: slid %.4f m"):format(still))
+  T.ok(moved > 2.0, ("35 deg: slid only %.4f m"):format(moved))
+  T.ok(math.abs(turn1) < 0.05 and math.abs(turn2) < 0.05, ("the block slides flat, it does not tumble (%.3f, %.3f rad)"):format(turn1, turn2))
+end)
+
 T.test("a bullet does not tunnel, a plain particle does", function()
   for _, bullet in ipairs { true, false } do
     local w = tether.world { gravity = { 0, 0 } }
