@@ -48,6 +48,8 @@ typedef struct tt__grid {
     uint32_t *idx;                /* sorted: particle slot */
     double *sx, *sy, *sr;         /* sorted copies of position and radius */
     uint8_t *outside;             /* sorted: centre outside the grid (clamped into a border cell) */
+    uint8_t *pinned;              /* sorted: inverse mass 0 */
+    bool one_layer;               /* every particle has the same category and mask, and they match */
     uint32_t *out_list, nout;     /* particle slots outside the grid */
     uint32_t cap_cells, cap_n;
     uint64_t epoch;               /* w->epoch the grid reflects (queries), or UINT64_MAX */

@@ -158,6 +158,12 @@ bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b)
     return false;
 }
 
+bool tt__constraint_pairs_any(const tt_world *w)
+{
+    const tt__cgroup *g = tt__cgroup_peek(w);
+    return g && g->pair_used;
+}
+
 /* ---- slots and handles -------------------------------------------------- */
 
 static bool slot_new(tt__cgroup *g, uint8_t kind, uint32_t dense, uint32_t *out)

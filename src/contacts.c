@@ -259,21 +259,30 @@ static void begin(tt_world *w, void *self, double h)
             d.y = w->py[i];
             d.r = r;
             d.margin = m;
-            if (sg->nbig == 0) { /* fast path: every cell under the particle empty (most particles, most steps) */
-                int32_t x0 = tt__cell_coord(d.x - r - m, sg->ox, sg->inv), x1 = tt__cell_coord(d.x + r + m, sg->ox, sg->inv);
-                int32_t y0 = tt__cell_coord(d.y - r - m, sg->oy, sg->inv), y1 = tt__cell_coord(d.y + r + m, sg->oy, sg->inv);
+            /* fast path: no primitive's box near the particle (most particles, most steps) */
+            const double lox = d.x - r - m, loy = d.y - r - m, hix = d.x + r + m, hiy = d.y + r + m;
+            bool any = false;
+            for (uint32_t k = 0; k < sg->nbig && !any; k++) {
+                const tt__prim *p = &c->prims[sg->big[k]];
+                any = !(p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy);
+            }
+            if (!any && sg->nx > 0) {
+                int32_t x0 = tt__cell_coord(lox, sg->ox, sg->inv), x1 = tt__cell_coord(hix, sg->ox, sg->inv);
+                int32_t y0 = tt__cell_coord(loy, sg->oy, sg->inv), y1 = tt__cell_coord(hiy, sg->oy, sg->inv);
                 if (x1 < 0 || y1 < 0 || x0 >= sg->nx || y0 >= sg->ny) continue;
                 x0 = x0 < 0 ? 0 : x0;
                 y0 = y0 < 0 ? 0 : y0;
                 x1 = x1 >= sg->nx ? sg->nx - 1 : x1;
                 y1 = y1 >= sg->ny ? sg->ny - 1 : y1;
-                bool any = false;
-                for (int32_t y = y0; y <= y1 && !any; y++) {
+                for (int32_t y = y0; y <= y1 && !any; y++) { /* the cells of a row are contiguous in items */
                     uint32_t row = (uint32_t)y * (uint32_t)sg->nx;
-                    any = sg->start[row + (uint32_t)x0] != sg->start[row + (uint32_t)x1 + 1];
+                    for (uint32_t j = sg->start[row + (uint32_t)x0]; j < sg->start[row + (uint32_t)x1 + 1] && !any; j++) {
+                        const tt__prim *p = &c->prims[sg->items[j]];
+                        any = !(p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy);
+                    }
                 }
-                if (!any) continue;
             }
+            if (!any) continue;
             tt__sgrid_query(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m, detect_visit, &d);
             if (!d.ok) {
                 tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");

@@ -20,7 +20,7 @@ static bool grow_n(tt__grid *g, uint32_t need)
     void *p;
 #define GROW(f, t) if (!(p = realloc(g->f, (size_t)n * sizeof(t)))) return false; g->f = p
     GROW(cell, uint32_t); GROW(idx, uint32_t); GROW(sx, double); GROW(sy, double); GROW(sr, double);
-    GROW(outside, uint8_t); GROW(out_list, uint32_t);
+    GROW(outside, uint8_t); GROW(pinned, uint8_t); GROW(out_list, uint32_t);
 #undef GROW
     g->cap_n = n;
     return true;
@@ -42,21 +42,23 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     g->epoch = UINT64_MAX;
     if (!grow_n(g, n ? n : 1)) return false;
     double lox = INFINITY, loy = INFINITY, hix = -INFINITY, hiy = -INFINITY, rmax = 0.0;
-    double sx = 0, sy = 0, sxx = 0, syy = 0;
     uint32_t m = 0;
+    uint16_t cat_or = 0, cat_and = 0xFFFF, mask_or = 0, mask_and = 0xFFFF;
     for (uint32_t i = 0; i < n; i++) {
         if (!(w->flags[i] & TT_PF_ALIVE)) continue;
         double x = w->px[i], y = w->py[i];
         double r = w->radius[i];
+        cat_or |= w->category[i]; cat_and &= w->category[i];
+        mask_or |= w->mask[i]; mask_and &= w->mask[i];
         lox = x < lox ? x : lox; hix = x > hix ? x : hix; /* not fmin/fmax: those are library calls here */
         loy = y < loy ? y : loy; hiy = y > hiy ? y : hiy;
         rmax = r > rmax ? r : rmax;
-        sx += x; sy += y; sxx += x * x; syy += y * y;
         m++;
     }
     g->n = m;
     g->nout = 0;
     g->rmax = rmax;
+    g->one_layer = cat_or == cat_and && mask_or == mask_and && (cat_and & mask_and);
     if (m == 0) {
         g->nx = g->ny = 0;
         g->ncell = 0;
@@ -68,7 +70,13 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     const double limit = 4.0 * m + 1024.0;
     g->cs = cs;
     fit(g, lox, loy, hix, hiy);
-    if ((double)g->nx * g->ny > limit) {
+    if ((double)g->nx * g->ny > limit) { /* a few particles far away: a second pass for the spread */
+        double sx = 0, sy = 0, sxx = 0, syy = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+            double x = w->px[i], y = w->py[i];
+            sx += x; sy += y; sxx += x * x; syy += y * y;
+        }
         double mx = sx / m, my = sy / m;
         double dx = 4.0 * sqrt(fmax(sxx / m - mx * mx, 0.0)), dy = 4.0 * sqrt(fmax(syy / m - my * my, 0.0));
         double rlx = fmax(lox, mx - dx), rhx = fmin(hix, mx + dx), rly = fmax(loy, my - dy), rhy = fmin(hiy, my + dy);
@@ -107,6 +115,7 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
         g->sy[k] = w->py[i];
         g->sr[k] = w->radius[i];
         g->outside[k] = (uint8_t)(g->cell[i] >> 31);
+        g->pinned[k] = w->inv_mass[i] == 0.0;
     }
     for (uint32_t c = ncell; c > 0; c--) g->start[c] = g->start[c - 1];
     g->start[0] = 0;
@@ -127,9 +136,11 @@ static inline bool push_pair(tt__collide *c, uint32_t a, uint32_t b, double rs)
     return true;
 }
 
-/* Pairs between sorted ranges [k0, k1) and [j0, j1) (same cell: j > k). */
-static bool cell_pairs(tt_world *w, tt__collide *c, const tt__grid *g, uint32_t k0, uint32_t k1, uint32_t j0, uint32_t j1,
-                       bool same)
+/* Pairs between sorted ranges [k0, k1) and [j0, j1) (same: j from k + 1 to j1).
+ * plain: nothing but two pinned particles can exclude a pair (one layer,
+ * no exclusions), so the full filter is skipped. */
+static inline bool cell_pairs(tt_world *w, tt__collide *c, const tt__grid *g, bool plain, uint32_t k0, uint32_t k1,
+                              uint32_t j0, uint32_t j1, bool same)
 {
     const double *sx = g->sx, *sy = g->sy, *sr = g->sr;
     const double f = (1.0 + TT__CONTACT_MARGIN) * (1.0 + TT__CONTACT_MARGIN);
@@ -139,7 +150,7 @@ static bool cell_pairs(tt_world *w, tt__collide *c, const tt__grid *g, uint32_t 
             double dx = x - sx[j], dy = y - sy[j], rs = r + sr[j];
             if (dx * dx + dy * dy >= rs * rs * f || rs == 0.0) continue;
             uint32_t a = g->idx[k], b = g->idx[j];
-            if (!tt__pair_filter(w, c, a, b)) continue;
+            if (plain ? g->pinned[k] & g->pinned[j] : !tt__pair_filter(w, c, a, b)) continue;
             if (!push_pair(c, a, b, rs)) return false;
         }
     }
@@ -151,19 +162,19 @@ bool tt__grid_pairs(tt_world *w, tt__collide *c)
     const tt__grid *g = &c->grid;
     const int32_t nx = g->nx, ny = g->ny;
     const uint32_t *st = g->start;
+    const bool plain = g->one_layer && c->nexcl == 0 && !tt__constraint_pairs_any(w);
     for (int32_t y = 0; y < ny; y++) {
         for (int32_t x = 0; x < nx; x++) {
             uint32_t cell = (uint32_t)y * (uint32_t)nx + (uint32_t)x;
             uint32_t k0 = st[cell], k1 = st[cell + 1];
             if (k0 == k1) continue;
-            if (!cell_pairs(w, c, g, k0, k1, 0, k1, true)) return false;
-            /* forward half of the neighbourhood: E, NW, N, NE */
-            if (x + 1 < nx && !cell_pairs(w, c, g, k0, k1, st[cell + 1], st[cell + 2], false)) return false;
+            /* forward half of the neighbourhood: the rest of this cell and E (contiguous), then NW, N, NE */
+            if (!cell_pairs(w, c, g, plain, k0, k1, 0, x + 1 < nx ? st[cell + 2] : k1, true)) return false;
             if (y + 1 < ny) {
                 uint32_t up = cell + (uint32_t)nx;
                 uint32_t lo = x > 0 ? up - 1 : up, hi = x + 1 < nx ? up + 1 : up;
                 /* the three cells above are contiguous in the sorted order */
-                if (!cell_pairs(w, c, g, k0, k1, st[lo], st[hi + 1], false)) return false;
+                if (!cell_pairs(w, c, g, plain, k0, k1, st[lo], st[hi + 1], false)) return false;
             }
         }
     }
@@ -174,12 +185,12 @@ void tt__grid_free(tt__grid *g)
 {
     free(g->start); free(g->cell); free(g->idx);
     free(g->sx); free(g->sy); free(g->sr);
-    free(g->outside); free(g->out_list);
+    free(g->outside); free(g->pinned); free(g->out_list);
     memset(g, 0, sizeof *g);
 }
 
 size_t tt__grid_bytes(const tt__grid *g)
 {
     return (size_t)g->cap_cells * sizeof(uint32_t) +
-           (size_t)g->cap_n * (3 * sizeof(uint32_t) + 3 * sizeof(double) + sizeof(uint8_t));
+           (size_t)g->cap_n * (3 * sizeof(uint32_t) + 3 * sizeof(double) + 2 * sizeof(uint8_t));
 }

@@ -128,10 +128,24 @@ void tt__particles_free(tt_world *w);
 bool tt__particle_ok(const tt_world *w, tt_particle p);
 tt_result tt__particle_check(const tt_world *w, tt_particle p, const char *fn);
 void tt__mark_fresh(tt_world *w, uint32_t i);
-tt_vec2 tt__velocity(const tt_world *w, uint32_t i);
+static inline tt_vec2 tt__velocity(const tt_world *w, uint32_t i)
+{
+    if (w->integrator == TT_VERLET)
+        return (tt_vec2){(w->px[i] - w->qx[i]) / w->dt_prev, (w->py[i] - w->qy[i]) / w->dt_prev};
+    return (tt_vec2){w->qx[i], w->qy[i]};
+}
 void tt__set_velocity(tt_world *w, uint32_t i, tt_vec2 v);
 /* Velocity change Δv, as an impulse makes it (Verlet: x_old moves by Δv·dt_prev; no fresh start). */
-void tt__add_velocity(tt_world *w, uint32_t i, double dvx, double dvy);
+static inline void tt__add_velocity(tt_world *w, uint32_t i, double dvx, double dvy)
+{
+    if (w->integrator == TT_VERLET) {
+        w->qx[i] -= dvx * w->dt_prev;
+        w->qy[i] -= dvy * w->dt_prev;
+    } else {
+        w->qx[i] += dvx;
+        w->qy[i] += dvy;
+    }
+}
 double *tt__scratch(tt_world *w, int which);
 
 /* Springs. */
@@ -168,6 +182,8 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
 /* Constraints (constraints.c): true when a constraint joining particle slots
  * a and b says they must not collide (O(1); the collision stage asks). */
 bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
+/* Whether any constraint keeps its particles from colliding (else the test above is always false). */
+bool tt__constraint_pairs_any(const tt_world *w);
 
 /* Forces and integration (integrate.c / forces.c). */
 bool tt__has_forces(const tt_world *w);

@@ -110,13 +110,6 @@ void tt__mark_fresh(tt_world *w, uint32_t i)
     w->flags[i] |= TT_PF_FRESH;
 }
 
-tt_vec2 tt__velocity(const tt_world *w, uint32_t i)
-{
-    if (w->integrator == TT_VERLET)
-        return (tt_vec2){(w->px[i] - w->qx[i]) / w->dt_prev, (w->py[i] - w->qy[i]) / w->dt_prev};
-    return (tt_vec2){w->qx[i], w->qy[i]};
-}
-
 void tt__set_velocity(tt_world *w, uint32_t i, tt_vec2 v)
 {
     if (w->integrator == TT_VERLET) {
@@ -348,17 +341,6 @@ tt_result tt_particle_apply_force(tt_world *w, tt_particle p, tt_vec2 f)
     w->fy[i] += f.y;
     w->forces_pending = true;
     return TT_OK;
-}
-
-void tt__add_velocity(tt_world *w, uint32_t i, double dvx, double dvy)
-{
-    if (w->integrator == TT_VERLET) {
-        w->qx[i] -= dvx * w->dt_prev;
-        w->qy[i] -= dvy * w->dt_prev;
-    } else {
-        w->qx[i] += dvx;
-        w->qy[i] += dvy;
-    }
 }
 
 tt_result tt_particle_apply_impulse(tt_world *w, tt_particle p, tt_vec2 j)
