@@ -26,6 +26,7 @@ typedef struct tt__shape {
     tt_shape_def def;     /* def.points is NULL: the points live in pts */
     tt_vec2 *pts;
     bool alive;
+    bool moved;           /* by the script since the last step: its contacts keep the push's speed */
 } tt__shape;
 
 /* Static index: a uniform grid over the primitives' boxes, built once and
@@ -89,6 +90,7 @@ typedef struct tt__collide {
     uint32_t *pstamp, pstamp_cap, stamp; /* per primitive: dedupe while visiting several cells */
     uint32_t *sstamp, sstamp_cap, sstamp_id; /* per shape slot */
     uint32_t static_rebuilds;
+    bool any_moved;       /* some shape's moved flag is set */
     /* particles */
     tt__grid grid;
     double *vx0, *vy0;    /* pre-solve velocity per particle slot (this substep) */

@@ -353,15 +353,22 @@ static double relax(tt_world *w, void *self, double h)
 /* --- velocity pass -------------------------------------------------------- */
 
 /* Normal target for relative velocity v (pre-solve v0) along n: restitution
- * for an impact, else no approach. With μ > 0 (the velocity-pass friction:
- * Euler, leapfrog, RK4, and a sweep's contact whose velocity restarts
- * here) also Coulomb friction: static (tangential v under μs·Δvn) writes
- * the tangential velocity to undo into stick, kinetic reduces it by μk·Δvn. */
-static void respond(double vx, double vy, double v0x, double v0y, double nx, double ny, double e, double mus,
-                    double muk, double thr, double *dvx, double *dvy, double *stick_x, double *stick_y, double *dvn)
+ * for an impact, else no approach. Between two particles the projection's
+ * push gives no separating speed beyond what the pair had before the sweeps
+ * (settled): a deep pile that the sweeps cannot hold in one substep would
+ * otherwise boil, each layer thrown up by the overlap it was pushed out of.
+ * Shapes moved by the script since the last step keep the push: a paddle
+ * moved into a ball throws it.
+ * With μ > 0 also Coulomb friction (particle pairs; shapes with Euler,
+ * leapfrog, RK4; a sweep's contact whose velocity restarts here): static
+ * (tangential v under μs·Δvn) writes the tangential velocity to undo into
+ * stick, kinetic reduces it by μk·Δvn. */
+static void respond(double vx, double vy, double v0x, double v0y, double nx, double ny, double e, bool settled,
+                    double mus, double muk, double thr, double *dvx, double *dvy, double *stick_x, double *stick_y,
+                    double *dvn)
 {
     double vn0 = v0x * nx + v0y * ny, vn = vx * nx + vy * ny;
-    double target = vn0 < -thr ? -e * vn0 : (vn < 0.0 ? 0.0 : vn);
+    double target = vn0 < -thr ? -e * vn0 : vn < 0.0 ? 0.0 : settled && vn > vn0 ? fmax(vn0, 0.0) : vn;
     double change = target - vn0;
     if (change < 0.0) change = 0.0;
     *dvn = change;
@@ -399,7 +406,7 @@ static void end(tt_world *w, void *self, double h)
         tt_vec2 va = tt__velocity(w, a), vb = tt__velocity(w, b);
         double ea = mat(c, a, 0), eb = mat(c, b, 0), e = ea > eb ? ea : eb;
         double dvx, dvy, sx, sy, dvn;
-        respond(va.x - vb.x, va.y - vb.y, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], p->nx, p->ny, e, mus, muk, thr,
+        respond(va.x - vb.x, va.y - vb.y, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], p->nx, p->ny, e, true, mus, muk, thr,
                 &dvx, &dvy, &sx, &sy, &dvn);
         if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
             unslide(w, c, a, h, p->nx, p->ny, wa, sx, sy);
@@ -442,7 +449,7 @@ static void end(tt_world *w, void *self, double h)
         }
         double ea = mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
         double dvx, dvy, sx, sy, dvn;
-        respond(vx, vy, c->vx0[a], c->vy0[a], s->nx, s->ny, e, mus, muk, thr, &dvx, &dvy, &sx, &sy, &dvn);
+        respond(vx, vy, c->vx0[a], c->vy0[a], s->nx, s->ny, e, !c->shapes[c->prims[s->prim].shape].moved, mus, muk, thr, &dvx, &dvy, &sx, &sy, &dvn);
         if (s->ccd) {
             dvx -= sx;
             dvy -= sy;
@@ -486,6 +493,10 @@ static bool push_event(tt__collide *c, const tt_contact_event *ev, uint32_t kind
 static void after_step(tt_world *w, void *self)
 {
     tt__collide *c = self;
+    if (c->any_moved) {
+        for (uint32_t i = 0; i < c->spool.count; i++) c->shapes[i].moved = false;
+        c->any_moved = false;
+    }
     /* the step bumps the epoch once after this: end positions stay valid through it, not through a teleport */
     if (c->s_epoch == w->epoch) c->s_epoch = w->epoch + 1;
     c->nevents = 0;

@@ -133,6 +133,7 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
     s->def.count = npts;
     s->pts = pts;
     s->alive = true;
+    s->moved = false;
     c->shapes_alive++;
     c->dirty = true;
     return (tt_shape){i, c->spool.gen[i]};
@@ -177,6 +178,8 @@ tt_result tt_shape_set_transform(tt_world *w, tt_shape s, tt_vec2 position, doub
     if (sh->def.type == TT_SHAPE_AABB && angle != 0.0) return tt__fail(w, TT_EINVAL, "tt_shape_set_transform: an aabb cannot be turned (angle must be 0)");
     sh->def.position = position;
     sh->def.angle = angle;
+    sh->moved = true;
+    c->any_moved = true;
     c->dirty = true;
     return TT_OK;
 }
