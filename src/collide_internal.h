@@ -40,6 +40,10 @@ typedef struct tt__sgrid {
 } tt__sgrid;
 
 /* Particle grid: counting sort of the live particles into cells. */
+enum {
+    TT__GRID_OUTSIDE = 1, /* centre outside the grid (clamped into a border cell) */
+    TT__GRID_PINNED = 2   /* inverse mass 0 */
+};
 typedef struct tt__grid {
     double ox, oy, cs, inv, rmax;
     int32_t nx, ny;
@@ -48,8 +52,7 @@ typedef struct tt__grid {
     uint32_t *cell;               /* per gathered particle: its (clamped) cell */
     uint32_t *idx;                /* sorted: particle slot */
     double *sx, *sy, *sr;         /* sorted copies of position and radius */
-    uint8_t *outside;             /* sorted: centre outside the grid (clamped into a border cell) */
-    uint8_t *pinned;              /* sorted: inverse mass 0 */
+    uint8_t *bits;                /* sorted: TT__GRID_OUTSIDE, TT__GRID_PINNED */
     bool one_layer;               /* every particle has the same category and mask, and they match */
     uint32_t *out_list, nout;     /* particle slots outside the grid */
     uint32_t cap_cells, cap_n;

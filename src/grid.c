@@ -20,7 +20,7 @@ static bool grow_n(tt__grid *g, uint32_t need)
     void *p;
 #define GROW(f, t) if (!(p = realloc(g->f, (size_t)n * sizeof(t)))) return false; g->f = p
     GROW(cell, uint32_t); GROW(idx, uint32_t); GROW(sx, double); GROW(sy, double); GROW(sr, double);
-    GROW(outside, uint8_t); GROW(pinned, uint8_t); GROW(out_list, uint32_t);
+    GROW(bits, uint8_t); GROW(out_list, uint32_t);
 #undef GROW
     g->cap_n = n;
     return true;
@@ -114,8 +114,7 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
         g->sx[k] = w->px[i];
         g->sy[k] = w->py[i];
         g->sr[k] = w->radius[i];
-        g->outside[k] = (uint8_t)(g->cell[i] >> 31);
-        g->pinned[k] = w->inv_mass[i] == 0.0;
+        g->bits[k] = (uint8_t)((g->cell[i] >> 31) | (w->inv_mass[i] == 0.0 ? TT__GRID_PINNED : 0));
     }
     for (uint32_t c = ncell; c > 0; c--) g->start[c] = g->start[c - 1];
     g->start[0] = 0;
@@ -150,7 +149,7 @@ static inline bool cell_pairs(tt_world *w, tt__collide *c, const tt__grid *g, bo
             double dx = x - sx[j], dy = y - sy[j], rs = r + sr[j];
             if (dx * dx + dy * dy >= rs * rs * f || rs == 0.0) continue;
             uint32_t a = g->idx[k], b = g->idx[j];
-            if (plain ? g->pinned[k] & g->pinned[j] : !tt__pair_filter(w, c, a, b)) continue;
+            if (plain ? g->bits[k] & g->bits[j] & TT__GRID_PINNED : !tt__pair_filter(w, c, a, b)) continue;
             if (!push_pair(c, a, b, rs)) return false;
         }
     }
@@ -185,12 +184,12 @@ void tt__grid_free(tt__grid *g)
 {
     free(g->start); free(g->cell); free(g->idx);
     free(g->sx); free(g->sy); free(g->sr);
-    free(g->outside); free(g->pinned); free(g->out_list);
+    free(g->bits); free(g->out_list);
     memset(g, 0, sizeof *g);
 }
 
 size_t tt__grid_bytes(const tt__grid *g)
 {
     return (size_t)g->cap_cells * sizeof(uint32_t) +
-           (size_t)g->cap_n * (3 * sizeof(uint32_t) + 3 * sizeof(double) + 2 * sizeof(uint8_t));
+           (size_t)g->cap_n * (3 * sizeof(uint32_t) + 3 * sizeof(double) + sizeof(uint8_t));
 }

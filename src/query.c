@@ -243,7 +243,7 @@ static tt_result area(tt_world *w, const char *fn, double lox, double loy, doubl
             for (int32_t x = x0; x <= x1; x++) {
                 uint32_t cell = (uint32_t)y * (uint32_t)g->nx + (uint32_t)x;
                 for (uint32_t j = g->start[cell]; j < g->start[cell + 1]; j++) {
-                    if (g->outside[j]) continue; /* tested below, once */
+                    if (g->bits[j] & TT__GRID_OUTSIDE) continue; /* tested below, once */
                     uint32_t i = g->idx[j];
                     if (!particle_in(w, i, &a)) continue;
                     if (count < pcap) particles[count] = (tt_particle){i, w->ppool.gen[i]};
