@@ -226,6 +226,7 @@ static void dist_remove(tt__cgroup *g, uint32_t d)
     g->slots[x->slot].kind = 0;
     tt_pool_free(&g->pool, x->slot);
     g->alive--;
+    g->plan_ok = false;
     uint32_t last = --g->ndist;
     if (d != last) {
         g->dist[d] = g->dist[last];
@@ -419,6 +420,7 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     c->alpha = d->compliance;
     g->dx[g->ndist] = (tt__dist_x){0.0, len, d->break_strain, slot, (uint8_t)d->mode, d->collide};
     g->ndist++;
+    g->plan_ok = false;
     g->refs[c->a]++;
     g->refs[c->b]++;
     if (d->break_strain > 0) g->nbreakable++;
@@ -904,22 +906,23 @@ static void group_begin(tt_world *w, void *self, double h)
     for (uint32_t i = 0; i < g->ngen; i++) g->gen[i].lambda = 0.0;
 }
 
-/* One sweep over the distance constraints. `jacobi` is a constant at each
- * call site, so the compiler makes a lean in-place loop for Gauss-Seidel. */
-static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi)
+/* Part of a sweep over the distance constraints: links [i, n), err the
+ * largest error so far. Particle k is at px[k·st], py[k·st], im[k·st] (st = 1:
+ * the world's arrays; 4: the vector sweep's packed copy). `jacobi` and `st`
+ * are constants at each call site, so each gets a lean loop. */
+static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi,
+                                                                   double *px, double *py, const double *im, size_t st,
+                                                                   uint32_t i, uint32_t n, double err)
 {
-    double *px = w->px, *py = w->py;
-    const double *im = w->inv_mass;
     const double inv_h2 = 1.0 / (h * h);
     const tt__dist *dist = g->dist;
-    double err = 0.0;
-    const uint32_t n = g->ndist;
-    for (uint32_t i = 0; i < n; i++) {
+    for (; i < n; i++) {
         const tt__dist *d = &dist[i];
         const uint32_t a = d->a, b = d->b;
-        const double wa = im[a], wb = im[b], ws = wa + wb;
+        const size_t ia = a * st, ib = b * st;
+        const double wa = im[ia], wb = im[ib], ws = wa + wb;
         if (ws == 0.0) continue;
-        double dx = px[b] - px[a], dy = py[b] - py[a];
+        double dx = px[ib] - px[ia], dy = py[ib] - py[ia];
         double len = sqrt(dx * dx + dy * dy);
         double c = len < d->lo ? len - d->lo : len > d->hi ? len - d->hi : 0.0;
         if (c == 0.0) continue;
@@ -941,13 +944,354 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
             if (wa > 0.0) tt__correct(w, a, wa * cx, wa * cy);
             if (wb > 0.0) tt__correct(w, b, -wb * cx, -wb * cy);
         } else {
-            px[a] += wa * cx;
-            py[a] += wa * cy;
-            px[b] -= wb * cx;
-            py[b] -= wb * cy;
+            px[ia] += wa * cx;
+            py[ia] += wa * cy;
+            px[ib] -= wb * cx;
+            py[ib] -= wb * cy;
         }
     }
     return err;
+}
+
+/* ---- Gauss-Seidel in SIMD lanes -------------------------------------------
+ * Consecutive links that share no particle commute, so a block of them solved
+ * side by side gives the sequential loop's result bit for bit, as long as each
+ * lane does the scalar arithmetic: the same IEEE operations in the same order
+ * (these functions enable no FMA, and the build has -ffp-contract=off) with
+ * every branch turned into a mask. The sweep works on a packed copy of x, y
+ * and inverse mass (one 32-byte row per particle, made and written back each
+ * sweep: ~3 % of its time) so a lane's particle is one load and one store. */
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define TT_SIMD_X86 1
+#include <immintrin.h>
+#endif
+
+/* Lanes of the vector sweep mode m runs (0: scalar). */
+static uint32_t simd_lanes(uint8_t m)
+{
+#ifdef TT_SIMD_X86
+    switch (m) {
+    case TT__SIMD_AUTO: return __builtin_cpu_supports("avx512f") ? 8 : __builtin_cpu_supports("avx2") ? 4 : 0;
+    case TT__SIMD_AVX2: return __builtin_cpu_supports("avx2") ? 4 : 0;
+    case TT__SIMD_AVX512: return __builtin_cpu_supports("avx512f") ? 8 : 0;
+    default: return 0;
+    }
+#else
+    (void)m;
+    return 0;
+#endif
+}
+
+bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode)
+{
+    if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && simd_lanes((uint8_t)mode) == 0) return false;
+    tt__cgroup *g = tt__cgroup_get(w, true);
+    if (!g) return false;
+    g->simd = (uint8_t)mode;
+    return true;
+}
+
+/* Greedy in one pass: a block gathers consecutive links until W share no
+ * particle; a link naming a particle of link k in the block restarts the
+ * block after k, and the links passed over go to a scalar run. */
+static bool plan_build(tt__cgroup *g, uint32_t W)
+{
+    const uint32_t n = g->ndist;
+    uint32_t np = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t m = g->dist[i].a > g->dist[i].b ? g->dist[i].a : g->dist[i].b;
+        if (m >= np) np = m + 1;
+    }
+    if (!grow((void **)&g->stamp, sizeof *g->stamp, &g->stamp_cap, np) ||
+        !grow((void **)&g->plan, sizeof *g->plan, &g->plan_cap, 2 * (n / W + 1)))
+        return false;
+    if (np > g->pk_cap) { /* 32-byte rows on 32-byte boundaries; the contents are made each sweep */
+        double *pk = aligned_alloc(32, (size_t)np * 4 * sizeof(double));
+        if (!pk) return false;
+        free(g->pk);
+        g->pk = pk;
+        g->pk_cap = np;
+    }
+    uint32_t *stamp = g->stamp, *plan = g->plan, m = 0, done = 0, s = 0; /* done: links planned; s: the block's first */
+    memset(stamp, 0, (size_t)np * sizeof *stamp);
+    for (uint32_t j = 0; j < n; j++) {
+        const uint32_t a = g->dist[j].a, b = g->dist[j].b;
+        if (stamp[a] > s) s = stamp[a];
+        if (stamp[b] > s) s = stamp[b];
+        if (a == b) s = j + 1; /* never made, but then no lane may hold it */
+        stamp[a] = stamp[b] = j + 1;
+        if (j + 1 - s < W) continue;
+        if (s == done && m > 0) {
+            plan[m - 1]++; /* straight after the previous block */
+        } else {
+            plan[m++] = s - done;
+            plan[m++] = 1;
+        }
+        done = s = j + 1;
+    }
+    if (done < n) {
+        plan[m++] = n - done;
+        plan[m++] = 0;
+    }
+    g->nplan = m;
+    g->plan_w = W;
+    g->plan_np = np;
+    g->plan_ok = true;
+    return true;
+}
+
+#ifdef TT_SIMD_X86
+#define TT_AVX2 __attribute__((target("avx2")))
+#define TT_AVX512 __attribute__((target("avx512f")))
+
+/* x, y, inverse mass of particles [0, np) into rows (x, y, w, 0) and back. */
+TT_AVX2 static void pack_avx2(double *pk, const double *px, const double *py, const double *im, uint32_t np)
+{
+    const __m256d z = _mm256_setzero_pd();
+    uint32_t i = 0;
+    for (; i + 4 <= np; i += 4) {
+        const __m256d x = _mm256_loadu_pd(px + i), y = _mm256_loadu_pd(py + i), m = _mm256_loadu_pd(im + i);
+        const __m256d t0 = _mm256_unpacklo_pd(x, y), t1 = _mm256_unpackhi_pd(x, y); /* x0 y0 x2 y2 | x1 y1 x3 y3 */
+        const __m256d u0 = _mm256_unpacklo_pd(m, z), u1 = _mm256_unpackhi_pd(m, z);
+        _mm256_store_pd(pk + 4 * (size_t)i, _mm256_permute2f128_pd(t0, u0, 0x20));
+        _mm256_store_pd(pk + 4 * (size_t)i + 4, _mm256_permute2f128_pd(t1, u1, 0x20));
+        _mm256_store_pd(pk + 4 * (size_t)i + 8, _mm256_permute2f128_pd(t0, u0, 0x31));
+        _mm256_store_pd(pk + 4 * (size_t)i + 12, _mm256_permute2f128_pd(t1, u1, 0x31));
+    }
+    for (; i < np; i++) _mm256_store_pd(pk + 4 * (size_t)i, _mm256_setr_pd(px[i], py[i], im[i], 0.0));
+}
+
+TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32_t np)
+{
+    uint32_t i = 0;
+    for (; i + 4 <= np; i += 4) {
+        const double *r = pk + 4 * (size_t)i;
+        const __m256d t0 = _mm256_permute2f128_pd(_mm256_load_pd(r), _mm256_load_pd(r + 8), 0x20);      /* x0 y0 x2 y2 */
+        const __m256d t1 = _mm256_permute2f128_pd(_mm256_load_pd(r + 4), _mm256_load_pd(r + 12), 0x20); /* x1 y1 x3 y3 */
+        _mm256_storeu_pd(px + i, _mm256_unpacklo_pd(t0, t1));
+        _mm256_storeu_pd(py + i, _mm256_unpackhi_pd(t0, t1));
+    }
+    for (; i < np; i++) {
+        px[i] = pk[4 * (size_t)i];
+        py[i] = pk[4 * (size_t)i + 1];
+    }
+}
+
+/* nb blocks of 4 links from d (x: their cold halves) on the rows pk;
+ * returns the largest error. */
+TT_AVX2 static double blocks_avx2(double *pk, const tt__dist *d, tt__dist_x *x, uint32_t nb, double inv_h2)
+{
+    const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0), ih2 = _mm256_set1_pd(inv_h2);
+    __m256d err = zero;
+    for (uint32_t blk = 0; blk < nb; blk++, d += 4, x += 4) {
+        double *ra0 = pk + 4 * (size_t)d[0].a, *ra1 = pk + 4 * (size_t)d[1].a;
+        double *ra2 = pk + 4 * (size_t)d[2].a, *ra3 = pk + 4 * (size_t)d[3].a;
+        double *rb0 = pk + 4 * (size_t)d[0].b, *rb1 = pk + 4 * (size_t)d[1].b;
+        double *rb2 = pk + 4 * (size_t)d[2].b, *rb3 = pk + 4 * (size_t)d[3].b;
+        /* rows (x, y, w, 0) of the four a's, transposed into x, y, w vectors; the same for b */
+        __m256d t0 = _mm256_unpacklo_pd(_mm256_load_pd(ra0), _mm256_load_pd(ra1)); /* x0 x1 w0 w1 */
+        __m256d t1 = _mm256_unpackhi_pd(_mm256_load_pd(ra0), _mm256_load_pd(ra1)); /* y0 y1 .. .. */
+        __m256d t2 = _mm256_unpacklo_pd(_mm256_load_pd(ra2), _mm256_load_pd(ra3));
+        __m256d t3 = _mm256_unpackhi_pd(_mm256_load_pd(ra2), _mm256_load_pd(ra3));
+        __m256d xa = _mm256_permute2f128_pd(t0, t2, 0x20), ya = _mm256_permute2f128_pd(t1, t3, 0x20);
+        const __m256d wa = _mm256_permute2f128_pd(t0, t2, 0x31);
+        t0 = _mm256_unpacklo_pd(_mm256_load_pd(rb0), _mm256_load_pd(rb1));
+        t1 = _mm256_unpackhi_pd(_mm256_load_pd(rb0), _mm256_load_pd(rb1));
+        t2 = _mm256_unpacklo_pd(_mm256_load_pd(rb2), _mm256_load_pd(rb3));
+        t3 = _mm256_unpackhi_pd(_mm256_load_pd(rb2), _mm256_load_pd(rb3));
+        __m256d xb = _mm256_permute2f128_pd(t0, t2, 0x20), yb = _mm256_permute2f128_pd(t1, t3, 0x20);
+        const __m256d wb = _mm256_permute2f128_pd(t0, t2, 0x31);
+        /* (lo, hi) and (k, alpha) of links 0, 2 | 1, 3, transposed */
+        __m256d p02 = _mm256_set_m128d(_mm_loadu_pd(&d[2].lo), _mm_loadu_pd(&d[0].lo));
+        __m256d p13 = _mm256_set_m128d(_mm_loadu_pd(&d[3].lo), _mm_loadu_pd(&d[1].lo));
+        const __m256d lo = _mm256_unpacklo_pd(p02, p13), hi = _mm256_unpackhi_pd(p02, p13);
+        p02 = _mm256_set_m128d(_mm_loadu_pd(&d[2].k), _mm_loadu_pd(&d[0].k));
+        p13 = _mm256_set_m128d(_mm_loadu_pd(&d[3].k), _mm_loadu_pd(&d[1].k));
+        const __m256d k = _mm256_unpacklo_pd(p02, p13), alpha = _mm256_unpackhi_pd(p02, p13);
+
+        const __m256d ws = _mm256_add_pd(wa, wb);
+        const __m256d dx = _mm256_sub_pd(xb, xa), dy = _mm256_sub_pd(yb, ya);
+        const __m256d len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
+        __m256d c = _mm256_blendv_pd(zero, _mm256_sub_pd(len, hi), _mm256_cmp_pd(len, hi, _CMP_GT_OQ));
+        c = _mm256_blendv_pd(c, _mm256_sub_pd(len, lo), _mm256_cmp_pd(len, lo, _CMP_LT_OQ));
+        /* as the scalar loop skips: ws == 0, c == 0 (no error); len == 0 (error, no move) */
+        const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(c, zero, _CMP_NEQ_UQ));
+        const __m256d ac = _mm256_andnot_pd(sign, c);
+        err = _mm256_blendv_pd(err, ac, _mm256_and_pd(act, _mm256_cmp_pd(ac, err, _CMP_GT_OQ)));
+        const __m256d upd = _mm256_and_pd(act, _mm256_cmp_pd(len, zero, _CMP_NEQ_UQ));
+        if (!_mm256_movemask_pd(upd)) continue;
+        __m256d s = _mm256_div_pd(_mm256_mul_pd(k, c), _mm256_mul_pd(ws, len));
+        const __m256d xp = _mm256_and_pd(upd, _mm256_cmp_pd(alpha, zero, _CMP_GT_OQ));
+        if (_mm256_movemask_pd(xp)) {
+            __m256d lam = _mm256_set_pd(x[3].lambda, x[2].lambda, x[1].lambda, x[0].lambda);
+            const __m256d at = _mm256_mul_pd(alpha, ih2);
+            const __m256d dl = _mm256_div_pd(_mm256_sub_pd(_mm256_xor_pd(c, sign), _mm256_mul_pd(at, lam)), _mm256_add_pd(ws, at));
+            lam = _mm256_blendv_pd(lam, _mm256_add_pd(lam, dl), xp);
+            const __m128d l01 = _mm256_castpd256_pd128(lam), l23 = _mm256_extractf128_pd(lam, 1);
+            _mm_storel_pd(&x[0].lambda, l01);
+            _mm_storeh_pd(&x[1].lambda, l01);
+            _mm_storel_pd(&x[2].lambda, l23);
+            _mm_storeh_pd(&x[3].lambda, l23);
+            s = _mm256_blendv_pd(s, _mm256_div_pd(_mm256_xor_pd(dl, sign), len), xp);
+        }
+        const __m256d cx = _mm256_mul_pd(s, dx), cy = _mm256_mul_pd(s, dy);
+        /* a lane that must not move keeps its old value (old + 0 could turn −0 into +0) */
+        xa = _mm256_blendv_pd(xa, _mm256_add_pd(xa, _mm256_mul_pd(wa, cx)), upd);
+        ya = _mm256_blendv_pd(ya, _mm256_add_pd(ya, _mm256_mul_pd(wa, cy)), upd);
+        xb = _mm256_blendv_pd(xb, _mm256_sub_pd(xb, _mm256_mul_pd(wb, cx)), upd);
+        yb = _mm256_blendv_pd(yb, _mm256_sub_pd(yb, _mm256_mul_pd(wb, cy)), upd);
+        /* (x, y) pairs back into the rows */
+        t0 = _mm256_unpacklo_pd(xa, ya); /* x0 y0 x2 y2 */
+        t1 = _mm256_unpackhi_pd(xa, ya); /* x1 y1 x3 y3 */
+        _mm_store_pd(ra0, _mm256_castpd256_pd128(t0));
+        _mm_store_pd(ra1, _mm256_castpd256_pd128(t1));
+        _mm_store_pd(ra2, _mm256_extractf128_pd(t0, 1));
+        _mm_store_pd(ra3, _mm256_extractf128_pd(t1, 1));
+        t0 = _mm256_unpacklo_pd(xb, yb);
+        t1 = _mm256_unpackhi_pd(xb, yb);
+        _mm_store_pd(rb0, _mm256_castpd256_pd128(t0));
+        _mm_store_pd(rb1, _mm256_castpd256_pd128(t1));
+        _mm_store_pd(rb2, _mm256_extractf128_pd(t0, 1));
+        _mm_store_pd(rb3, _mm256_extractf128_pd(t1, 1));
+    }
+    double e[4], r = 0.0;
+    _mm256_storeu_pd(e, err);
+    for (int j = 0; j < 4; j++)
+        if (e[j] > r) r = e[j];
+    return r;
+}
+
+/* The same in blocks of 8: each zmm holds rows of two particles (2 × 4 doubles). */
+TT_AVX512 static double blocks_avx512(double *pk, const tt__dist *d, tt__dist_x *x, uint32_t nb, double inv_h2)
+{
+    const __m512d zero = _mm512_setzero_pd(), ih2 = _mm512_set1_pd(inv_h2);
+    const __m512i sign = _mm512_castpd_si512(_mm512_set1_pd(-0.0));
+    __m512d err = zero;
+    /* −v flips the sign bit (0 − v would give +0 for v = 0) */
+#define TT_NEG(v) _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(v), sign))
+#define TT_ROWS(i, j) _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_load_pd(i)), _mm256_load_pd(j), 1)
+#define TT_PAIRS(f, j0, j1, j2, j3)                                                                                  \
+    _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_set_m128d(_mm_loadu_pd(&d[j1].f), _mm_loadu_pd(&d[j0].f))), \
+                       _mm256_set_m128d(_mm_loadu_pd(&d[j3].f), _mm_loadu_pd(&d[j2].f)), 1)
+    for (uint32_t blk = 0; blk < nb; blk++, d += 8, x += 8) {
+        double *ra[8], *rb[8];
+        for (int j = 0; j < 8; j++) {
+            ra[j] = pk + 4 * (size_t)d[j].a;
+            rb[j] = pk + 4 * (size_t)d[j].b;
+        }
+        /* rows (a0 | a2), (a1 | a3), (a4 | a6), (a5 | a7): unpacked, then 128-bit lanes picked so lane j is link j */
+        __m512d t0 = TT_ROWS(ra[0], ra[2]), t1 = TT_ROWS(ra[1], ra[3]), t2 = TT_ROWS(ra[4], ra[6]), t3 = TT_ROWS(ra[5], ra[7]);
+        __m512d u0 = _mm512_unpacklo_pd(t0, t1), u1 = _mm512_unpackhi_pd(t0, t1); /* x0 x1 w0 w1 x2 x3 w2 w3 | y.. */
+        __m512d u2 = _mm512_unpacklo_pd(t2, t3), u3 = _mm512_unpackhi_pd(t2, t3);
+        __m512d xa = _mm512_shuffle_f64x2(u0, u2, 0x88), ya = _mm512_shuffle_f64x2(u1, u3, 0x88);
+        const __m512d wa = _mm512_shuffle_f64x2(u0, u2, 0xdd);
+        t0 = TT_ROWS(rb[0], rb[2]), t1 = TT_ROWS(rb[1], rb[3]), t2 = TT_ROWS(rb[4], rb[6]), t3 = TT_ROWS(rb[5], rb[7]);
+        u0 = _mm512_unpacklo_pd(t0, t1), u1 = _mm512_unpackhi_pd(t0, t1);
+        u2 = _mm512_unpacklo_pd(t2, t3), u3 = _mm512_unpackhi_pd(t2, t3);
+        __m512d xb = _mm512_shuffle_f64x2(u0, u2, 0x88), yb = _mm512_shuffle_f64x2(u1, u3, 0x88);
+        const __m512d wb = _mm512_shuffle_f64x2(u0, u2, 0xdd);
+        __m512d pe = TT_PAIRS(lo, 0, 2, 4, 6), po = TT_PAIRS(lo, 1, 3, 5, 7);
+        const __m512d lo = _mm512_unpacklo_pd(pe, po), hi = _mm512_unpackhi_pd(pe, po);
+        pe = TT_PAIRS(k, 0, 2, 4, 6), po = TT_PAIRS(k, 1, 3, 5, 7);
+        const __m512d k = _mm512_unpacklo_pd(pe, po), alpha = _mm512_unpackhi_pd(pe, po);
+
+        const __m512d ws = _mm512_add_pd(wa, wb);
+        const __m512d dx = _mm512_sub_pd(xb, xa), dy = _mm512_sub_pd(yb, ya);
+        const __m512d len = _mm512_sqrt_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)));
+        __m512d c = _mm512_maskz_sub_pd(_mm512_cmp_pd_mask(len, hi, _CMP_GT_OQ), len, hi); /* else +0 */
+        c = _mm512_mask_sub_pd(c, _mm512_cmp_pd_mask(len, lo, _CMP_LT_OQ), len, lo);
+        const __mmask8 act = _mm512_cmp_pd_mask(ws, zero, _CMP_NEQ_UQ) & _mm512_cmp_pd_mask(c, zero, _CMP_NEQ_UQ);
+        const __m512d ac = _mm512_abs_pd(c);
+        err = _mm512_mask_mov_pd(err, _mm512_mask_cmp_pd_mask(act, ac, err, _CMP_GT_OQ), ac);
+        const __mmask8 upd = _mm512_mask_cmp_pd_mask(act, len, zero, _CMP_NEQ_UQ);
+        if (!upd) continue;
+        __m512d s = _mm512_div_pd(_mm512_mul_pd(k, c), _mm512_mul_pd(ws, len));
+        const __mmask8 xp = _mm512_mask_cmp_pd_mask(upd, alpha, zero, _CMP_GT_OQ);
+        if (xp) {
+            __m512d lam = _mm512_set_pd(x[7].lambda, x[6].lambda, x[5].lambda, x[4].lambda, x[3].lambda, x[2].lambda,
+                                        x[1].lambda, x[0].lambda);
+            const __m512d at = _mm512_mul_pd(alpha, ih2);
+            const __m512d dl = _mm512_div_pd(_mm512_sub_pd(TT_NEG(c), _mm512_mul_pd(at, lam)), _mm512_add_pd(ws, at));
+            lam = _mm512_mask_add_pd(lam, xp, lam, dl);
+            double l[8];
+            _mm512_storeu_pd(l, lam);
+            for (int j = 0; j < 8; j++) x[j].lambda = l[j];
+            s = _mm512_mask_div_pd(s, xp, TT_NEG(dl), len);
+        }
+        const __m512d cx = _mm512_mul_pd(s, dx), cy = _mm512_mul_pd(s, dy);
+        xa = _mm512_mask_add_pd(xa, upd, xa, _mm512_mul_pd(wa, cx));
+        ya = _mm512_mask_add_pd(ya, upd, ya, _mm512_mul_pd(wa, cy));
+        xb = _mm512_mask_sub_pd(xb, upd, xb, _mm512_mul_pd(wb, cx));
+        yb = _mm512_mask_sub_pd(yb, upd, yb, _mm512_mul_pd(wb, cy));
+        /* (x, y) pairs back: unpacklo holds links 0 2 4 6, unpackhi 1 3 5 7 */
+#define TT_BACK(r, xv, yv)                                                                         \
+    do {                                                                                           \
+        const __m512d e = _mm512_unpacklo_pd(xv, yv), o = _mm512_unpackhi_pd(xv, yv);              \
+        _mm_store_pd(r[0], _mm512_castpd512_pd128(e));                                             \
+        _mm_store_pd(r[1], _mm512_castpd512_pd128(o));                                             \
+        _mm_store_ps((float *)r[2], _mm512_extractf32x4_ps(_mm512_castpd_ps(e), 1));               \
+        _mm_store_ps((float *)r[3], _mm512_extractf32x4_ps(_mm512_castpd_ps(o), 1));               \
+        _mm_store_ps((float *)r[4], _mm512_extractf32x4_ps(_mm512_castpd_ps(e), 2));               \
+        _mm_store_ps((float *)r[5], _mm512_extractf32x4_ps(_mm512_castpd_ps(o), 2));               \
+        _mm_store_ps((float *)r[6], _mm512_extractf32x4_ps(_mm512_castpd_ps(e), 3));               \
+        _mm_store_ps((float *)r[7], _mm512_extractf32x4_ps(_mm512_castpd_ps(o), 3));               \
+    } while (0)
+        TT_BACK(ra, xa, ya);
+        TT_BACK(rb, xb, yb);
+    }
+#undef TT_BACK
+#undef TT_PAIRS
+#undef TT_ROWS
+#undef TT_NEG
+    double e[8], r = 0.0;
+    _mm512_storeu_pd(e, err);
+    for (int j = 0; j < 8; j++)
+        if (e[j] > r) r = e[j];
+    return r;
+}
+
+/* The plan's scalar runs and vector blocks, on the packed rows. */
+static inline __attribute__((always_inline)) double sweep_planned(tt_world *w, tt__cgroup *g, double h, uint32_t W,
+                                                                  double (*blocks)(double *, const tt__dist *, tt__dist_x *, uint32_t, double))
+{
+    double *pk = g->pk;
+    const double inv_h2 = 1.0 / (h * h);
+    pack_avx2(pk, w->px, w->py, w->inv_mass, g->plan_np);
+    double err = 0.0;
+    uint32_t i = 0;
+    for (uint32_t k = 0; k < g->nplan; k += 2) {
+        const uint32_t ns = g->plan[k], nb = g->plan[k + 1];
+        err = sweep_distance(w, g, h, false, pk, pk + 1, pk + 2, 4, i, i + ns, err);
+        i += ns;
+        if (!nb) continue;
+        double e = blocks(pk, g->dist + i, g->dx + i, nb, inv_h2);
+        if (e > err) err = e; /* a max: the order it is taken in does not matter */
+        i += nb * W;
+    }
+    unpack_avx2(pk, w->px, w->py, g->plan_np);
+    return err;
+}
+
+TT_AVX2 static double sweep_avx2(tt_world *w, tt__cgroup *g, double h) { return sweep_planned(w, g, h, 4, blocks_avx2); }
+TT_AVX512 static double sweep_avx512(tt_world *w, tt__cgroup *g, double h) { return sweep_planned(w, g, h, 8, blocks_avx512); }
+#endif
+
+static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h)
+{
+    const uint32_t W = simd_lanes(g->simd);
+    if (W == 0 || g->ndist < 2 * W || (!(g->plan_ok && g->plan_w == W) && !plan_build(g, W)))
+        return sweep_distance(w, g, h, false, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0); /* as exact */
+#ifdef TT_SIMD_X86
+    return W == 8 ? sweep_avx512(w, g, h) : sweep_avx2(w, g, h);
+#else
+    return 0.0;
+#endif
+}
+
+static double sweep_distance_jacobi(tt_world *w, tt__cgroup *g, double h)
+{
+    return sweep_distance(w, g, h, true, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0);
 }
 
 /* PBD / XPBD step of a scalar constraint C with gradients grad[2k] over particles idx[k]. */
@@ -1044,9 +1388,6 @@ static double relax_collinear(tt_world *w, tt__gcon *c, double h)
     solve_scalar(w, c, c->p, 3, grad, C, h);
     return L > 0.0 ? fabs(C) / L : fabs(C);
 }
-
-static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h) { return sweep_distance(w, g, h, false); }
-static double sweep_distance_jacobi(tt_world *w, tt__cgroup *g, double h) { return sweep_distance(w, g, h, true); }
 
 static double group_relax(tt_world *w, void *self, double h)
 {
@@ -1215,6 +1556,7 @@ static size_t group_memory(const tt_world *w, const void *self)
     b += (size_t)g->pair_cap * (sizeof(uint64_t) + sizeof(uint32_t));
     b += (size_t)(g->cap_new + g->cap_pub) * sizeof(tt_break_event);
     b += (size_t)g->grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
+    b += ((size_t)g->plan_cap + g->stamp_cap) * sizeof(uint32_t) + (size_t)g->pk_cap * 4 * sizeof(double);
     return b + tt__composites_memory(g);
 }
 
@@ -1233,6 +1575,9 @@ static void group_destroy(tt_world *w, void *self)
     free(g->ev_pub);
     free(g->grad);
     free(g->refs);
+    free(g->plan);
+    free(g->stamp);
+    free(g->pk);
     tt_pool_destroy(&g->pool);
     tt__composites_free(g);
     free(g);
