@@ -80,6 +80,11 @@ typedef struct tt__cgroup {
     uint32_t nplan, plan_cap, plan_w, plan_np, stamp_cap; /* plan_np: 1 + the largest particle named */
     double *pk;        /* the vector sweep's copy of x, y, inverse mass: 4 doubles per particle */
     uint32_t pk_cap;   /* particles */
+    /* the plan's copy of the links' hot fields, one array each, by dense
+     * index (setters keep it current); ra, rb: 4·a, 4·b (row offsets in pk) */
+    double *h_lo, *h_hi, *h_k, *h_alpha;
+    uint32_t *h_ra, *h_rb;
+    uint32_t hot_cap;
     bool plan_ok;
     uint8_t simd;      /* tt__simd_mode */
 

@@ -212,6 +212,16 @@ static void gen_refs(tt__cgroup *g, const tt__gcon *c, int delta)
     for (uint32_t k = 0; k < c->n; k++) g->refs[p[k]] += (uint32_t)delta;
 }
 
+/* Link i's lo, hi, k or alpha changed: its copy follows (a stale plan is rebuilt whole). */
+static void hot_sync(tt__cgroup *g, uint32_t i)
+{
+    if (!g->plan_ok) return;
+    g->h_lo[i] = g->dist[i].lo;
+    g->h_hi[i] = g->dist[i].hi;
+    g->h_k[i] = g->dist[i].k;
+    g->h_alpha[i] = g->dist[i].alpha;
+}
+
 /* ---- removal ------------------------------------------------------------- */
 
 static void dist_remove(tt__cgroup *g, uint32_t d)
@@ -748,8 +758,12 @@ tt_result tt_constraint_set_stiffness(tt_world *w, tt_constraint c, double k)
     if (!tt__in_range(k, 0.0, 1.0)) return tt__fail(w, TT_EINVAL, "%s: stiffness must be in [0, 1], got %g", fn, k);
     tt__cslot *s = &g->slots[c.index];
     if (s->kind == TT_CONSTRAINT_BOUNDS) return tt__fail(w, TT_ESTATE, "%s: bounds are always stiff", fn);
-    if (s->kind == TT_CONSTRAINT_DISTANCE) g->dist[s->dense].k = k;
-    else g->gen[s->dense].k = k;
+    if (s->kind == TT_CONSTRAINT_DISTANCE) {
+        g->dist[s->dense].k = k;
+        hot_sync(g, s->dense);
+    } else {
+        g->gen[s->dense].k = k;
+    }
     return TT_OK;
 }
 
@@ -768,6 +782,7 @@ tt_result tt_constraint_set_compliance(tt_world *w, tt_constraint c, double alph
         tt__dist *d = &g->dist[s->dense];
         g->nxpbd += (alpha > 0) - (d->alpha > 0);
         d->alpha = alpha;
+        hot_sync(g, s->dense);
     } else {
         g->gen[s->dense].alpha = alpha;
     }
@@ -795,6 +810,7 @@ tt_result tt_distance_set_length(tt_world *w, tt_constraint c, double length)
     g->dx[d].rest = length;
     g->dist[d].lo = g->dx[d].mode == TT_DISTANCE_MAX ? 0.0 : length;
     g->dist[d].hi = g->dx[d].mode == TT_DISTANCE_MIN ? INFINITY : length;
+    hot_sync(g, d);
     return TT_OK;
 }
 
@@ -960,7 +976,8 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
  * (these functions enable no FMA, and the build has -ffp-contract=off) with
  * every branch turned into a mask. The sweep works on a packed copy of x, y
  * and inverse mass (one 32-byte row per particle, made and written back each
- * sweep: ~3 % of its time) so a lane's particle is one load and one store. */
+ * sweep) so a lane's particle is one load and one store, and reads the links'
+ * hot fields from arrays (h_*) so a lane's parameters are one vector load. */
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define TT_SIMD_X86 1
@@ -992,17 +1009,9 @@ bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode)
     return true;
 }
 
-/* Greedy in one pass: a block gathers consecutive links until W share no
- * particle; a link naming a particle of link k in the block restarts the
- * block after k, and the links passed over go to a scalar run. */
-static bool plan_build(tt__cgroup *g, uint32_t W)
+/* Room for the plan of n links over particles [0, np). */
+static bool plan_reserve(tt__cgroup *g, uint32_t n, uint32_t np, uint32_t W)
 {
-    const uint32_t n = g->ndist;
-    uint32_t np = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        uint32_t m = g->dist[i].a > g->dist[i].b ? g->dist[i].a : g->dist[i].b;
-        if (m >= np) np = m + 1;
-    }
     if (!grow((void **)&g->stamp, sizeof *g->stamp, &g->stamp_cap, np) ||
         !grow((void **)&g->plan, sizeof *g->plan, &g->plan_cap, 2 * (n / W + 1)))
         return false;
@@ -1010,20 +1019,61 @@ static bool plan_build(tt__cgroup *g, uint32_t W)
         double *pk = aligned_alloc(32, (size_t)np * 4 * sizeof(double));
         if (!pk) return false;
         free(g->pk);
+    free(g->h_lo);
         g->pk = pk;
         g->pk_cap = np;
     }
-    uint32_t *stamp = g->stamp, *plan = g->plan, m = 0, done = 0, s = 0; /* done: links planned; s: the block's first */
+    if (n > g->hot_cap) { /* one block: four double arrays, then two uint32 ones */
+        uint32_t cap = n > UINT32_MAX / 2 ? n : n + n / 2;
+        double *h = malloc((size_t)cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)));
+        if (!h) return false;
+        free(g->h_lo);
+        g->h_lo = h;
+        g->h_hi = h + cap;
+        g->h_k = h + 2 * (size_t)cap;
+        g->h_alpha = h + 3 * (size_t)cap;
+        g->h_ra = (uint32_t *)(h + 4 * (size_t)cap);
+        g->h_rb = g->h_ra + cap;
+        g->hot_cap = cap;
+    }
+    return true;
+}
+
+/* Greedy in one pass. A block gathers consecutive links until W share no
+ * particle, and a run of blocks (one plan segment) goes on while each block
+ * also shares none with the D − 1 before it, so a kernel may load a block
+ * before it stores the previous ones. A link naming a particle of link k:
+ * k in the block: the links up to k go to a scalar run, a new run starts
+ * after k; k in an earlier block: a new run starts with this block. */
+static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
+{
+    const uint32_t n = g->ndist;
+    uint32_t np = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t m = g->dist[i].a > g->dist[i].b ? g->dist[i].a : g->dist[i].b;
+        if (m >= np) np = m + 1;
+    }
+    if (!plan_reserve(g, n, np, W)) return false;
+    /* stamp[p]: 1 + the last link naming p; done: links planned; r, s: first link of the run, of the block */
+    uint32_t *stamp = g->stamp, *plan = g->plan, m = 0, done = 0, r = 0, s = 0;
     memset(stamp, 0, (size_t)np * sizeof *stamp);
     for (uint32_t j = 0; j < n; j++) {
-        const uint32_t a = g->dist[j].a, b = g->dist[j].b;
-        if (stamp[a] > s) s = stamp[a];
-        if (stamp[b] > s) s = stamp[b];
-        if (a == b) s = j + 1; /* never made, but then no lane may hold it */
+        const tt__dist *d = &g->dist[j];
+        const uint32_t a = d->a, b = d->b;
+        g->h_lo[j] = d->lo;
+        g->h_hi[j] = d->hi;
+        g->h_k[j] = d->k;
+        g->h_alpha[j] = d->alpha;
+        g->h_ra[j] = 4 * a;
+        g->h_rb[j] = 4 * b;
+        const uint32_t lim = s - r >= (D - 1) * W ? s - (D - 1) * W : r; /* j must share no particle with [lim, j) */
+        uint32_t k1 = stamp[a] > stamp[b] ? stamp[a] : stamp[b];
+        if (a == b) k1 = j + 1; /* never made, but then no lane may hold it */
+        if (k1 > lim) r = k1 > s ? (s = k1) : s;
         stamp[a] = stamp[b] = j + 1;
         if (j + 1 - s < W) continue;
-        if (s == done && m > 0) {
-            plan[m - 1]++; /* straight after the previous block */
+        if (s == done && r < s && m > 0) {
+            plan[m - 1]++; /* the run goes on */
         } else {
             plan[m++] = s - done;
             plan[m++] = 1;
@@ -1044,6 +1094,7 @@ static bool plan_build(tt__cgroup *g, uint32_t W)
 #ifdef TT_SIMD_X86
 #define TT_AVX2 __attribute__((target("avx2")))
 #define TT_AVX512 __attribute__((target("avx512f")))
+#define TT_INLINE static inline __attribute__((always_inline))
 
 /* x, y, inverse mass of particles [0, np) into rows (x, y, w, 0) and back. */
 TT_AVX2 static void pack_avx2(double *pk, const double *px, const double *py, const double *im, uint32_t np)
@@ -1078,54 +1129,74 @@ TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32
     }
 }
 
-/* nb blocks of 4 links from d (x: their cold halves) on the rows pk;
- * returns the largest error. */
-TT_AVX2 static double blocks_avx2(double *pk, const tt__dist *d, tt__dist_x *x, uint32_t nb, double inv_h2)
+static double max_lanes(const double *e, int n)
 {
-    const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0), ih2 = _mm256_set1_pd(inv_h2);
-    __m256d err = zero;
-    for (uint32_t blk = 0; blk < nb; blk++, d += 4, x += 4) {
-        double *ra0 = pk + 4 * (size_t)d[0].a, *ra1 = pk + 4 * (size_t)d[1].a;
-        double *ra2 = pk + 4 * (size_t)d[2].a, *ra3 = pk + 4 * (size_t)d[3].a;
-        double *rb0 = pk + 4 * (size_t)d[0].b, *rb1 = pk + 4 * (size_t)d[1].b;
-        double *rb2 = pk + 4 * (size_t)d[2].b, *rb3 = pk + 4 * (size_t)d[3].b;
-        /* rows (x, y, w, 0) of the four a's, transposed into x, y, w vectors; the same for b */
-        __m256d t0 = _mm256_unpacklo_pd(_mm256_load_pd(ra0), _mm256_load_pd(ra1)); /* x0 x1 w0 w1 */
-        __m256d t1 = _mm256_unpackhi_pd(_mm256_load_pd(ra0), _mm256_load_pd(ra1)); /* y0 y1 .. .. */
-        __m256d t2 = _mm256_unpacklo_pd(_mm256_load_pd(ra2), _mm256_load_pd(ra3));
-        __m256d t3 = _mm256_unpackhi_pd(_mm256_load_pd(ra2), _mm256_load_pd(ra3));
-        __m256d xa = _mm256_permute2f128_pd(t0, t2, 0x20), ya = _mm256_permute2f128_pd(t1, t3, 0x20);
-        const __m256d wa = _mm256_permute2f128_pd(t0, t2, 0x31);
-        t0 = _mm256_unpacklo_pd(_mm256_load_pd(rb0), _mm256_load_pd(rb1));
-        t1 = _mm256_unpackhi_pd(_mm256_load_pd(rb0), _mm256_load_pd(rb1));
-        t2 = _mm256_unpacklo_pd(_mm256_load_pd(rb2), _mm256_load_pd(rb3));
-        t3 = _mm256_unpackhi_pd(_mm256_load_pd(rb2), _mm256_load_pd(rb3));
-        __m256d xb = _mm256_permute2f128_pd(t0, t2, 0x20), yb = _mm256_permute2f128_pd(t1, t3, 0x20);
-        const __m256d wb = _mm256_permute2f128_pd(t0, t2, 0x31);
-        /* (lo, hi) and (k, alpha) of links 0, 2 | 1, 3, transposed */
-        __m256d p02 = _mm256_set_m128d(_mm_loadu_pd(&d[2].lo), _mm_loadu_pd(&d[0].lo));
-        __m256d p13 = _mm256_set_m128d(_mm_loadu_pd(&d[3].lo), _mm_loadu_pd(&d[1].lo));
-        const __m256d lo = _mm256_unpacklo_pd(p02, p13), hi = _mm256_unpackhi_pd(p02, p13);
-        p02 = _mm256_set_m128d(_mm_loadu_pd(&d[2].k), _mm_loadu_pd(&d[0].k));
-        p13 = _mm256_set_m128d(_mm_loadu_pd(&d[3].k), _mm_loadu_pd(&d[1].k));
-        const __m256d k = _mm256_unpacklo_pd(p02, p13), alpha = _mm256_unpackhi_pd(p02, p13);
+    double r = 0.0;
+    for (int j = 0; j < n; j++)
+        if (e[j] > r) r = e[j];
+    return r;
+}
 
-        const __m256d ws = _mm256_add_pd(wa, wb);
-        const __m256d dx = _mm256_sub_pd(xb, xa), dy = _mm256_sub_pd(yb, ya);
-        const __m256d len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
-        __m256d c = _mm256_blendv_pd(zero, _mm256_sub_pd(len, hi), _mm256_cmp_pd(len, hi, _CMP_GT_OQ));
-        c = _mm256_blendv_pd(c, _mm256_sub_pd(len, lo), _mm256_cmp_pd(len, lo, _CMP_LT_OQ));
-        /* as the scalar loop skips: ws == 0, c == 0 (no error); len == 0 (error, no move) */
-        const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(c, zero, _CMP_NEQ_UQ));
-        const __m256d ac = _mm256_andnot_pd(sign, c);
-        err = _mm256_blendv_pd(err, ac, _mm256_and_pd(act, _mm256_cmp_pd(ac, err, _CMP_GT_OQ)));
-        const __m256d upd = _mm256_and_pd(act, _mm256_cmp_pd(len, zero, _CMP_NEQ_UQ));
-        if (!_mm256_movemask_pd(upd)) continue;
-        __m256d s = _mm256_div_pd(_mm256_mul_pd(k, c), _mm256_mul_pd(ws, len));
-        const __m256d xp = _mm256_and_pd(upd, _mm256_cmp_pd(alpha, zero, _CMP_GT_OQ));
+/* What a kernel reads: the rows, the hot arrays and the cold halves, all
+ * from the run's first link on. */
+typedef struct kern_in {
+    double *pk;
+    const double *lo, *hi, *k, *alpha;
+    const uint32_t *ra, *rb;
+    tt__dist_x *x;
+    double inv_h2;
+} kern_in;
+
+/* Four links in ymm lanes, in two stages: A loads and transposes the rows
+ * and computes up to the correction factor s; B moves the particles and
+ * stores the rows. */
+typedef struct lanes4 {
+    double *ra0, *ra1, *ra2, *ra3, *rb0, *rb1, *rb2, *rb3;
+    __m256d xa, ya, wa, xb, yb, wb, dx, dy, s, upd;
+} lanes4;
+
+TT_AVX2 TT_INLINE __m256d stage_a4(lanes4 *l, const kern_in *in, uint32_t i, __m256d err, bool xpbd)
+{
+    const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
+    double *pk = in->pk;
+    l->ra0 = pk + in->ra[i], l->ra1 = pk + in->ra[i + 1], l->ra2 = pk + in->ra[i + 2], l->ra3 = pk + in->ra[i + 3];
+    l->rb0 = pk + in->rb[i], l->rb1 = pk + in->rb[i + 1], l->rb2 = pk + in->rb[i + 2], l->rb3 = pk + in->rb[i + 3];
+    /* rows (x, y, w, 0) of the four a's, transposed into x, y, w vectors; the same for b */
+    __m256d t0 = _mm256_unpacklo_pd(_mm256_load_pd(l->ra0), _mm256_load_pd(l->ra1)); /* x0 x1 w0 w1 */
+    __m256d t1 = _mm256_unpackhi_pd(_mm256_load_pd(l->ra0), _mm256_load_pd(l->ra1)); /* y0 y1 .. .. */
+    __m256d t2 = _mm256_unpacklo_pd(_mm256_load_pd(l->ra2), _mm256_load_pd(l->ra3));
+    __m256d t3 = _mm256_unpackhi_pd(_mm256_load_pd(l->ra2), _mm256_load_pd(l->ra3));
+    l->xa = _mm256_permute2f128_pd(t0, t2, 0x20);
+    l->ya = _mm256_permute2f128_pd(t1, t3, 0x20);
+    l->wa = _mm256_permute2f128_pd(t0, t2, 0x31);
+    t0 = _mm256_unpacklo_pd(_mm256_load_pd(l->rb0), _mm256_load_pd(l->rb1));
+    t1 = _mm256_unpackhi_pd(_mm256_load_pd(l->rb0), _mm256_load_pd(l->rb1));
+    t2 = _mm256_unpacklo_pd(_mm256_load_pd(l->rb2), _mm256_load_pd(l->rb3));
+    t3 = _mm256_unpackhi_pd(_mm256_load_pd(l->rb2), _mm256_load_pd(l->rb3));
+    l->xb = _mm256_permute2f128_pd(t0, t2, 0x20);
+    l->yb = _mm256_permute2f128_pd(t1, t3, 0x20);
+    l->wb = _mm256_permute2f128_pd(t0, t2, 0x31);
+
+    const __m256d ws = _mm256_add_pd(l->wa, l->wb);
+    l->dx = _mm256_sub_pd(l->xb, l->xa);
+    l->dy = _mm256_sub_pd(l->yb, l->ya);
+    const __m256d len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(l->dx, l->dx), _mm256_mul_pd(l->dy, l->dy)));
+    /* c = min(len − lo, 0) + max(len − hi, 0) is the scalar's three cases bit
+     * for bit: lo <= hi, so one term is +0, and min/max give the 0 for NaN */
+    const __m256d c = _mm256_add_pd(_mm256_min_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->lo + i)), zero),
+                                    _mm256_max_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->hi + i)), zero));
+    /* as the scalar loop skips: ws == 0, c == 0 (no error); len == 0 (error, no move) */
+    const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(c, zero, _CMP_NEQ_UQ));
+    err = _mm256_max_pd(err, _mm256_and_pd(_mm256_andnot_pd(sign, c), act)); /* |c| >= 0, never NaN */
+    l->upd = _mm256_and_pd(act, _mm256_cmp_pd(len, zero, _CMP_NEQ_UQ));
+    l->s = _mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(in->k + i), c), _mm256_mul_pd(ws, len));
+    if (xpbd) {
+        const __m256d alpha = _mm256_loadu_pd(in->alpha + i);
+        const __m256d xp = _mm256_and_pd(l->upd, _mm256_cmp_pd(alpha, zero, _CMP_GT_OQ));
         if (_mm256_movemask_pd(xp)) {
+            tt__dist_x *x = in->x + i;
             __m256d lam = _mm256_set_pd(x[3].lambda, x[2].lambda, x[1].lambda, x[0].lambda);
-            const __m256d at = _mm256_mul_pd(alpha, ih2);
+            const __m256d at = _mm256_mul_pd(alpha, _mm256_set1_pd(in->inv_h2));
             const __m256d dl = _mm256_div_pd(_mm256_sub_pd(_mm256_xor_pd(c, sign), _mm256_mul_pd(at, lam)), _mm256_add_pd(ws, at));
             lam = _mm256_blendv_pd(lam, _mm256_add_pd(lam, dl), xp);
             const __m128d l01 = _mm256_castpd256_pd128(lam), l23 = _mm256_extractf128_pd(lam, 1);
@@ -1133,52 +1204,70 @@ TT_AVX2 static double blocks_avx2(double *pk, const tt__dist *d, tt__dist_x *x, 
             _mm_storeh_pd(&x[1].lambda, l01);
             _mm_storel_pd(&x[2].lambda, l23);
             _mm_storeh_pd(&x[3].lambda, l23);
-            s = _mm256_blendv_pd(s, _mm256_div_pd(_mm256_xor_pd(dl, sign), len), xp);
+            l->s = _mm256_blendv_pd(l->s, _mm256_div_pd(_mm256_xor_pd(dl, sign), len), xp);
         }
-        const __m256d cx = _mm256_mul_pd(s, dx), cy = _mm256_mul_pd(s, dy);
-        /* a lane that must not move keeps its old value (old + 0 could turn −0 into +0) */
-        xa = _mm256_blendv_pd(xa, _mm256_add_pd(xa, _mm256_mul_pd(wa, cx)), upd);
-        ya = _mm256_blendv_pd(ya, _mm256_add_pd(ya, _mm256_mul_pd(wa, cy)), upd);
-        xb = _mm256_blendv_pd(xb, _mm256_sub_pd(xb, _mm256_mul_pd(wb, cx)), upd);
-        yb = _mm256_blendv_pd(yb, _mm256_sub_pd(yb, _mm256_mul_pd(wb, cy)), upd);
-        /* (x, y) pairs back into the rows */
-        t0 = _mm256_unpacklo_pd(xa, ya); /* x0 y0 x2 y2 */
-        t1 = _mm256_unpackhi_pd(xa, ya); /* x1 y1 x3 y3 */
-        _mm_store_pd(ra0, _mm256_castpd256_pd128(t0));
-        _mm_store_pd(ra1, _mm256_castpd256_pd128(t1));
-        _mm_store_pd(ra2, _mm256_extractf128_pd(t0, 1));
-        _mm_store_pd(ra3, _mm256_extractf128_pd(t1, 1));
-        t0 = _mm256_unpacklo_pd(xb, yb);
-        t1 = _mm256_unpackhi_pd(xb, yb);
-        _mm_store_pd(rb0, _mm256_castpd256_pd128(t0));
-        _mm_store_pd(rb1, _mm256_castpd256_pd128(t1));
-        _mm_store_pd(rb2, _mm256_extractf128_pd(t0, 1));
-        _mm_store_pd(rb3, _mm256_extractf128_pd(t1, 1));
     }
-    double e[4], r = 0.0;
-    _mm256_storeu_pd(e, err);
-    for (int j = 0; j < 4; j++)
-        if (e[j] > r) r = e[j];
-    return r;
+    return err;
 }
 
-/* The same in blocks of 8: each zmm holds rows of two particles (2 × 4 doubles). */
-TT_AVX512 static double blocks_avx512(double *pk, const tt__dist *d, tt__dist_x *x, uint32_t nb, double inv_h2)
+TT_AVX2 TT_INLINE void stage_b4(const lanes4 *l)
 {
-    const __m512d zero = _mm512_setzero_pd(), ih2 = _mm512_set1_pd(inv_h2);
+    const int m = _mm256_movemask_pd(l->upd);
+    if (!m) return;
+    const __m256d cx = _mm256_mul_pd(l->s, l->dx), cy = _mm256_mul_pd(l->s, l->dy);
+    __m256d xa = _mm256_add_pd(l->xa, _mm256_mul_pd(l->wa, cx)), ya = _mm256_add_pd(l->ya, _mm256_mul_pd(l->wa, cy));
+    __m256d xb = _mm256_sub_pd(l->xb, _mm256_mul_pd(l->wb, cx)), yb = _mm256_sub_pd(l->yb, _mm256_mul_pd(l->wb, cy));
+    if (m != 15) { /* a lane that must not move keeps its old value (old + 0 could turn −0 into +0) */
+        xa = _mm256_blendv_pd(l->xa, xa, l->upd);
+        ya = _mm256_blendv_pd(l->ya, ya, l->upd);
+        xb = _mm256_blendv_pd(l->xb, xb, l->upd);
+        yb = _mm256_blendv_pd(l->yb, yb, l->upd);
+    }
+    /* (x, y) pairs back into the rows */
+    __m256d t0 = _mm256_unpacklo_pd(xa, ya), t1 = _mm256_unpackhi_pd(xa, ya); /* x0 y0 x2 y2 | x1 y1 x3 y3 */
+    _mm_store_pd(l->ra0, _mm256_castpd256_pd128(t0));
+    _mm_store_pd(l->ra1, _mm256_castpd256_pd128(t1));
+    _mm_store_pd(l->ra2, _mm256_extractf128_pd(t0, 1));
+    _mm_store_pd(l->ra3, _mm256_extractf128_pd(t1, 1));
+    t0 = _mm256_unpacklo_pd(xb, yb), t1 = _mm256_unpackhi_pd(xb, yb);
+    _mm_store_pd(l->rb0, _mm256_castpd256_pd128(t0));
+    _mm_store_pd(l->rb1, _mm256_castpd256_pd128(t1));
+    _mm_store_pd(l->rb2, _mm256_extractf128_pd(t0, 1));
+    _mm_store_pd(l->rb3, _mm256_extractf128_pd(t1, 1));
+}
+
+/* A run of nb blocks of 4 links; returns the largest error. */
+TT_AVX2 TT_INLINE double run_avx2(const kern_in *in, uint32_t nb, bool xpbd)
+{
+    __m256d err = _mm256_setzero_pd();
+    for (uint32_t t = 0; t < nb; t++) {
+        lanes4 l;
+        err = stage_a4(&l, in, 4 * t, err, xpbd);
+        stage_b4(&l);
+    }
+    double e[4];
+    _mm256_storeu_pd(e, err);
+    return max_lanes(e, 4);
+}
+
+TT_AVX2 static double run_avx2_k(const kern_in *in, uint32_t nb) { return run_avx2(in, nb, false); }
+TT_AVX2 static double run_avx2_x(const kern_in *in, uint32_t nb) { return run_avx2(in, nb, true); }
+
+/* Eight links in zmm lanes; each zmm of rows holds two particles. */
+TT_AVX512 TT_INLINE double run_avx512(const kern_in *in, uint32_t nb, bool xpbd)
+{
+    const __m512d zero = _mm512_setzero_pd();
     const __m512i sign = _mm512_castpd_si512(_mm512_set1_pd(-0.0));
     __m512d err = zero;
     /* −v flips the sign bit (0 − v would give +0 for v = 0) */
 #define TT_NEG(v) _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(v), sign))
-#define TT_ROWS(i, j) _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_load_pd(i)), _mm256_load_pd(j), 1)
-#define TT_PAIRS(f, j0, j1, j2, j3)                                                                                  \
-    _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_set_m128d(_mm_loadu_pd(&d[j1].f), _mm_loadu_pd(&d[j0].f))), \
-                       _mm256_set_m128d(_mm_loadu_pd(&d[j3].f), _mm_loadu_pd(&d[j2].f)), 1)
-    for (uint32_t blk = 0; blk < nb; blk++, d += 8, x += 8) {
-        double *ra[8], *rb[8];
+#define TT_ROWS(p, q) _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_load_pd(p)), _mm256_load_pd(q), 1)
+    for (uint32_t t = 0; t < nb; t++) {
+        const uint32_t i = 8 * t;
+        double *pk = in->pk, *ra[8], *rb[8];
         for (int j = 0; j < 8; j++) {
-            ra[j] = pk + 4 * (size_t)d[j].a;
-            rb[j] = pk + 4 * (size_t)d[j].b;
+            ra[j] = pk + in->ra[i + j];
+            rb[j] = pk + in->rb[i + j];
         }
         /* rows (a0 | a2), (a1 | a3), (a4 | a6), (a5 | a7): unpacked, then 128-bit lanes picked so lane j is link j */
         __m512d t0 = TT_ROWS(ra[0], ra[2]), t1 = TT_ROWS(ra[1], ra[3]), t2 = TT_ROWS(ra[4], ra[6]), t3 = TT_ROWS(ra[5], ra[7]);
@@ -1191,35 +1280,35 @@ TT_AVX512 static double blocks_avx512(double *pk, const tt__dist *d, tt__dist_x 
         u2 = _mm512_unpacklo_pd(t2, t3), u3 = _mm512_unpackhi_pd(t2, t3);
         __m512d xb = _mm512_shuffle_f64x2(u0, u2, 0x88), yb = _mm512_shuffle_f64x2(u1, u3, 0x88);
         const __m512d wb = _mm512_shuffle_f64x2(u0, u2, 0xdd);
-        __m512d pe = TT_PAIRS(lo, 0, 2, 4, 6), po = TT_PAIRS(lo, 1, 3, 5, 7);
-        const __m512d lo = _mm512_unpacklo_pd(pe, po), hi = _mm512_unpackhi_pd(pe, po);
-        pe = TT_PAIRS(k, 0, 2, 4, 6), po = TT_PAIRS(k, 1, 3, 5, 7);
-        const __m512d k = _mm512_unpacklo_pd(pe, po), alpha = _mm512_unpackhi_pd(pe, po);
 
         const __m512d ws = _mm512_add_pd(wa, wb);
         const __m512d dx = _mm512_sub_pd(xb, xa), dy = _mm512_sub_pd(yb, ya);
         const __m512d len = _mm512_sqrt_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)));
-        __m512d c = _mm512_maskz_sub_pd(_mm512_cmp_pd_mask(len, hi, _CMP_GT_OQ), len, hi); /* else +0 */
-        c = _mm512_mask_sub_pd(c, _mm512_cmp_pd_mask(len, lo, _CMP_LT_OQ), len, lo);
+        const __m512d c = _mm512_add_pd(_mm512_min_pd(_mm512_sub_pd(len, _mm512_loadu_pd(in->lo + i)), zero),
+                                        _mm512_max_pd(_mm512_sub_pd(len, _mm512_loadu_pd(in->hi + i)), zero));
         const __mmask8 act = _mm512_cmp_pd_mask(ws, zero, _CMP_NEQ_UQ) & _mm512_cmp_pd_mask(c, zero, _CMP_NEQ_UQ);
-        const __m512d ac = _mm512_abs_pd(c);
-        err = _mm512_mask_mov_pd(err, _mm512_mask_cmp_pd_mask(act, ac, err, _CMP_GT_OQ), ac);
+        err = _mm512_max_pd(err, _mm512_maskz_mov_pd(act, _mm512_abs_pd(c)));
         const __mmask8 upd = _mm512_mask_cmp_pd_mask(act, len, zero, _CMP_NEQ_UQ);
         if (!upd) continue;
-        __m512d s = _mm512_div_pd(_mm512_mul_pd(k, c), _mm512_mul_pd(ws, len));
-        const __mmask8 xp = _mm512_mask_cmp_pd_mask(upd, alpha, zero, _CMP_GT_OQ);
-        if (xp) {
-            __m512d lam = _mm512_set_pd(x[7].lambda, x[6].lambda, x[5].lambda, x[4].lambda, x[3].lambda, x[2].lambda,
-                                        x[1].lambda, x[0].lambda);
-            const __m512d at = _mm512_mul_pd(alpha, ih2);
-            const __m512d dl = _mm512_div_pd(_mm512_sub_pd(TT_NEG(c), _mm512_mul_pd(at, lam)), _mm512_add_pd(ws, at));
-            lam = _mm512_mask_add_pd(lam, xp, lam, dl);
-            double l[8];
-            _mm512_storeu_pd(l, lam);
-            for (int j = 0; j < 8; j++) x[j].lambda = l[j];
-            s = _mm512_mask_div_pd(s, xp, TT_NEG(dl), len);
+        __m512d s = _mm512_div_pd(_mm512_mul_pd(_mm512_loadu_pd(in->k + i), c), _mm512_mul_pd(ws, len));
+        if (xpbd) {
+            const __m512d alpha = _mm512_loadu_pd(in->alpha + i);
+            const __mmask8 xp = _mm512_mask_cmp_pd_mask(upd, alpha, zero, _CMP_GT_OQ);
+            if (xp) {
+                tt__dist_x *x = in->x + i;
+                __m512d lam = _mm512_set_pd(x[7].lambda, x[6].lambda, x[5].lambda, x[4].lambda, x[3].lambda,
+                                            x[2].lambda, x[1].lambda, x[0].lambda);
+                const __m512d at = _mm512_mul_pd(alpha, _mm512_set1_pd(in->inv_h2));
+                const __m512d dl = _mm512_div_pd(_mm512_sub_pd(TT_NEG(c), _mm512_mul_pd(at, lam)), _mm512_add_pd(ws, at));
+                lam = _mm512_mask_add_pd(lam, xp, lam, dl);
+                double l[8];
+                _mm512_storeu_pd(l, lam);
+                for (int j = 0; j < 8; j++) x[j].lambda = l[j];
+                s = _mm512_mask_div_pd(s, xp, TT_NEG(dl), len);
+            }
         }
         const __m512d cx = _mm512_mul_pd(s, dx), cy = _mm512_mul_pd(s, dy);
+        /* masked: a lane that must not move keeps its old value */
         xa = _mm512_mask_add_pd(xa, upd, xa, _mm512_mul_pd(wa, cx));
         ya = _mm512_mask_add_pd(ya, upd, ya, _mm512_mul_pd(wa, cy));
         xb = _mm512_mask_sub_pd(xb, upd, xb, _mm512_mul_pd(wb, cx));
@@ -1228,35 +1317,36 @@ TT_AVX512 static double blocks_avx512(double *pk, const tt__dist *d, tt__dist_x 
 #define TT_BACK(r, xv, yv)                                                                         \
     do {                                                                                           \
         const __m512d e = _mm512_unpacklo_pd(xv, yv), o = _mm512_unpackhi_pd(xv, yv);              \
+        const __m256d e1 = _mm512_extractf64x4_pd(e, 1), o1 = _mm512_extractf64x4_pd(o, 1);       \
         _mm_store_pd(r[0], _mm512_castpd512_pd128(e));                                             \
         _mm_store_pd(r[1], _mm512_castpd512_pd128(o));                                             \
-        _mm_store_ps((float *)r[2], _mm512_extractf32x4_ps(_mm512_castpd_ps(e), 1));               \
-        _mm_store_ps((float *)r[3], _mm512_extractf32x4_ps(_mm512_castpd_ps(o), 1));               \
-        _mm_store_ps((float *)r[4], _mm512_extractf32x4_ps(_mm512_castpd_ps(e), 2));               \
-        _mm_store_ps((float *)r[5], _mm512_extractf32x4_ps(_mm512_castpd_ps(o), 2));               \
-        _mm_store_ps((float *)r[6], _mm512_extractf32x4_ps(_mm512_castpd_ps(e), 3));               \
-        _mm_store_ps((float *)r[7], _mm512_extractf32x4_ps(_mm512_castpd_ps(o), 3));               \
+        _mm_store_pd(r[2], _mm256_extractf128_pd(_mm512_castpd512_pd256(e), 1));                   \
+        _mm_store_pd(r[3], _mm256_extractf128_pd(_mm512_castpd512_pd256(o), 1));                   \
+        _mm_store_pd(r[4], _mm256_castpd256_pd128(e1));                                            \
+        _mm_store_pd(r[5], _mm256_castpd256_pd128(o1));                                            \
+        _mm_store_pd(r[6], _mm256_extractf128_pd(e1, 1));                                          \
+        _mm_store_pd(r[7], _mm256_extractf128_pd(o1, 1));                                          \
     } while (0)
         TT_BACK(ra, xa, ya);
         TT_BACK(rb, xb, yb);
-    }
 #undef TT_BACK
-#undef TT_PAIRS
+    }
 #undef TT_ROWS
 #undef TT_NEG
-    double e[8], r = 0.0;
+    double e[8];
     _mm512_storeu_pd(e, err);
-    for (int j = 0; j < 8; j++)
-        if (e[j] > r) r = e[j];
-    return r;
+    return max_lanes(e, 8);
 }
 
-/* The plan's scalar runs and vector blocks, on the packed rows. */
-static inline __attribute__((always_inline)) double sweep_planned(tt_world *w, tt__cgroup *g, double h, uint32_t W,
-                                                                  double (*blocks)(double *, const tt__dist *, tt__dist_x *, uint32_t, double))
+TT_AVX512 static double run_avx512_k(const kern_in *in, uint32_t nb) { return run_avx512(in, nb, false); }
+TT_AVX512 static double run_avx512_x(const kern_in *in, uint32_t nb) { return run_avx512(in, nb, true); }
+
+/* The plan's scalar runs (on the rows, through the scalar loop itself) and
+ * vector runs. */
+TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, uint32_t W,
+                                    double (*run)(const kern_in *, uint32_t))
 {
     double *pk = g->pk;
-    const double inv_h2 = 1.0 / (h * h);
     pack_avx2(pk, w->px, w->py, w->inv_mass, g->plan_np);
     double err = 0.0;
     uint32_t i = 0;
@@ -1265,25 +1355,26 @@ static inline __attribute__((always_inline)) double sweep_planned(tt_world *w, t
         err = sweep_distance(w, g, h, false, pk, pk + 1, pk + 2, 4, i, i + ns, err);
         i += ns;
         if (!nb) continue;
-        double e = blocks(pk, g->dist + i, g->dx + i, nb, inv_h2);
+        const kern_in in = {pk, g->h_lo + i, g->h_hi + i, g->h_k + i, g->h_alpha + i, g->h_ra + i, g->h_rb + i,
+                            g->dx + i, 1.0 / (h * h)};
+        double e = run(&in, nb);
         if (e > err) err = e; /* a max: the order it is taken in does not matter */
         i += nb * W;
     }
     unpack_avx2(pk, w->px, w->py, g->plan_np);
     return err;
 }
-
-TT_AVX2 static double sweep_avx2(tt_world *w, tt__cgroup *g, double h) { return sweep_planned(w, g, h, 4, blocks_avx2); }
-TT_AVX512 static double sweep_avx512(tt_world *w, tt__cgroup *g, double h) { return sweep_planned(w, g, h, 8, blocks_avx512); }
 #endif
 
 static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h)
 {
     const uint32_t W = simd_lanes(g->simd);
-    if (W == 0 || g->ndist < 2 * W || (!(g->plan_ok && g->plan_w == W) && !plan_build(g, W)))
+    if (W == 0 || g->ndist < 2 * W || (!(g->plan_ok && g->plan_w == W) && !plan_build(g, W, 1)))
         return sweep_distance(w, g, h, false, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0); /* as exact */
 #ifdef TT_SIMD_X86
-    return W == 8 ? sweep_avx512(w, g, h) : sweep_avx2(w, g, h);
+    const bool xpbd = g->nxpbd > 0; /* else no lane has alpha > 0: the kernel without that branch */
+    if (W == 8) return sweep_planned(w, g, h, 8, xpbd ? run_avx512_x : run_avx512_k);
+    return sweep_planned(w, g, h, 4, xpbd ? run_avx2_x : run_avx2_k);
 #else
     return 0.0;
 #endif
@@ -1557,6 +1648,7 @@ static size_t group_memory(const tt_world *w, const void *self)
     b += (size_t)(g->cap_new + g->cap_pub) * sizeof(tt_break_event);
     b += (size_t)g->grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
     b += ((size_t)g->plan_cap + g->stamp_cap) * sizeof(uint32_t) + (size_t)g->pk_cap * 4 * sizeof(double);
+    b += (size_t)g->hot_cap * (4 * sizeof(double) + 2 * sizeof(uint32_t));
     return b + tt__composites_memory(g);
 }
 
@@ -1578,6 +1670,7 @@ static void group_destroy(tt_world *w, void *self)
     free(g->plan);
     free(g->stamp);
     free(g->pk);
+    free(g->h_lo);
     tt_pool_destroy(&g->pool);
     tt__composites_free(g);
     free(g);
