@@ -1097,21 +1097,20 @@ static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
 #define TT_AVX512 __attribute__((target("avx2,avx512f,avx512vl")))
 #define TT_INLINE static inline __attribute__((always_inline))
 
-/* x, y, inverse mass of particles [0, np) into rows (x, y, w, 0) and back. */
+/* x, y, inverse mass of particles [0, np) into rows (x, y, w, w) and back. */
 TT_AVX2 static void pack_avx2(double *pk, const double *px, const double *py, const double *im, uint32_t np)
 {
-    const __m256d z = _mm256_setzero_pd();
     uint32_t i = 0;
     for (; i + 4 <= np; i += 4) {
         const __m256d x = _mm256_loadu_pd(px + i), y = _mm256_loadu_pd(py + i), m = _mm256_loadu_pd(im + i);
         const __m256d t0 = _mm256_unpacklo_pd(x, y), t1 = _mm256_unpackhi_pd(x, y); /* x0 y0 x2 y2 | x1 y1 x3 y3 */
-        const __m256d u0 = _mm256_unpacklo_pd(m, z), u1 = _mm256_unpackhi_pd(m, z);
+        const __m256d u0 = _mm256_unpacklo_pd(m, m), u1 = _mm256_unpackhi_pd(m, m); /* w0 w0 w2 w2 | w1 w1 w3 w3 */
         _mm256_store_pd(pk + 4 * (size_t)i, _mm256_permute2f128_pd(t0, u0, 0x20));
         _mm256_store_pd(pk + 4 * (size_t)i + 4, _mm256_permute2f128_pd(t1, u1, 0x20));
         _mm256_store_pd(pk + 4 * (size_t)i + 8, _mm256_permute2f128_pd(t0, u0, 0x31));
         _mm256_store_pd(pk + 4 * (size_t)i + 12, _mm256_permute2f128_pd(t1, u1, 0x31));
     }
-    for (; i < np; i++) _mm256_store_pd(pk + 4 * (size_t)i, _mm256_setr_pd(px[i], py[i], im[i], 0.0));
+    for (; i < np; i++) _mm256_store_pd(pk + 4 * (size_t)i, _mm256_setr_pd(px[i], py[i], im[i], im[i]));
 }
 
 TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32_t np)
@@ -1158,18 +1157,15 @@ typedef struct kern_in {
  * transposed lanes by ~25 % (the processor's window no longer has to cover
  * the whole load → sqrt → division → store chain of a block). */
 typedef struct stage1 {
-    __m256d pa02, pa13, pb02, pb13, d02, d13, len;
+    __m256d pa02, pa13, pb02, pb13, wa02, wa13, wb02, wb13, d02, d13, len;
 } stage1;
 
-TT_AVX2 TT_INLINE __m256d pair_load(const double *pk, uint32_t r0, uint32_t r1)
+/* Rows r0, r1 (x, y, w, w) into p = (x, y) of both and w = (w, w) of both. */
+TT_AVX2 TT_INLINE void pair_load(const double *pk, uint32_t r0, uint32_t r1, __m256d *p, __m256d *w)
 {
-    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(pk + r0)), _mm_load_pd(pk + r1), 1);
-}
-
-/* [w of r0, w of r0, w of r1, w of r1] */
-TT_AVX2 TT_INLINE __m256d pair_w(const double *pk, uint32_t r0, uint32_t r1)
-{
-    return _mm256_blend_pd(_mm256_broadcast_sd(pk + r0 + 2), _mm256_broadcast_sd(pk + r1 + 2), 0xC);
+    const __m256d a = _mm256_load_pd(pk + r0), b = _mm256_load_pd(pk + r1);
+    *p = _mm256_permute2f128_pd(a, b, 0x20);
+    *w = _mm256_permute2f128_pd(a, b, 0x31);
 }
 
 TT_AVX2 TT_INLINE void pair_store(double *pk, uint32_t r0, uint32_t r1, __m256d v)
@@ -1182,10 +1178,10 @@ TT_AVX2 TT_INLINE void stage1_run(stage1 *o, const kern_in *in, uint32_t i)
 {
     const double *pk = in->pk;
     const uint32_t *ra = in->ra + i, *rb = in->rb + i;
-    o->pa02 = pair_load(pk, ra[0], ra[2]);
-    o->pa13 = pair_load(pk, ra[1], ra[3]);
-    o->pb02 = pair_load(pk, rb[0], rb[2]);
-    o->pb13 = pair_load(pk, rb[1], rb[3]);
+    pair_load(pk, ra[0], ra[2], &o->pa02, &o->wa02);
+    pair_load(pk, ra[1], ra[3], &o->pa13, &o->wa13);
+    pair_load(pk, rb[0], rb[2], &o->pb02, &o->wb02);
+    pair_load(pk, rb[1], rb[3], &o->pb13, &o->wb13);
     o->d02 = _mm256_sub_pd(o->pb02, o->pa02); /* dx0 dy0 dx2 dy2 */
     o->d13 = _mm256_sub_pd(o->pb13, o->pa13);
     const __m256d q02 = _mm256_mul_pd(o->d02, o->d02), q13 = _mm256_mul_pd(o->d13, o->d13);
@@ -1198,8 +1194,7 @@ TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_
     const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
     double *pk = in->pk;
     const uint32_t *ra = in->ra + i, *rb = in->rb + i;
-    const __m256d wa02 = pair_w(pk, ra[0], ra[2]), wa13 = pair_w(pk, ra[1], ra[3]);
-    const __m256d wb02 = pair_w(pk, rb[0], rb[2]), wb13 = pair_w(pk, rb[1], rb[3]);
+    const __m256d wa02 = o->wa02, wa13 = o->wa13, wb02 = o->wb02, wb13 = o->wb13;
     const __m256d ws = _mm256_add_pd(_mm256_blend_pd(wa02, wa13, 0xA), _mm256_blend_pd(wb02, wb13, 0xA));
     const __m256d len = o->len;
     /* c = min(len − lo, 0) + max(len − hi, 0) is the scalar's three cases bit
