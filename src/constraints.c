@@ -1040,6 +1040,9 @@ static bool plan_reserve(tt__cgroup *g, uint32_t n, uint32_t np, uint32_t W)
     return true;
 }
 
+/* In a plan's block count: the run's links are all rigid. */
+#define PLAN_RIGID 0x80000000u
+
 /* Greedy in one pass. A block gathers consecutive links until W share no
  * particle, and a run of blocks (one plan segment) goes on while each block
  * also shares none with the D − 1 before it, so a kernel may load a block
@@ -1073,11 +1076,14 @@ static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
         if (k1 > lim) r = k1 > s ? (s = k1) : s;
         stamp[a] = stamp[b] = j + 1;
         if (j + 1 - s < W) continue;
-        if (s == done && r < s && m > 0) {
+        uint32_t rigid = PLAN_RIGID; /* a run is all rigid links (lo = hi for good) or not */
+        for (uint32_t q = s; q <= j; q++)
+            if (g->dx[q].mode != TT_DISTANCE_RIGID) rigid = 0;
+        if (s == done && r < s && m > 0 && (plan[m - 1] & PLAN_RIGID) == rigid) {
             plan[m - 1]++; /* the run goes on */
         } else {
             plan[m++] = s - done;
-            plan[m++] = 1;
+            plan[m++] = 1 | rigid;
         }
         done = s = j + 1;
     }
@@ -1189,7 +1195,7 @@ TT_AVX2 TT_INLINE void stage1_run(stage1 *o, const kern_in *in, uint32_t i)
     o->len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_unpacklo_pd(q02, q13), _mm256_unpackhi_pd(q02, q13)));
 }
 
-TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_t i, __m256d err, bool xpbd)
+TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_t i, __m256d err, bool xpbd, bool rigid)
 {
     const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
     double *pk = in->pk;
@@ -1198,12 +1204,15 @@ TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_
     const __m256d ws = _mm256_add_pd(_mm256_blend_pd(wa02, wa13, 0xA), _mm256_blend_pd(wb02, wb13, 0xA));
     const __m256d len = o->len;
     /* c = min(len − lo, 0) + max(len − hi, 0) is the scalar's three cases bit
-     * for bit: lo <= hi, so one term is +0, and min/max give the 0 for NaN */
-    const __m256d c = _mm256_add_pd(_mm256_min_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->lo + i)), zero),
-                                    _mm256_max_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->hi + i)), zero));
+     * for bit: lo <= hi, so one term is +0, and min/max give the 0 for NaN.
+     * Rigid (lo = hi): len − lo, NaN for NaN, which the ordered c != 0 below
+     * turns off as the scalar's c = 0 would. */
+    const __m256d c = rigid ? _mm256_sub_pd(len, _mm256_loadu_pd(in->lo + i))
+                            : _mm256_add_pd(_mm256_min_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->lo + i)), zero),
+                                            _mm256_max_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->hi + i)), zero));
     /* as the scalar loop skips: ws == 0, c == 0 (no error); len == 0 (error, no move) */
-    const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(c, zero, _CMP_NEQ_UQ));
-    err = _mm256_max_pd(err, _mm256_and_pd(_mm256_andnot_pd(sign, c), act)); /* |c| >= 0, never NaN */
+    const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(c, zero, _CMP_NEQ_OQ));
+    err = _mm256_max_pd(err, _mm256_and_pd(_mm256_andnot_pd(sign, c), act)); /* |c| of an active lane: >= 0, not NaN */
     const __m256d upd = _mm256_and_pd(act, _mm256_cmp_pd(len, zero, _CMP_NEQ_UQ));
     __m256d s = _mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(in->k + i), c), _mm256_mul_pd(ws, len));
     if (xpbd) {
@@ -1242,7 +1251,7 @@ TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_
 }
 
 /* A run of nb blocks, each apart from the one before; returns the largest error. */
-TT_AVX2 TT_INLINE double run_pairs(const kern_in *in, uint32_t nb, bool xpbd)
+TT_AVX2 TT_INLINE double run_pairs(const kern_in *in, uint32_t nb, bool xpbd, bool rigid)
 {
     __m256d err = _mm256_setzero_pd();
     stage1 A, B; /* unrolled by two so both stay in registers */
@@ -1250,47 +1259,55 @@ TT_AVX2 TT_INLINE double run_pairs(const kern_in *in, uint32_t nb, bool xpbd)
     uint32_t t = 1;
     for (; t + 1 < nb; t += 2) {
         stage1_run(&B, in, 4 * t);
-        err = stage2_run(&A, in, 4 * t - 4, err, xpbd);
+        err = stage2_run(&A, in, 4 * t - 4, err, xpbd, rigid);
         stage1_run(&A, in, 4 * t + 4);
-        err = stage2_run(&B, in, 4 * t, err, xpbd);
+        err = stage2_run(&B, in, 4 * t, err, xpbd, rigid);
     }
     if (t < nb) {
         stage1_run(&B, in, 4 * t);
-        err = stage2_run(&A, in, 4 * t - 4, err, xpbd);
-        err = stage2_run(&B, in, 4 * t, err, xpbd);
+        err = stage2_run(&A, in, 4 * t - 4, err, xpbd, rigid);
+        err = stage2_run(&B, in, 4 * t, err, xpbd, rigid);
     } else {
-        err = stage2_run(&A, in, 4 * t - 4, err, xpbd);
+        err = stage2_run(&A, in, 4 * t - 4, err, xpbd, rigid);
     }
     double e[4];
     _mm256_storeu_pd(e, err);
     return max_lanes(e, 4);
 }
 
-/* The same code for AVX2, and with AVX-512VL for its 32 registers (fewer spills). */
-TT_AVX2 static double run_avx2_k(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, false); }
-TT_AVX2 static double run_avx2_x(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, true); }
-TT_AVX512 static double run_avx512_k(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, false); }
-TT_AVX512 static double run_avx512_x(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, true); }
+/* The same code for AVX2, and with AVX-512VL for its 32 registers (fewer
+ * spills); each with and without the XPBD branch, for rigid runs or not. */
+typedef double (*run_fn)(const kern_in *, uint32_t);
+#define TT_RUNS(T, name)                                                                             \
+    T static double name##_gg(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, false, false); } \
+    T static double name##_gr(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, false, true); }  \
+    T static double name##_xg(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, true, false); }  \
+    T static double name##_xr(const kern_in *in, uint32_t nb) { return run_pairs(in, nb, true, true); }
+TT_RUNS(TT_AVX2, run_avx2)
+TT_RUNS(TT_AVX512, run_avx512)
+#undef TT_RUNS
+static const run_fn runs_avx2[4] = {run_avx2_gg, run_avx2_gr, run_avx2_xg, run_avx2_xr};
+static const run_fn runs_avx512[4] = {run_avx512_gg, run_avx512_gr, run_avx512_xg, run_avx512_xr};
 
 /* The plan's scalar runs (on the rows, through the scalar loop itself) and
- * vector runs. */
-TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, uint32_t W,
-                                    double (*run)(const kern_in *, uint32_t))
+ * vector runs; runs[2·xpbd + rigid]. */
+TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const run_fn *runs)
 {
     double *pk = g->pk;
     pack_avx2(pk, w->px, w->py, w->inv_mass, g->plan_np);
+    const int xpbd = g->nxpbd > 0; /* else no lane has alpha > 0: the kernels without that branch */
     double err = 0.0;
     uint32_t i = 0;
     for (uint32_t k = 0; k < g->nplan; k += 2) {
-        const uint32_t ns = g->plan[k], nb = g->plan[k + 1];
+        const uint32_t ns = g->plan[k], nb = g->plan[k + 1] & ~PLAN_RIGID;
         err = sweep_distance(w, g, h, false, pk, pk + 1, pk + 2, 4, i, i + ns, err);
         i += ns;
         if (!nb) continue;
         const kern_in in = {pk, g->h_lo + i, g->h_hi + i, g->h_k + i, g->h_alpha + i, g->h_ra + i, g->h_rb + i,
                             g->dx + i, 1.0 / (h * h)};
-        double e = run(&in, nb);
+        double e = runs[2 * xpbd + (g->plan[k + 1] >= PLAN_RIGID)](&in, nb);
         if (e > err) err = e; /* a max: the order it is taken in does not matter */
-        i += nb * W;
+        i += 4 * nb;
     }
     unpack_avx2(pk, w->px, w->py, g->plan_np);
     return err;
@@ -1303,9 +1320,7 @@ static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h)
     if (kind == TT__SIMD_SCALAR || g->ndist < 8 || (!(g->plan_ok && g->plan_w == 4) && !plan_build(g, 4, 2)))
         return sweep_distance(w, g, h, false, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0); /* as exact */
 #ifdef TT_SIMD_X86
-    const bool xpbd = g->nxpbd > 0; /* else no lane has alpha > 0: the kernel without that branch */
-    if (kind == TT__SIMD_AVX512) return sweep_planned(w, g, h, 4, xpbd ? run_avx512_x : run_avx512_k);
-    return sweep_planned(w, g, h, 4, xpbd ? run_avx2_x : run_avx2_k);
+    return sweep_planned(w, g, h, kind == TT__SIMD_AVX512 ? runs_avx512 : runs_avx2);
 #else
     return 0.0;
 #endif
