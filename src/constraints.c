@@ -1251,8 +1251,9 @@ TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_
 }
 
 /* A run of nb blocks, each apart from the one before; returns the largest error. */
-TT_AVX2 TT_INLINE double run_pairs(const kern_in *in, uint32_t nb, bool xpbd, bool rigid)
+TT_AVX2 TT_INLINE double run_pairs(const kern_in *in_, uint32_t nb, bool xpbd, bool rigid)
 {
+    const kern_in local = *in_, *in = &local; /* fields stay in registers: no store can reach them */
     __m256d err = _mm256_setzero_pd();
     stage1 A, B; /* unrolled by two so both stay in registers */
     stage1_run(&A, in, 0);
