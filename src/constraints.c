@@ -980,7 +980,8 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
  * and inverse mass (one 32-byte row per particle) so a particle is one load
  * and one store, and reads the links' hot fields from arrays (h_*) so a
  * block's parameters are one vector load each. Measured on a 128² cloth at 10
- * sweeps (Zen 4): the scalar loop 6.2 ms a step, this ~1.9 ms. */
+ * sweeps (Zen 4, make bench, median of 5): the scalar loop 6.2 ms a step,
+ * this 1.97 ms. */
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TT_NO_SIMD)
 #define TT_SIMD_X86 1
@@ -1156,14 +1157,16 @@ typedef struct kern_in {
 } kern_in;
 
 /* Four links a block, in "pair form": a ymm holds (x, y) of two particles,
- * those of links 0, 2 or of links 1, 3, straight from their rows (one load,
- * one insert); the lengths, c and s come out in link order with one unpack,
- * and go back to pairs with another. Two stages, software-pipelined: stage 1
- * of block t (loads up to the sqrt) is issued before stage 2 of block t − 1
- * (the rest, ending in the stores), which the plan allows by keeping adjacent
- * blocks apart; measured on a 128² cloth this beats a plain loop over
- * transposed lanes by ~25 % (the processor's window no longer has to cover
- * the whole load → sqrt → division → store chain of a block). */
+ * those of links 0, 2 or of links 1, 3, and another their (w, w), from two
+ * rows with two permutes; the lengths, c and s come out in link order with one
+ * unpack, and go back to pairs with another (fewer shuffles than transposing
+ * rows into x, y, w vectors). Two stages, software-pipelined: stage 1 of
+ * block t (loads up to the sqrt) is issued before stage 2 of block t − 1 (the
+ * rest, ending in the stores), which the plan allows by keeping adjacent
+ * blocks apart, so the processor's window need not hold a block's whole
+ * load → sqrt → division → store chain. On a 128² cloth: 3.0 ms a step with
+ * transposed lanes in a plain loop, 2.3 ms like this (before rigid runs and
+ * rows kept across sweeps). */
 typedef struct stage1 {
     __m256d pa02, pa13, pb02, pb13, wa02, wa13, wb02, wb13, d02, d13, len;
 } stage1;
