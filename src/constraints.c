@@ -1165,8 +1165,8 @@ typedef struct kern_in {
  * rest, ending in the stores), which the plan allows by keeping adjacent
  * blocks apart, so the processor's window need not hold a block's whole
  * load → sqrt → division → store chain. On a 128² cloth: 3.0 ms a step with
- * transposed lanes in a plain loop, 2.3 ms like this (before rigid runs and
- * rows kept across sweeps). */
+ * transposed lanes in a plain loop (AVX2), 2.3 / 2.5 ms like this (AVX-512VL /
+ * AVX2 builds; before rigid runs and rows kept across sweeps). */
 typedef struct stage1 {
     __m256d pa02, pa13, pb02, pb13, wa02, wa13, wb02, wb13, d02, d13, len;
 } stage1;
