@@ -804,7 +804,8 @@ TEST(simd_sweep_is_bit_identical_to_the_scalar_loop)
             ENSURE(bad == 0);
             ENSURE(hm == ref);
             ENSURE(tv == torn);
-            ENSURE(vec > 1000); /* the comparison is not vacuous: most links went through the vector path */
+            if (modes[m] != TT__SIMD_AUTO) /* (auto is the scalar loop where there is no vector path) */
+                ENSURE(vec > 1000); /* the comparison is not vacuous: most links went through the vector path */
         }
     }
 }
