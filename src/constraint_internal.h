@@ -72,6 +72,23 @@ typedef struct tt__cgroup {
     tt_break_event *ev_new, *ev_pub;
     uint32_t nnew, npub, cap_new, cap_pub;
 
+    /* Gauss-Seidel vector plan: the links in order as pairs (scalar run
+     * length, vector block count), each block plan_w consecutive links that
+     * share no particle, so solving them side by side equals the sequential
+     * loop bit for bit. Rebuilt on the next sweep after the a, b list changes. */
+    uint32_t *plan, *stamp; /* stamp: per particle, 1 + the last link naming it (build scratch) */
+    uint32_t nplan, plan_cap, plan_w, plan_np, stamp_cap; /* plan_np: 1 + the largest particle named */
+    double *pk;        /* the vector sweep's copy of x, y, inverse mass: 4 doubles per particle */
+    uint32_t pk_cap;   /* particles */
+    /* the plan's copy of the links' hot fields, one array each, by dense
+     * index (setters keep it current); ra, rb: 4·a, 4·b (row offsets in pk) */
+    double *h_lo, *h_hi, *h_k, *h_alpha;
+    uint32_t *h_ra, *h_rb;
+    uint32_t hot_cap;
+    bool plan_ok;
+    bool pk_live;      /* pk holds the positions, w->px/py are stale until sweeps_done */
+    uint8_t simd;      /* tt__simd_mode */
+
     uint32_t *refs;    /* per particle slot: how many constraint entries name it (0: removal skips the scan) */
     uint32_t refs_cap;
 
@@ -83,6 +100,13 @@ typedef struct tt__cgroup {
     tt__composite *comps;
     uint32_t comp_cap, comps_alive;
 } tt__cgroup;
+
+/* Which distance sweep Gauss-Seidel uses: AUTO picks the widest the
+ * processor has; the others force one (tests compare them bit for bit). */
+typedef enum tt__simd_mode { TT__SIMD_AUTO, TT__SIMD_SCALAR, TT__SIMD_AVX2, TT__SIMD_AVX512 } tt__simd_mode;
+
+/* Sets w's mode; false (and no change) when this build or processor lacks it. */
+bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
 
 /* The group of w, made and registered on first use when create is true (NULL on no memory). */
 tt__cgroup *tt__cgroup_get(tt_world *w, bool create);

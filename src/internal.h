@@ -44,6 +44,9 @@ typedef struct tt__group_ops {
     void (*begin)(tt_world *w, void *self, double h);
     /* one sweep over every constraint; returns the largest error seen before correcting, m */
     double (*relax)(tt_world *w, void *self, double h);
+    /* once per substep right after the last sweep, before anything else reads
+     * positions (a group may keep them in its own layout across its sweeps) */
+    void (*sweeps_done)(tt_world *w, void *self);
     /* once per substep after the sweeps and the velocity fix-up (restitution, friction, breaking) */
     void (*end)(tt_world *w, void *self, double h);
     /* after the whole step, outside every loop: gather events (booked as TT_STAGE_EVENTS) */

@@ -102,6 +102,8 @@ void tt__solve(tt_world *w, double h)
         it++;
         if (err <= w->tolerance) break;
     }
+    for (int g = 0; g < w->group_count; g++)
+        if (w->groups[g].ops->sweeps_done) w->groups[g].ops->sweeps_done(w, w->groups[g].self);
     w->stats.iterations += it;
     w->stats.max_error = err;
     if (fix) {
