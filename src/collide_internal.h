@@ -22,6 +22,12 @@ typedef struct tt__prim {
     double lox, loy, hix, hiy; /* bounding box, radius included */
 } tt__prim;
 
+/* Whether the primitive's bounding box meets the box [lo, hi]. */
+static inline bool tt__prim_box_meets(const tt__prim *p, double lox, double loy, double hix, double hiy)
+{
+    return !(p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy);
+}
+
 typedef struct tt__shape {
     tt_shape_def def;     /* def.points is NULL: the points live in pts */
     tt_vec2 *pts;

@@ -101,6 +101,10 @@ static inline double unrub(double slide, double lt, double ln, double mus, doubl
     return muk < mus && fabs(lt) >= 0.999 * mus * ln && fabs(slide) > SLIP * fabs(lt) ? lt * (muk / mus - 1.0) : 0.0;
 }
 
+/* Where each particle began the substep: Verlet's x_old, or the copy begin made. */
+static inline const double *start_x(const tt_world *w, const tt__collide *c) { return w->integrator == TT_VERLET ? w->qx : c->sx0; }
+static inline const double *start_y(const tt_world *w, const tt__collide *c) { return w->integrator == TT_VERLET ? w->qy : c->sy0; }
+
 /* Moves particle i by (dx, dy) after the sweeps, its velocity with it. */
 static inline void shift(tt_world *w, uint32_t i, double dx, double dy, double h)
 {
@@ -263,8 +267,7 @@ static void begin(tt_world *w, void *self, double h)
             const double lox = d.x - r - m, loy = d.y - r - m, hix = d.x + r + m, hiy = d.y + r + m;
             bool any = false;
             for (uint32_t k = 0; k < sg->nbig && !any; k++) {
-                const tt__prim *p = &c->prims[sg->big[k]];
-                any = !(p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy);
+                any = tt__prim_box_meets(&c->prims[sg->big[k]], lox, loy, hix, hiy);
             }
             if (!any && sg->nx > 0) {
                 int32_t x0 = tt__cell_coord(lox, sg->ox, sg->inv), x1 = tt__cell_coord(hix, sg->ox, sg->inv);
@@ -277,8 +280,7 @@ static void begin(tt_world *w, void *self, double h)
                 for (int32_t y = y0; y <= y1 && !any; y++) { /* the cells of a row are contiguous in items */
                     uint32_t row = (uint32_t)y * (uint32_t)sg->nx;
                     for (uint32_t j = sg->start[row + (uint32_t)x0]; j < sg->start[row + (uint32_t)x1 + 1] && !any; j++) {
-                        const tt__prim *p = &c->prims[sg->items[j]];
-                        any = !(p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy);
+                        any = tt__prim_box_meets(&c->prims[sg->items[j]], lox, loy, hix, hiy);
                     }
                 }
             }
@@ -301,8 +303,7 @@ static double relax(tt_world *w, void *self, double h)
     double err = 0.0;
     double *px = w->px, *py = w->py;
     const double *inv = w->inv_mass;
-    /* where each particle began the substep: Verlet's x_old, or the copy begin made */
-    const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
+    const double *sx = start_x(w, c), *sy = start_y(w, c);
     const bool fr = rub_in_sweeps(w);
     for (uint32_t k = 0; k < c->npairs; k++) {
         tt__pair *p = &c->pairs[k];
@@ -437,8 +438,7 @@ static void end(tt_world *w, void *self, double h)
             }
         } else {
             if (fr) {
-                const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
-                double slide = (w->px[a] - sx[a]) * -s->ny + (w->py[a] - sy[a]) * s->nx;
+                double slide = (w->px[a] - start_x(w, c)[a]) * -s->ny + (w->py[a] - start_y(w, c)[a]) * s->nx;
                 double d = unrub(slide, s->lambda_t, s->lambda, mus, muk);
                 if (d != 0.0) shift(w, a, -s->ny * d, s->nx * d, h);
                 mus = muk = 0.0;

@@ -237,7 +237,7 @@ static bool segment_meets_box(double ax, double ay, double bx, double by, double
 
 bool tt__prim_vs_aabb(const tt__collide *c, const tt__prim *p, double lox, double loy, double hix, double hiy)
 {
-    if (p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy) return false;
+    if (!tt__prim_box_meets(p, lox, loy, hix, hiy)) return false;
     if (p->kind == TT__PRIM_CAPSULE) {
         if (segment_meets_box(p->ax, p->ay, p->bx, p->by, lox, loy, hix, hiy)) return true;
         double r2 = p->r * p->r, best = fmin(point_box_d2(p->ax, p->ay, lox, loy, hix, hiy),

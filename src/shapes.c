@@ -434,7 +434,7 @@ void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double 
     }
     for (uint32_t k = 0; k < g->nbig; k++) {
         const tt__prim *p = &c->prims[g->big[k]];
-        if (p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy) continue;
+        if (!tt__prim_box_meets(p, lox, loy, hix, hiy)) continue;
         c->pstamp[g->big[k]] = c->stamp;
         visit(ctx, g->big[k]);
     }
@@ -450,7 +450,7 @@ void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double 
                 if (c->pstamp[k] == c->stamp) continue;
                 c->pstamp[k] = c->stamp;
                 const tt__prim *p = &c->prims[k];
-                if (p->hix < lox || p->lox > hix || p->hiy < loy || p->loy > hiy) continue;
+                if (!tt__prim_box_meets(p, lox, loy, hix, hiy)) continue;
                 visit(ctx, k);
             }
         }
