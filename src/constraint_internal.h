@@ -4,6 +4,7 @@
 #define TETHER_CONSTRAINT_INTERNAL_H
 
 #include "internal.h"
+#include "simd.h"
 #include "tether/composite.h"
 
 /* Distance constraints, the hot loop: dense, swap-removed, 40 bytes each.
@@ -101,9 +102,6 @@ typedef struct tt__cgroup {
     uint32_t comp_cap, comps_alive;
 } tt__cgroup;
 
-/* Which distance sweep Gauss-Seidel uses: AUTO picks the widest the
- * processor has; the others force one (tests compare them bit for bit). */
-typedef enum tt__simd_mode { TT__SIMD_AUTO, TT__SIMD_SCALAR, TT__SIMD_AVX2, TT__SIMD_AVX512 } tt__simd_mode;
 
 /* Sets w's mode; false (and no change) when this build or processor lacks it. */
 bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);

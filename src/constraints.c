@@ -989,31 +989,9 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
  * sweeps (Zen 4, make bench, median of 5): the scalar loop 6.2 ms a step,
  * this 1.97 ms. */
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TT_NO_SIMD)
-#define TT_SIMD_X86 1
-#include <immintrin.h>
-#endif
-
-/* The vector sweep mode m runs here: TT__SIMD_SCALAR when none. */
-static uint8_t simd_kind(uint8_t m)
-{
-#ifdef TT_SIMD_X86
-    const bool avx2 = __builtin_cpu_supports("avx2"), avx512 = avx2 && __builtin_cpu_supports("avx512vl");
-    switch (m) {
-    case TT__SIMD_AUTO: return avx512 ? TT__SIMD_AVX512 : avx2 ? TT__SIMD_AVX2 : TT__SIMD_SCALAR;
-    case TT__SIMD_AVX2: return avx2 ? TT__SIMD_AVX2 : TT__SIMD_SCALAR;
-    case TT__SIMD_AVX512: return avx512 ? TT__SIMD_AVX512 : TT__SIMD_SCALAR;
-    default: return TT__SIMD_SCALAR;
-    }
-#else
-    (void)m;
-    return TT__SIMD_SCALAR;
-#endif
-}
-
 bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode)
 {
-    if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && simd_kind((uint8_t)mode) == TT__SIMD_SCALAR) return false;
+    if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && tt__simd_kind((uint8_t)mode) == TT__SIMD_SCALAR) return false;
     tt__cgroup *g = tt__cgroup_get(w, true);
     if (!g) return false;
     g->simd = (uint8_t)mode;
@@ -1026,13 +1004,7 @@ static bool plan_reserve(tt__cgroup *g, uint32_t n, uint32_t np, uint32_t W)
     if (!grow((void **)&g->stamp, sizeof *g->stamp, &g->stamp_cap, np) ||
         !grow((void **)&g->plan, sizeof *g->plan, &g->plan_cap, 2 * (n / W + 1)))
         return false;
-    if (np > g->pk_cap) { /* 32-byte rows on 32-byte boundaries; the contents are made by the sweeps */
-        double *pk = aligned_alloc(32, (size_t)np * 4 * sizeof(double));
-        if (!pk) return false;
-        free(g->pk);
-        g->pk = pk;
-        g->pk_cap = np;
-    }
+    if (!tt__rows_reserve(&g->pk, &g->pk_cap, np)) return false;
     if (n > g->hot_cap) { /* one block: four double arrays, then two uint32 ones */
         uint32_t cap = n > UINT32_MAX / 2 ? n : n + n / 2;
         double *h = malloc((size_t)cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)));
@@ -1108,42 +1080,6 @@ static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
 }
 
 #ifdef TT_SIMD_X86
-#define TT_AVX2 __attribute__((target("avx2")))
-#define TT_AVX512 __attribute__((target("avx2,avx512f,avx512vl")))
-#define TT_INLINE static inline __attribute__((always_inline))
-
-/* x, y, inverse mass of particles [0, np) into rows (x, y, w, w) and back. */
-TT_AVX2 static void pack_avx2(double *pk, const double *px, const double *py, const double *im, uint32_t np)
-{
-    uint32_t i = 0;
-    for (; i + 4 <= np; i += 4) {
-        const __m256d x = _mm256_loadu_pd(px + i), y = _mm256_loadu_pd(py + i), m = _mm256_loadu_pd(im + i);
-        const __m256d t0 = _mm256_unpacklo_pd(x, y), t1 = _mm256_unpackhi_pd(x, y); /* x0 y0 x2 y2 | x1 y1 x3 y3 */
-        const __m256d u0 = _mm256_unpacklo_pd(m, m), u1 = _mm256_unpackhi_pd(m, m); /* w0 w0 w2 w2 | w1 w1 w3 w3 */
-        _mm256_store_pd(pk + 4 * (size_t)i, _mm256_permute2f128_pd(t0, u0, 0x20));
-        _mm256_store_pd(pk + 4 * (size_t)i + 4, _mm256_permute2f128_pd(t1, u1, 0x20));
-        _mm256_store_pd(pk + 4 * (size_t)i + 8, _mm256_permute2f128_pd(t0, u0, 0x31));
-        _mm256_store_pd(pk + 4 * (size_t)i + 12, _mm256_permute2f128_pd(t1, u1, 0x31));
-    }
-    for (; i < np; i++) _mm256_store_pd(pk + 4 * (size_t)i, _mm256_setr_pd(px[i], py[i], im[i], im[i]));
-}
-
-TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32_t np)
-{
-    uint32_t i = 0;
-    for (; i + 4 <= np; i += 4) {
-        const double *r = pk + 4 * (size_t)i;
-        const __m256d t0 = _mm256_permute2f128_pd(_mm256_load_pd(r), _mm256_load_pd(r + 8), 0x20);      /* x0 y0 x2 y2 */
-        const __m256d t1 = _mm256_permute2f128_pd(_mm256_load_pd(r + 4), _mm256_load_pd(r + 12), 0x20); /* x1 y1 x3 y3 */
-        _mm256_storeu_pd(px + i, _mm256_unpacklo_pd(t0, t1));
-        _mm256_storeu_pd(py + i, _mm256_unpackhi_pd(t0, t1));
-    }
-    for (; i < np; i++) {
-        px[i] = pk[4 * (size_t)i];
-        py[i] = pk[4 * (size_t)i + 1];
-    }
-}
-
 static double max_lanes(const double *e, int n)
 {
     double r = 0.0;
@@ -1309,7 +1245,7 @@ static const run_fn runs_avx512[4] = {run_avx512_gg, run_avx512_gr, run_avx512_x
 TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const run_fn *runs, bool keep)
 {
     double *pk = g->pk;
-    if (!g->pk_live) pack_avx2(pk, w->px, w->py, w->inv_mass, g->plan_np);
+    if (!g->pk_live) tt__rows_pack(pk, w->px, w->py, w->inv_mass, g->plan_np);
     const int xpbd = g->nxpbd > 0; /* else no lane has alpha > 0: the kernels without that branch */
     double err = 0.0;
     uint32_t i = 0;
@@ -1325,7 +1261,7 @@ TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const 
         i += 4 * nb;
     }
     g->pk_live = keep;
-    if (!keep) unpack_avx2(pk, w->px, w->py, g->plan_np);
+    if (!keep) tt__rows_unpack(pk, w->px, w->py, g->plan_np);
     return err;
 }
 #endif
@@ -1334,7 +1270,7 @@ TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const 
 static void rows_release(tt_world *w, tt__cgroup *g)
 {
 #ifdef TT_SIMD_X86
-    if (g->pk_live) unpack_avx2(g->pk, w->px, w->py, g->plan_np);
+    if (g->pk_live) tt__rows_unpack(g->pk, w->px, w->py, g->plan_np);
 #else
     (void)w;
 #endif
@@ -1345,7 +1281,7 @@ static void group_sweeps_done(tt_world *w, void *self) { rows_release(w, self); 
 
 static double sweep_distance_gs(tt_world *w, tt__cgroup *g, double h)
 {
-    uint8_t kind = simd_kind(g->simd);
+    uint8_t kind = tt__simd_kind(g->simd);
     if (kind != TT__SIMD_SCALAR && g->ndist >= 8 && !(g->plan_ok && g->plan_w == 4)) {
         rows_release(w, g); /* a new plan may move the rows */
         if (!plan_build(g, 4, 2)) kind = TT__SIMD_SCALAR;
