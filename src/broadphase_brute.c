@@ -17,7 +17,7 @@ bool tt__brute_pairs(tt_world *w, tt__collide *c)
             if (!tt__pair_filter(w, c, a, b)) continue;
             if (c->npairs == c->paircap && !tt__grow((void **)&c->pairs, &c->paircap, c->npairs + 1, sizeof *c->pairs))
                 return false;
-            c->pairs[c->npairs++] = (tt__pair){a, b, (float)rs, 0.0f, 0.0f, 0.0f};
+            c->pairs[c->npairs++] = (tt__pair){a, b, (float)rs, 0.0f};
         }
     }
     return true;

@@ -4,6 +4,7 @@
 #define TETHER_COLLIDE_INTERNAL_H
 
 #include "internal.h"
+#include "simd.h"
 #include "tether/collide.h"
 
 /* Candidate pairs are kept when their gap is under this fraction of the
@@ -65,12 +66,42 @@ typedef struct tt__grid {
     uint64_t epoch;               /* w->epoch the grid reflects (queries), or UINT64_MAX */
 } tt__grid;
 
-typedef struct tt__pair { /* 24 bytes: hundreds of thousands are written every substep */
+typedef struct tt__pair { /* 16 bytes: hundreds of thousands are written every substep */
     uint32_t a, b;
     float rs;             /* radii sum (the radii are floats already) */
-    float nx, ny;         /* last normal, from b to a */
     float lambda;         /* normal correction applied this substep, m */
 } tt__pair;
+
+/* Pair contacts in batches of four that share no particle (contact_batch.c):
+ * the order Gauss-Seidel solves them in when a substep sweeps more than
+ * once, the same with and without vector lanes. */
+typedef struct tt__batches {
+    uint32_t *a, *b;      /* particle slots, 4 per batch; padding lanes name np */
+    double *rs, *lam;     /* radii sum; normal correction accumulated this substep, m */
+    uint32_t n, cap;      /* entries (a multiple of 4), room */
+    uint8_t *open;        /* planner: per particle slot, the open batches it is in (all 0 between plans) */
+    uint32_t open_cap;
+    double *pk;           /* rows (simd.h) of particles [0, np) and the padding row np */
+    uint32_t pk_cap, np;
+    bool live;            /* pk holds the positions; w->px, py are stale until tt__batches_release */
+    uint8_t simd;         /* tt__simd_mode */
+} tt__batches;
+
+/* Orders pairs [0, npairs) into batches (pairs no particle of which can
+ * move are left out); false on no memory. */
+bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const double *inv_mass, uint32_t np);
+/* One Gauss-Seidel sweep over the batches; returns the deepest overlap
+ * seen. keep: leave the positions in the rows for the next sweep. */
+double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep);
+/* Positions back from the rows when they hold them. */
+void tt__batches_release(tt_world *w, tt__batches *B);
+void tt__batches_free(tt__batches *B);
+size_t tt__batches_bytes(const tt__batches *B);
+/* The same-centre direction of pair (a, b): fixed and deterministic. */
+void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny);
+/* Forces w's pair sweep mode (tests compare them bit for bit); false when
+ * this build or processor lacks it. */
+bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode);
 
 typedef struct tt__scontact {
     uint32_t a, prim;
@@ -117,6 +148,8 @@ typedef struct tt__collide {
     /* contacts of the current substep */
     tt__pair *pairs;
     uint32_t npairs, paircap;
+    tt__batches bat;
+    bool batched;         /* this substep's pairs are solved from bat */
     tt__scontact *sc;
     uint32_t nsc, sccap;
     /* events */

@@ -1113,28 +1113,14 @@ typedef struct stage1 {
     __m256d pa02, pa13, pb02, pb13, wa02, wa13, wb02, wb13, d02, d13, len;
 } stage1;
 
-/* Rows r0, r1 (x, y, w, w) into p = (x, y) of both and w = (w, w) of both. */
-TT_AVX2 TT_INLINE void pair_load(const double *pk, uint32_t r0, uint32_t r1, __m256d *p, __m256d *w)
-{
-    const __m256d a = _mm256_load_pd(pk + r0), b = _mm256_load_pd(pk + r1);
-    *p = _mm256_permute2f128_pd(a, b, 0x20);
-    *w = _mm256_permute2f128_pd(a, b, 0x31);
-}
-
-TT_AVX2 TT_INLINE void pair_store(double *pk, uint32_t r0, uint32_t r1, __m256d v)
-{
-    _mm_store_pd(pk + r0, _mm256_castpd256_pd128(v));
-    _mm_store_pd(pk + r1, _mm256_extractf128_pd(v, 1));
-}
-
 TT_AVX2 TT_INLINE void stage1_run(stage1 *o, const kern_in *in, uint32_t i)
 {
     const double *pk = in->pk;
     const uint32_t *ra = in->ra + i, *rb = in->rb + i;
-    pair_load(pk, ra[0], ra[2], &o->pa02, &o->wa02);
-    pair_load(pk, ra[1], ra[3], &o->pa13, &o->wa13);
-    pair_load(pk, rb[0], rb[2], &o->pb02, &o->wb02);
-    pair_load(pk, rb[1], rb[3], &o->pb13, &o->wb13);
+    tt__rows_load2(pk, ra[0], ra[2], &o->pa02, &o->wa02);
+    tt__rows_load2(pk, ra[1], ra[3], &o->pa13, &o->wa13);
+    tt__rows_load2(pk, rb[0], rb[2], &o->pb02, &o->wb02);
+    tt__rows_load2(pk, rb[1], rb[3], &o->pb13, &o->wb13);
     o->d02 = _mm256_sub_pd(o->pb02, o->pa02); /* dx0 dy0 dx2 dy2 */
     o->d13 = _mm256_sub_pd(o->pb13, o->pa13);
     const __m256d q02 = _mm256_mul_pd(o->d02, o->d02), q13 = _mm256_mul_pd(o->d13, o->d13);
@@ -1190,10 +1176,10 @@ TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_
         nb02 = _mm256_blendv_pd(o->pb02, nb02, u02);
         nb13 = _mm256_blendv_pd(o->pb13, nb13, u13);
     }
-    pair_store(pk, ra[0], ra[2], na02);
-    pair_store(pk, ra[1], ra[3], na13);
-    pair_store(pk, rb[0], rb[2], nb02);
-    pair_store(pk, rb[1], rb[3], nb13);
+    tt__rows_store2(pk, ra[0], ra[2], na02);
+    tt__rows_store2(pk, ra[1], ra[3], na13);
+    tt__rows_store2(pk, rb[0], rb[2], nb02);
+    tt__rows_store2(pk, rb[1], rb[3], nb13);
     return err;
 }
 

@@ -193,6 +193,7 @@ static void begin(tt_world *w, void *self, double h)
     tt__collide *c = self;
     c->npairs = 0;
     c->nsc = 0;
+    c->batched = false;
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     bool pairs = c->set.particles;
     if (!pairs && c->nprim == 0) return;
@@ -251,6 +252,9 @@ static void begin(tt_world *w, void *self, double h)
             c->cells_used = c->grid.ncell;
         }
         if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
+        /* batches pay for their planning from the second sweep on */
+        c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
+                     tt__batches_plan(&c->bat, c->pairs, c->npairs, w->inv_mass, n);
     }
     if (c->nprim) {
         detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
@@ -296,47 +300,65 @@ static void begin(tt_world *w, void *self, double h)
 
 /* --- projection ----------------------------------------------------------- */
 
+/* Moves particle i by (dx, dy) on positions X, Y (stride st): the rows
+ * while the batches keep them, else through tt__correct (Jacobi). */
+static inline void move(tt_world *w, double *X, double *Y, size_t st, uint32_t i, double dx, double dy)
+{
+    if (st == 1) {
+        tt__correct(w, i, dx, dy);
+    } else {
+        X[i * st] += dx;
+        Y[i * st] += dy;
+    }
+}
+
 static double relax(tt_world *w, void *self, double h)
 {
     (void)h;
     tt__collide *c = self;
     double err = 0.0;
-    double *px = w->px, *py = w->py;
-    const double *inv = w->inv_mass;
-    const double *sx = start_x(w, c), *sy = start_y(w, c);
-    const bool fr = rub_in_sweeps(w);
-    for (uint32_t k = 0; k < c->npairs; k++) {
-        tt__pair *p = &c->pairs[k];
-        const uint32_t a = p->a, b = p->b;
-        const double ia = inv[a], ib = inv[b], ws = ia + ib;
-        if (ws == 0.0) continue;
-        double dx = px[a] - px[b], dy = py[a] - py[b], d2 = dx * dx + dy * dy, rs = p->rs;
-        if (d2 < rs * rs) {
-            double d = sqrt(d2), nx, ny;
-            if (d > 0.0) {
-                nx = dx / d;
-                ny = dy / d;
-            } else { /* same centre: a direction from the pair's slots, fixed and deterministic */
-                double ang = (double)(a * 2654435761u ^ b * 40503u) * (6.283185307179586 / 4294967296.0);
-                nx = cos(ang);
-                ny = sin(ang);
+    double *X = w->px, *Y = w->py;
+    size_t st = 1;
+    if (c->batched) { /* Gauss-Seidel, several sweeps */
+        err = tt__batches_sweep(w, &c->bat, w->group_count == 1); /* rows kept while nothing else sweeps */
+        if (c->bat.live) {
+            X = c->bat.pk;
+            Y = c->bat.pk + 1;
+            st = 4;
+        }
+    } else {
+        const double *inv = w->inv_mass;
+        for (uint32_t k = 0; k < c->npairs; k++) {
+            tt__pair *p = &c->pairs[k];
+            const uint32_t a = p->a, b = p->b;
+            const double ia = inv[a], ib = inv[b], ws = ia + ib;
+            if (ws == 0.0) continue;
+            double dx = X[a] - X[b], dy = Y[a] - Y[b], d2 = dx * dx + dy * dy, rs = p->rs, pen, t;
+            if (!(d2 < rs * rs)) continue;
+            if (d2 > 0.0) {
+                const double d = sqrt(d2);
+                pen = rs - d;
+                t = pen / (ws * d);
+            } else { /* same centre */
+                tt__pair_apart(a, b, &dx, &dy);
+                pen = rs;
+                t = pen / ws;
             }
-            double pen = rs - d, s = pen / ws;
-            tt__correct(w, a, nx * s * ia, ny * s * ia);
-            tt__correct(w, b, -nx * s * ib, -ny * s * ib);
-            p->nx = (float)nx;
-            p->ny = (float)ny;
+            tt__correct(w, a, dx * t * ia, dy * t * ia);
+            tt__correct(w, b, -dx * t * ib, -dy * t * ib);
             p->lambda += (float)pen;
             if (pen > err) err = pen;
         }
     }
+    const double *sx = start_x(w, c), *sy = start_y(w, c);
+    const bool fr = rub_in_sweeps(w);
     for (uint32_t k = 0; k < c->nsc; k++) {
         tt__scontact *s = &c->sc[k];
         const uint32_t a = s->a;
         tt__hit hit;
-        tt__circle_vs_prim(c, &c->prims[s->prim], px[a], py[a], w->radius[a], &hit);
+        tt__circle_vs_prim(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], &hit);
         if (hit.depth > 0.0) {
-            tt__correct(w, a, hit.nx * hit.depth, hit.ny * hit.depth);
+            move(w, X, Y, st, a, hit.nx * hit.depth, hit.ny * hit.depth);
             s->nx = hit.nx;
             s->ny = hit.ny;
             if (s->lambda == 0.0) s->mu = sqrt(mat(c, a, 1) * c->shapes[c->prims[s->prim].shape].def.friction_static);
@@ -345,10 +367,16 @@ static double relax(tt_world *w, void *self, double h)
         }
         if (s->lambda == 0.0 || s->ccd || !fr) continue; /* a sweep's contact gets its friction with its restart, in end */
         const double tx = -s->ny, ty = s->nx;
-        double f = rub((px[a] - sx[a]) * tx + (py[a] - sy[a]) * ty, s->lambda, s->mu, &s->lambda_t);
-        if (f != 0.0) tt__correct(w, a, tx * f, ty * f);
+        double f = rub((X[a * st] - sx[a]) * tx + (Y[a * st] - sy[a]) * ty, s->lambda, s->mu, &s->lambda_t);
+        if (f != 0.0) move(w, X, Y, st, a, tx * f, ty * f);
     }
     return err;
+}
+
+static void sweeps_done(tt_world *w, void *self)
+{
+    tt__collide *c = self;
+    tt__batches_release(w, &c->bat);
 }
 
 /* --- velocity pass -------------------------------------------------------- */
@@ -364,12 +392,14 @@ static double relax(tt_world *w, void *self, double h)
  * leapfrog, RK4; a sweep's contact whose velocity restarts here): static
  * (tangential v under μs·Δvn) writes the tangential velocity to undo into
  * stick, kinetic reduces it by μk·Δvn. */
-static void respond(double vx, double vy, double v0x, double v0y, double nx, double ny, double e, bool settled,
+static inline __attribute__((always_inline)) void respond(double vx, double vy, double v0x, double v0y, double nx, double ny, double e, bool settled,
                     double mus, double muk, double thr, double *dvx, double *dvy, double *stick_x, double *stick_y,
                     double *dvn)
 {
-    double vn0 = v0x * nx + v0y * ny, vn = vx * nx + vy * ny;
-    double target = vn0 < -thr ? -e * vn0 : vn < 0.0 ? 0.0 : settled && vn > vn0 ? fmax(vn0, 0.0) : vn;
+    const double vn0 = v0x * nx + v0y * ny, vn = vx * nx + vy * ny;
+    /* no approach: vn ≥ 0; settled: nor more separation than before, min(vn, max(vn0, 0)) */
+    const double up = vn > 0.0 ? vn : 0.0, up0 = vn0 > 0.0 ? vn0 : 0.0;
+    const double target = vn0 < -thr ? -e * vn0 : settled && up > up0 ? up0 : up;
     double change = target - vn0;
     if (change < 0.0) change = 0.0;
     *dvn = change;
@@ -377,15 +407,48 @@ static void respond(double vx, double vy, double v0x, double v0y, double nx, dou
     *dvy = (target - vn) * ny;
     *stick_x = *stick_y = 0.0;
     if (mus == 0.0 && muk == 0.0) return;
-    double tx = vx - vn * nx, ty = vy - vn * ny, tl = sqrt(tx * tx + ty * ty);
-    if (tl <= mus * change) {
+    const double tx = vx - vn * nx, ty = vy - vn * ny, t2 = tx * tx + ty * ty, lim = mus * change;
+    if (t2 <= lim * lim) { /* squared: no root for the common sticking contact */
         *stick_x = tx;
         *stick_y = ty;
-    } else if (tl > 0.0) {
-        double f = (muk * change < tl ? muk * change : tl) / tl;
+    } else {
+        const double tl = sqrt(t2), f = (muk * change < tl ? muk * change : tl) / tl;
         *dvx -= tx * f;
         *dvy -= ty * f;
     }
+}
+
+/* Velocity pass of a pair that touched this substep; the normal (b to a)
+ * from where the sweeps left the pair. */
+static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b, double h, double thr, bool events)
+{
+    const double *inv = w->inv_mass;
+    double ia = inv[a], ib = inv[b], ws = ia + ib;
+    if (ws == 0.0) return;
+    const double iws = 1.0 / ws, wa = ia * iws, wb = ib * iws;
+    double nx = w->px[a] - w->px[b], ny = w->py[a] - w->py[b], d2 = nx * nx + ny * ny;
+    if (d2 > 0.0) {
+        const double id = 1.0 / sqrt(d2);
+        nx *= id;
+        ny *= id;
+    } else {
+        tt__pair_apart(a, b, &nx, &ny);
+    }
+    double mus = c->mat ? sqrt(mat(c, a, 1) * mat(c, b, 1)) : c->set.friction_static;
+    double muk = c->mat ? sqrt(mat(c, a, 2) * mat(c, b, 2)) : c->set.friction_kinetic;
+    tt_vec2 va = tt__velocity(w, a), vb = tt__velocity(w, b);
+    double ea = mat(c, a, 0), eb = mat(c, b, 0), e = ea > eb ? ea : eb;
+    double dvx, dvy, sx, sy, dvn;
+    respond(va.x - vb.x, va.y - vb.y, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr,
+            &dvx, &dvy, &sx, &sy, &dvn);
+    if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
+        unslide(w, c, a, h, nx, ny, wa, sx, sy);
+        unslide(w, c, b, h, nx, ny, wb, -sx, -sy);
+    }
+    tt__add_velocity(w, a, dvx * wa, dvy * wa);
+    tt__add_velocity(w, b, -dvx * wb, -dvy * wb);
+    if (events) record(w, c, pair_key(a, b), a < b ? a : b, a < b ? b : a, UINT32_MAX, false, a < b ? nx : -nx,
+                       a < b ? ny : -ny, dvn / ws);
 }
 
 static void end(tt_world *w, void *self, double h)
@@ -395,28 +458,13 @@ static void end(tt_world *w, void *self, double h)
     const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
     const bool events = c->set.events != 0, fr = rub_in_sweeps(w);
     const double *inv = w->inv_mass;
-    for (uint32_t k = 0; k < c->npairs; k++) {
-        const tt__pair *p = &c->pairs[k];
-        if (p->lambda <= 0.0) continue;
-        const uint32_t a = p->a, b = p->b;
-        double ia = inv[a], ib = inv[b], ws = ia + ib;
-        if (ws == 0.0) continue;
-        double wa = ia / ws, wb = ib / ws;
-        double mus = c->mat ? sqrt(mat(c, a, 1) * mat(c, b, 1)) : c->set.friction_static;
-        double muk = c->mat ? sqrt(mat(c, a, 2) * mat(c, b, 2)) : c->set.friction_kinetic;
-        tt_vec2 va = tt__velocity(w, a), vb = tt__velocity(w, b);
-        double ea = mat(c, a, 0), eb = mat(c, b, 0), e = ea > eb ? ea : eb;
-        double dvx, dvy, sx, sy, dvn;
-        respond(va.x - vb.x, va.y - vb.y, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], p->nx, p->ny, e, true, mus, muk, thr,
-                &dvx, &dvy, &sx, &sy, &dvn);
-        if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
-            unslide(w, c, a, h, p->nx, p->ny, wa, sx, sy);
-            unslide(w, c, b, h, p->nx, p->ny, wb, -sx, -sy);
-        }
-        tt__add_velocity(w, a, dvx * wa, dvy * wa);
-        tt__add_velocity(w, b, -dvx * wb, -dvy * wb);
-        if (events) record(w, c, pair_key(a, b), a < b ? a : b, a < b ? b : a, UINT32_MAX, false,
-                           a < b ? p->nx : -p->nx, a < b ? p->ny : -p->ny, dvn / ws);
+    if (c->batched) {
+        const tt__batches *B = &c->bat;
+        for (uint32_t k = 0; k < B->n; k++)
+            if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], h, thr, events);
+    } else {
+        for (uint32_t k = 0; k < c->npairs; k++)
+            if (c->pairs[k].lambda > 0.0f) pair_end(w, c, c->pairs[k].a, c->pairs[k].b, h, thr, events);
     }
     for (uint32_t k = 0; k < c->nsc; k++) {
         const tt__scontact *s = &c->sc[k];
@@ -612,7 +660,7 @@ static size_t memory(const tt_world *w, const void *self)
     b += ((size_t)c->vcap + c->scap) * 2 * sizeof(double);
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
     b += (size_t)c->exclcap * sizeof(uint64_t);
-    b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact);
+    b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
     b += ((size_t)c->reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
     return b;
 }
@@ -627,6 +675,7 @@ static void destroy(tt_world *w, void *self)
     free(c->mat); free(c->bullet); free(c->ccd_prim);
     free(c->excl);
     free(c->pairs); free(c->sc);
+    tt__batches_free(&c->bat);
     free(c->rec); free(c->prev); free(c->events);
     free(c);
 }
@@ -636,6 +685,7 @@ const tt__group_ops tt__contacts_ops = {
     .begin_stage = TT_STAGE_COLLIDE,
     .begin = begin,
     .relax = relax,
+    .sweeps_done = sweeps_done,
     .end = end,
     .after_step = after_step,
     .particle_removed = particle_removed,

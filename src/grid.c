@@ -130,7 +130,6 @@ static inline bool push_pair(tt__collide *c, uint32_t a, uint32_t b, double rs)
     p->a = a;
     p->b = b;
     p->rs = (float)rs;
-    p->nx = p->ny = 0.0f;
     p->lambda = 0.0f;
     return true;
 }

@@ -20,6 +20,21 @@ typedef enum tt__simd_mode { TT__SIMD_AUTO, TT__SIMD_SCALAR, TT__SIMD_AVX2, TT__
 #define TT_AVX2 __attribute__((target("avx2")))
 #define TT_AVX512 __attribute__((target("avx2,avx512f,avx512vl")))
 #define TT_INLINE static inline __attribute__((always_inline))
+
+/* Rows at offsets r0, r1 (4·slot) into p = (x, y) of both and w = (w, w) of both. */
+TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, uint32_t r0, uint32_t r1, __m256d *p, __m256d *w)
+{
+    const __m256d a = _mm256_load_pd(pk + r0), b = _mm256_load_pd(pk + r1);
+    *p = _mm256_permute2f128_pd(a, b, 0x20);
+    *w = _mm256_permute2f128_pd(a, b, 0x31);
+}
+
+/* (x, y) of both back into rows r0, r1; their w stays. */
+TT_AVX2 TT_INLINE void tt__rows_store2(double *pk, uint32_t r0, uint32_t r1, __m256d v)
+{
+    _mm_store_pd(pk + r0, _mm256_castpd256_pd128(v));
+    _mm_store_pd(pk + r1, _mm256_extractf128_pd(v, 1));
+}
 #endif
 
 /* The mode m runs as on this processor and build: TT__SIMD_SCALAR when it has none. */
