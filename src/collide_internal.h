@@ -93,6 +93,18 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
  * seen. keep: leave the positions in the rows for the next sweep. */
 double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep);
+/* What the velocity pass of a batch reads besides the world. */
+typedef struct tt__respond_in {
+    const double *vx0, *vy0; /* pre-solve velocities */
+    double e, mus, muk, thr; /* the world's materials; restitution threshold */
+    double h;                /* substep */
+} tt__respond_in;
+/* The velocity pass of batch k's pairs in vector lanes, as contacts.c's
+ * pair_end does it lane by lane for Verlet and world materials; false,
+ * touching nothing, when the batch must go through pair_end instead. */
+typedef bool (*tt__batch_respond_fn)(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in);
+/* The vector velocity pass of this processor and mode; NULL when none. */
+tt__batch_respond_fn tt__batches_respond_fn(const tt__batches *B);
 /* Positions back from the rows when they hold them. */
 void tt__batches_release(tt_world *w, tt__batches *B);
 void tt__batches_free(tt__batches *B);

@@ -227,7 +227,113 @@ TT_AVX2 TT_INLINE double batches_run(tt__batches *B)
 /* The same code for AVX2, and with AVX-512VL for its 32 registers. */
 TT_AVX2 static double run_avx2(tt__batches *B) { return batches_run(B); }
 TT_AVX512 static double run_avx512(tt__batches *B) { return batches_run(B); }
+
+/* pair_end's Verlet arithmetic (contacts.c, with respond), lane by lane in
+ * the same order: the normal from the final positions, restitution or no
+ * approach (settled: no more separation than before the sweeps), Coulomb
+ * friction (sticking undoes the tangential slide, sliding removes μk·Δvn),
+ * then x moved by the slide undone and x_old by the velocity change. */
+TT_AVX2 TT_INLINE bool respond4(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in)
+{
+    const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
+    const __m256d lam = _mm256_loadu_pd(B->lam + k);
+    const __m256d live = _mm256_cmp_pd(lam, zero, _CMP_GT_OQ);
+    if (!_mm256_movemask_pd(live)) return true;
+    const __m128i ia4 = _mm_loadu_si128((const __m128i *)(const void *)(B->a + k));
+    const __m128i ib4 = _mm_loadu_si128((const __m128i *)(const void *)(B->b + k));
+#define GATHER(base, idx, m) _mm256_mask_i32gather_pd(zero, (base), (idx), (m), 8)
+    const __m256d ia = GATHER(w->inv_mass, ia4, live), ib = GATHER(w->inv_mass, ib4, live), ws = _mm256_add_pd(ia, ib);
+    const __m256d act = _mm256_and_pd(live, _mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ));
+    const int m = _mm256_movemask_pd(act);
+    if (!m) return true;
+    const __m256d pax = GATHER(w->px, ia4, act), pay = GATHER(w->py, ia4, act);
+    const __m256d pbx = GATHER(w->px, ib4, act), pby = GATHER(w->py, ib4, act);
+    __m256d nx = _mm256_sub_pd(pax, pbx), ny = _mm256_sub_pd(pay, pby);
+    const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(nx, nx), _mm256_mul_pd(ny, ny));
+    if (_mm256_movemask_pd(_mm256_and_pd(act, _mm256_cmp_pd(d2, zero, _CMP_NGT_UQ)))) return false; /* one centre */
+    const __m256d qax = GATHER(w->qx, ia4, act), qay = GATHER(w->qy, ia4, act);
+    const __m256d qbx = GATHER(w->qx, ib4, act), qby = GATHER(w->qy, ib4, act);
+    const __m256d v0x = _mm256_sub_pd(GATHER(in->vx0, ia4, act), GATHER(in->vx0, ib4, act));
+    const __m256d v0y = _mm256_sub_pd(GATHER(in->vy0, ia4, act), GATHER(in->vy0, ib4, act));
+#undef GATHER
+    const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(w->dt_prev);
+    const __m256d iws = _mm256_div_pd(one, ws), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
+    const __m256d id = _mm256_div_pd(one, _mm256_sqrt_pd(d2));
+    nx = _mm256_mul_pd(nx, id);
+    ny = _mm256_mul_pd(ny, id);
+    const __m256d vx = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pax, qax), dt), _mm256_div_pd(_mm256_sub_pd(pbx, qbx), dt));
+    const __m256d vy = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pay, qay), dt), _mm256_div_pd(_mm256_sub_pd(pby, qby), dt));
+    const __m256d vn0 = _mm256_add_pd(_mm256_mul_pd(v0x, nx), _mm256_mul_pd(v0y, ny));
+    const __m256d vn = _mm256_add_pd(_mm256_mul_pd(vx, nx), _mm256_mul_pd(vy, ny));
+    const __m256d up = _mm256_and_pd(vn, _mm256_cmp_pd(vn, zero, _CMP_GT_OQ));
+    const __m256d up0 = _mm256_and_pd(vn0, _mm256_cmp_pd(vn0, zero, _CMP_GT_OQ));
+    __m256d target = _mm256_blendv_pd(up, up0, _mm256_cmp_pd(up, up0, _CMP_GT_OQ));
+    target = _mm256_blendv_pd(target, _mm256_mul_pd(_mm256_set1_pd(-in->e), vn0),
+                              _mm256_cmp_pd(vn0, _mm256_set1_pd(-in->thr), _CMP_LT_OQ));
+    __m256d change = _mm256_sub_pd(target, vn0);
+    change = _mm256_blendv_pd(change, zero, _mm256_cmp_pd(change, zero, _CMP_LT_OQ));
+    const __m256d tv = _mm256_sub_pd(target, vn);
+    __m256d dvx = _mm256_mul_pd(tv, nx), dvy = _mm256_mul_pd(tv, ny), sx = zero, sy = zero;
+    if (!(in->mus == 0.0 && in->muk == 0.0)) {
+        const __m256d tx = _mm256_sub_pd(vx, _mm256_mul_pd(vn, nx)), ty = _mm256_sub_pd(vy, _mm256_mul_pd(vn, ny));
+        const __m256d t2 = _mm256_add_pd(_mm256_mul_pd(tx, tx), _mm256_mul_pd(ty, ty));
+        const __m256d lim = _mm256_mul_pd(_mm256_set1_pd(in->mus), change);
+        const __m256d stick = _mm256_cmp_pd(t2, _mm256_mul_pd(lim, lim), _CMP_LE_OQ);
+        const __m256d tl = _mm256_sqrt_pd(t2), mc = _mm256_mul_pd(_mm256_set1_pd(in->muk), change);
+        const __m256d f = _mm256_div_pd(_mm256_blendv_pd(tl, mc, _mm256_cmp_pd(mc, tl, _CMP_LT_OQ)), tl);
+        dvx = _mm256_blendv_pd(_mm256_sub_pd(dvx, _mm256_mul_pd(tx, f)), dvx, stick);
+        dvy = _mm256_blendv_pd(_mm256_sub_pd(dvy, _mm256_mul_pd(ty, f)), dvy, stick);
+        sx = _mm256_and_pd(tx, stick);
+        sy = _mm256_and_pd(ty, stick);
+    }
+    const __m256d h = _mm256_set1_pd(in->h);
+    const __m256d slid = _mm256_or_pd(_mm256_cmp_pd(sx, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(sy, zero, _CMP_NEQ_UQ));
+    const __m256d hx = _mm256_mul_pd(sx, h), hy = _mm256_mul_pd(sy, h);
+    const __m256d nhx = _mm256_mul_pd(_mm256_xor_pd(sx, sign), h), nhy = _mm256_mul_pd(_mm256_xor_pd(sy, sign), h);
+    double o[8][4];
+    _mm256_storeu_pd(o[0], _mm256_blendv_pd(pax, _mm256_sub_pd(pax, _mm256_mul_pd(hx, wa)), slid));
+    _mm256_storeu_pd(o[1], _mm256_blendv_pd(pay, _mm256_sub_pd(pay, _mm256_mul_pd(hy, wa)), slid));
+    _mm256_storeu_pd(o[2], _mm256_blendv_pd(pbx, _mm256_sub_pd(pbx, _mm256_mul_pd(nhx, wb)), slid));
+    _mm256_storeu_pd(o[3], _mm256_blendv_pd(pby, _mm256_sub_pd(pby, _mm256_mul_pd(nhy, wb)), slid));
+    _mm256_storeu_pd(o[4], _mm256_sub_pd(qax, _mm256_mul_pd(_mm256_mul_pd(dvx, wa), dt)));
+    _mm256_storeu_pd(o[5], _mm256_sub_pd(qay, _mm256_mul_pd(_mm256_mul_pd(dvy, wa), dt)));
+    _mm256_storeu_pd(o[6], _mm256_sub_pd(qbx, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dvx, sign), wb), dt)));
+    _mm256_storeu_pd(o[7], _mm256_sub_pd(qby, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dvy, sign), wb), dt)));
+    for (int j = 0; j < 4; j++) {
+        if (!(m >> j & 1)) continue;
+        const uint32_t a = B->a[k + j], b = B->b[k + j];
+        w->px[a] = o[0][j];
+        w->py[a] = o[1][j];
+        w->px[b] = o[2][j];
+        w->py[b] = o[3][j];
+        w->qx[a] = o[4][j];
+        w->qy[a] = o[5][j];
+        w->qx[b] = o[6][j];
+        w->qy[b] = o[7][j];
+    }
+    return true;
+}
+
+TT_AVX2 static bool respond_avx2(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in)
+{
+    return respond4(w, B, k, in);
+}
+TT_AVX512 static bool respond_avx512(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in)
+{
+    return respond4(w, B, k, in);
+}
 #endif
+
+tt__batch_respond_fn tt__batches_respond_fn(const tt__batches *B)
+{
+#ifdef TT_SIMD_X86
+    const uint8_t kind = tt__simd_kind(B->simd);
+    return kind == TT__SIMD_AVX512 ? respond_avx512 : kind == TT__SIMD_AVX2 ? respond_avx2 : NULL;
+#else
+    (void)B;
+    return NULL;
+#endif
+}
 
 double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep)
 {

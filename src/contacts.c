@@ -460,8 +460,14 @@ static void end(tt_world *w, void *self, double h)
     const double *inv = w->inv_mass;
     if (c->batched) {
         const tt__batches *B = &c->bat;
-        for (uint32_t k = 0; k < B->n; k++)
-            if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], h, thr, events);
+        /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, world materials) */
+        const tt__batch_respond_fn lanes = w->integrator == TT_VERLET && !c->mat && !events ? tt__batches_respond_fn(B) : NULL;
+        const tt__respond_in in = {c->vx0, c->vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
+        for (uint32_t k = 0; k < B->n; k += 4) {
+            if (lanes && lanes(w, B, k, &in)) continue;
+            for (uint32_t j = k; j < k + 4; j++)
+                if (B->lam[j] > 0.0) pair_end(w, c, B->a[j], B->b[j], h, thr, events);
+        }
     } else {
         for (uint32_t k = 0; k < c->npairs; k++)
             if (c->pairs[k].lambda > 0.0f) pair_end(w, c, c->pairs[k].a, c->pairs[k].b, h, thr, events);

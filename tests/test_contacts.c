@@ -470,7 +470,8 @@ TEST(collision_api_refuses_bad_input)
 
 /* ---- pair contacts in vector lanes against the scalar loop --------------- */
 
-/* A pile that reaches every branch of the batched pair sweep: radii 0.2 to
+/* A pile that reaches every branch of the batched pair sweep and velocity
+ * pass (bounce, no approach, stick, slide): radii 0.2 to
  * 0.6, a pinned row (pairs of two pinned particles are left out, a pinned
  * and a free one are solved), pairs on one centre (the batch goes to the
  * scalar code), particles removed and added while it settles. Returns the
@@ -488,6 +489,7 @@ static uint64_t batch_scene(tt__simd_mode mode, uint32_t *pairs)
         return 0;
     }
     tt_collision_settings cs = tt_collision_settings_default();
+    cs.restitution = 0.3; /* impacts bounce, contacts stick and slide */
     tt_world_set_collision(w, &cs);
     tt_shape_def sd = tt_shape_def_default();
     sd.type = TT_SHAPE_AABB;
@@ -532,7 +534,7 @@ static uint64_t batch_scene(tt__simd_mode mode, uint32_t *pairs)
     return h;
 }
 
-TEST(batched_pair_contacts_in_vector_lanes_are_bit_identical_to_the_scalar_loop)
+TEST(batched_pair_contacts_in_vector_lanes_are_bit_identical_to_the_scalar_code)
 {
     uint32_t pairs, pm;
     const uint64_t ref = batch_scene(TT__SIMD_SCALAR, &pairs);
