@@ -87,9 +87,8 @@ typedef struct tt__batches {
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
 
-/* Orders pairs [0, npairs) into batches (pairs no particle of which can
- * move are left out); false on no memory. */
-bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const double *inv_mass, uint32_t np);
+/* Orders pairs [0, npairs) into batches; false on no memory. */
+bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, uint32_t np);
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
  * seen. keep: leave the positions in the rows for the next sweep. */
 double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep);

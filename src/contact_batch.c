@@ -45,35 +45,34 @@ static bool reserve(tt__batches *B, uint32_t n)
     return true;
 }
 
+/* An open batch: its first entry and how many lanes are filled. */
 typedef struct slot {
-    uint32_t a[4], b[4];
-    double rs[4];
-    uint32_t n;
+    uint32_t base, n;
 } slot;
 
-/* Appends slot j's pairs as one batch (padded) and closes it. */
-static void emit(tt__batches *B, slot *s, uint32_t j)
+/* Closes slot j: its particles may join other batches again. */
+static void close_slot(tt__batches *B, const slot *s, uint32_t j)
 {
-    const uint8_t bit = (uint8_t)(1u << j);
-    uint32_t k = B->n;
-    for (uint32_t i = 0; i < 4; i++, k++) {
-        if (i < s->n) {
-            B->a[k] = s->a[i];
-            B->b[k] = s->b[i];
-            B->rs[k] = s->rs[i];
-            B->open[s->a[i]] &= (uint8_t)~bit;
-            B->open[s->b[i]] &= (uint8_t)~bit;
-        } else {
-            B->a[k] = B->b[k] = B->np;
-            B->rs[k] = 0.0;
-        }
-        B->lam[k] = 0.0;
+    const uint8_t keep = (uint8_t)~(1u << j);
+    for (uint32_t k = s->base; k < s->base + s->n; k++) {
+        B->open[B->a[k]] &= keep;
+        B->open[B->b[k]] &= keep;
     }
-    B->n = k;
-    s->n = 0;
 }
 
-bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const double *inv_mass, uint32_t np)
+/* Appends a batch of padding lanes; returns its first entry. */
+static uint32_t add_batch(tt__batches *B)
+{
+    const uint32_t k = B->n;
+    for (uint32_t i = k; i < k + 4; i++) {
+        B->a[i] = B->b[i] = B->np;
+        B->rs[i] = B->lam[i] = 0.0;
+    }
+    B->n = k + 4;
+    return k;
+}
+
+bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, uint32_t np)
 {
     B->n = 0;
     B->np = np;
@@ -84,45 +83,45 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
         B->open = o;
         B->open_cap = np;
     }
-    /* at worst a batch a pair */
-    if (npairs > UINT32_MAX / 4 - 4 || !reserve(B, 4 * npairs + 4)) return false;
+    /* at worst a batch a pair, and whole streams */
+    if (npairs > UINT32_MAX / 4 - 4 * STREAMS || !reserve(B, 4 * npairs + 4 * STREAMS)) return false;
     slot s[OPEN];
-    for (uint32_t j = 0; j < OPEN; j++) s[j].n = 0;
     uint32_t used = 0; /* bit j: slot j is open */
     for (uint32_t k = 0; k < npairs; k++) {
         const uint32_t a = pairs[k].a, b = pairs[k].b;
-        if (inv_mass[a] + inv_mass[b] == 0.0) continue;
         const uint32_t fit = used & ~(uint32_t)(B->open[a] | B->open[b]);
         uint32_t j;
         if (fit) {
             j = (uint32_t)__builtin_ctz(fit);
-        } else if (used != (1u << OPEN) - 1) {
-            j = (uint32_t)__builtin_ctz(~used);
-            used |= 1u << j;
-        } else { /* every open batch has a or b: the fullest goes out part-filled */
-            j = 0;
-            for (uint32_t i = 1; i < OPEN; i++)
-                if (s[i].n > s[j].n) j = i;
-            emit(B, &s[j], j);
+        } else {
+            if (used != (1u << OPEN) - 1) {
+                j = (uint32_t)__builtin_ctz(~used);
+                used |= 1u << j;
+            } else { /* every open batch has a or b: the fullest is closed part-filled */
+                j = 0;
+                for (uint32_t i = 1; i < OPEN; i++)
+                    if (s[i].n > s[j].n) j = i;
+                close_slot(B, &s[j], j);
+            }
+            s[j] = (slot){add_batch(B), 0};
         }
         slot *o = &s[j];
-        o->a[o->n] = a;
-        o->b[o->n] = b;
-        o->rs[o->n] = pairs[k].rs;
-        o->n++;
+        const uint32_t e = o->base + o->n++;
+        B->a[e] = a;
+        B->b[e] = b;
+        B->rs[e] = pairs[k].rs;
         B->open[a] |= (uint8_t)(1u << j);
         B->open[b] |= (uint8_t)(1u << j);
         if (o->n == 4) {
-            emit(B, o, j);
+            close_slot(B, o, j);
             used &= ~(1u << j);
         }
     }
     for (uint32_t j = 0; j < OPEN; j++)
-        if (used & (1u << j)) emit(B, &s[j], j);
-    while (B->n % (4 * STREAMS)) emit(B, &s[0], 0); /* empty batches: whole streams */
+        if (used & (1u << j)) close_slot(B, &s[j], j);
+    while (B->n % (4 * STREAMS)) add_batch(B); /* whole streams */
     return true;
 }
-
 
 void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny)
 {

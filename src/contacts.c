@@ -254,7 +254,7 @@ static void begin(tt_world *w, void *self, double h)
         if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
         /* batches pay for their planning from the second sweep on */
         c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
-                     tt__batches_plan(&c->bat, c->pairs, c->npairs, w->inv_mass, n);
+                     tt__batches_plan(&c->bat, c->pairs, c->npairs, n);
     }
     if (c->nprim) {
         detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
