@@ -72,22 +72,23 @@ typedef struct tt__pair { /* 16 bytes: hundreds of thousands are written every s
     float lambda;         /* normal correction applied this substep, m */
 } tt__pair;
 
-/* Pair contacts in batches of four that share no particle (contact_batch.c):
- * the order Gauss-Seidel solves them in when a substep sweeps more than
- * once, the same with and without vector lanes. */
+/* Pair contacts in batches of four, one from each of four parts of the
+ * pair list (contact_batch.c): the order Gauss-Seidel solves them in when a
+ * substep sweeps more than once, the same with and without vector lanes. */
 typedef struct tt__batches {
     uint32_t *a, *b;      /* particle slots, 4 per batch; padding lanes name np */
     double *rs, *lam;     /* radii sum; normal correction accumulated this substep, m */
     uint32_t n, cap;      /* entries (a multiple of 4), room */
-    uint8_t *open;        /* planner: per particle slot, the open batches it is in (all 0 between plans) */
-    uint32_t open_cap;
+    uint8_t *solo;        /* per batch: its lanes share a particle, so they go one by one */
+    uint32_t *stamp;      /* planner: per particle slot, the last batch (+ mark) naming it */
+    uint32_t stamp_cap, mark;
     double *pk;           /* rows (simd.h) of particles [0, np) and the padding row np */
     uint32_t pk_cap, np;
     bool live;            /* pk holds the positions; w->px, py are stale until tt__batches_release */
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
 
-/* Orders pairs [0, npairs) into batches; false on no memory. */
+/* Lays pairs [0, npairs) out in batches; false on no memory. */
 bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, uint32_t np);
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
  * seen. keep: leave the positions in the rows for the next sweep. */

@@ -464,7 +464,7 @@ static void end(tt_world *w, void *self, double h)
         const tt__batch_respond_fn lanes = w->integrator == TT_VERLET && !c->mat && !events ? tt__batches_respond_fn(B) : NULL;
         const tt__respond_in in = {c->vx0, c->vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
         for (uint32_t k = 0; k < B->n; k += 4) {
-            if (lanes && lanes(w, B, k, &in)) continue;
+            if (lanes && !B->solo[k / 4] && lanes(w, B, k, &in)) continue;
             for (uint32_t j = k; j < k + 4; j++)
                 if (B->lam[j] > 0.0) pair_end(w, c, B->a[j], B->b[j], h, thr, events);
         }
