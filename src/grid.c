@@ -12,15 +12,25 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TT_NO_SIMD)
+#define TT_SIMD_X86 1
+#include <immintrin.h>
+#endif
+
+#define TT_INLINE static inline __attribute__((always_inline))
+
+/* Entries after the last sorted one: the vector test reads whole groups of four. */
+#define TT__GRID_PAD 3
+
 static bool grow_n(tt__grid *g, uint32_t need)
 {
     if (need <= g->cap_n) return true;
     uint32_t n = g->cap_n ? g->cap_n : 256;
     while (n < need) n = n > UINT32_MAX / 2 ? need : n * 2;
     void *p;
-#define GROW(f, t) if (!(p = realloc(g->f, (size_t)n * sizeof(t)))) return false; g->f = p
-    GROW(cell, uint32_t); GROW(idx, uint32_t); GROW(sx, double); GROW(sy, double); GROW(sr, double);
-    GROW(bits, uint8_t); GROW(out_list, uint32_t);
+#define GROW(f, t, pad) if (!(p = realloc(g->f, ((size_t)n + pad) * sizeof(t)))) return false; g->f = p
+    GROW(cell, uint32_t, 0); GROW(idx, uint32_t, TT__GRID_PAD); GROW(bits, uint8_t, 0); GROW(out_list, uint32_t, 0);
+    GROW(sx, double, TT__GRID_PAD); GROW(sy, double, TT__GRID_PAD); GROW(sr, double, TT__GRID_PAD);
 #undef GROW
     g->cap_n = n;
     return true;
@@ -41,15 +51,19 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     const uint32_t n = w->ppool.count;
     g->epoch = UINT64_MAX;
     if (!grow_n(g, n ? n : 1)) return false;
+    /* locals: the uint8_t stores below may alias any field of w or g */
+    const uint16_t *flags = w->flags, *cat = w->category, *msk = w->mask;
+    const double *px = w->px, *py = w->py, *im = w->inv_mass;
+    const float *rad = w->radius;
     double lox = INFINITY, loy = INFINITY, hix = -INFINITY, hiy = -INFINITY, rmax = 0.0;
     uint32_t m = 0;
     uint16_t cat_or = 0, cat_and = 0xFFFF, mask_or = 0, mask_and = 0xFFFF;
     for (uint32_t i = 0; i < n; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
-        double x = w->px[i], y = w->py[i];
-        double r = w->radius[i];
-        cat_or |= w->category[i]; cat_and &= w->category[i];
-        mask_or |= w->mask[i]; mask_and &= w->mask[i];
+        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        double x = px[i], y = py[i];
+        double r = rad[i];
+        cat_or |= cat[i]; cat_and &= cat[i];
+        mask_or |= msk[i]; mask_and &= msk[i];
         lox = x < lox ? x : lox; hix = x > hix ? x : hix; /* not fmin/fmax: those are library calls here */
         loy = y < loy ? y : loy; hiy = y > hiy ? y : hiy;
         rmax = r > rmax ? r : rmax;
@@ -73,8 +87,8 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     if ((double)g->nx * g->ny > limit) { /* a few particles far away: a second pass for the spread */
         double sx = 0, sy = 0, sxx = 0, syy = 0;
         for (uint32_t i = 0; i < n; i++) {
-            if (!(w->flags[i] & TT_PF_ALIVE)) continue;
-            double x = w->px[i], y = w->py[i];
+            if (!(flags[i] & TT_PF_ALIVE)) continue;
+            double x = px[i], y = py[i];
             sx += x; sy += y; sxx += x * x; syy += y * y;
         }
         double mx = sx / m, my = sy / m;
@@ -89,44 +103,67 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     const uint32_t ncell = (uint32_t)g->nx * (uint32_t)g->ny;
     if (!tt__grow((void **)&g->start, &g->cap_cells, ncell + 1, sizeof *g->start)) return false;
     g->ncell = ncell;
-    memset(g->start, 0, (size_t)(ncell + 1) * sizeof *g->start);
+    uint32_t *start = g->start, *cell = g->cell, *idx = g->idx, *out_list = g->out_list, nout = 0;
+    double *sx = g->sx, *sy = g->sy, *sr = g->sr;
+    uint8_t *bits = g->bits;
+    memset(start, 0, (size_t)ncell * sizeof *start);
     const double ox = g->ox, oy = g->oy, inv = g->inv;
     const int32_t nx = g->nx, ny = g->ny;
     for (uint32_t i = 0; i < n; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
-        int32_t cx = tt__cell_coord(w->px[i], ox, inv), cy = tt__cell_coord(w->py[i], oy, inv);
+        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        int32_t cx = tt__cell_coord(px[i], ox, inv), cy = tt__cell_coord(py[i], oy, inv);
         bool out = cx < 0 || cy < 0 || cx >= nx || cy >= ny;
         if (TT_UNLIKELY(out)) {
             cx = cx < 0 ? 0 : cx >= nx ? nx - 1 : cx;
             cy = cy < 0 ? 0 : cy >= ny ? ny - 1 : cy;
-            g->out_list[g->nout++] = i;
+            out_list[nout++] = i;
         }
         uint32_t c = (uint32_t)cy * (uint32_t)nx + (uint32_t)cx;
-        g->cell[i] = c | (out ? 0x80000000u : 0u);
-        g->start[c + 1]++;
+        cell[i] = c | (out ? 0x80000000u : 0u);
+        start[c]++;
     }
-    for (uint32_t c = 0; c < ncell; c++) g->start[c + 1] += g->start[c];
-    /* scatter in slot order (stable, deterministic); start[c] ends at cell c's end */
-    for (uint32_t i = 0; i < n; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
-        uint32_t c = g->cell[i] & 0x7FFFFFFFu, k = g->start[c]++;
-        g->idx[k] = i;
-        g->sx[k] = w->px[i];
-        g->sy[k] = w->py[i];
-        g->sr[k] = w->radius[i];
-        g->bits[k] = (uint8_t)((g->cell[i] >> 31) | (w->inv_mass[i] == 0.0 ? TT__GRID_PINNED : 0));
+    g->nout = nout;
+    uint32_t sum = 0; /* start[c] becomes the end of cell c */
+    for (uint32_t c = 0; c < ncell; c++) start[c] = sum += start[c];
+    start[ncell] = m;
+    /* scatter backwards, so each cell fills from its end and keeps slot order
+     * (stable, deterministic); start[c] ends at cell c's beginning */
+    for (uint32_t i = n; i-- > 0;) {
+        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        uint32_t c = cell[i] & 0x7FFFFFFFu, k = --start[c];
+        idx[k] = i;
+        sx[k] = px[i];
+        sy[k] = py[i];
+        sr[k] = rad[i];
+        bits[k] = (uint8_t)((cell[i] >> 31) | (im[i] == 0.0 ? TT__GRID_PINNED : 0));
     }
-    for (uint32_t c = ncell; c > 0; c--) g->start[c] = g->start[c - 1];
-    g->start[0] = 0;
+    for (uint32_t k = m; k < m + TT__GRID_PAD; k++) { /* read, never used */
+        sx[k] = sy[k] = sr[k] = 0.0;
+        idx[k] = 0;
+    }
     return true;
 }
 
-static inline bool push_pair(tt__collide *c, uint32_t a, uint32_t b, double rs)
+/* The pair list while it is filled: kept in locals, because every store
+ * through c->pairs could alias c->npairs and force a reload per pair. */
+typedef struct emit {
+    tt__pair *p;
+    uint32_t n, cap;
+} emit;
+
+static bool emit_grow(tt__collide *c, emit *e)
 {
-    if (TT_UNLIKELY(c->npairs == c->paircap) &&
-        !tt__grow((void **)&c->pairs, &c->paircap, c->npairs + 1, sizeof *c->pairs))
-        return false;
-    tt__pair *p = &c->pairs[c->npairs++];
+    c->npairs = e->n;
+    if (!tt__grow((void **)&c->pairs, &c->paircap, e->n + 1, sizeof *c->pairs)) return false;
+    e->p = c->pairs;
+    e->cap = c->paircap;
+    return true;
+}
+
+TT_INLINE bool push_pair(tt__collide *c, emit *e, uint32_t a, uint32_t b, double rs)
+{
+    if (TT_UNLIKELY(e->n == e->cap) && !emit_grow(c, e)) return false;
+    tt__pair *p = &e->p[e->n++];
     p->a = a;
     p->b = b;
     p->rs = (float)rs;
@@ -134,49 +171,114 @@ static inline bool push_pair(tt__collide *c, uint32_t a, uint32_t b, double rs)
     return true;
 }
 
-/* Pairs between sorted ranges [k0, k1) and [j0, j1) (same: j from k + 1 to j1).
- * plain: nothing but two pinned particles can exclude a pair (one layer,
- * no exclusions), so the full filter is skipped. */
-static inline bool cell_pairs(tt_world *w, tt__collide *c, const tt__grid *g, bool plain, uint32_t k0, uint32_t k1,
-                              uint32_t j0, uint32_t j1, bool same)
+/* A hit of sorted particle a (slot; kbits its flags) with sorted j: the
+ * filter, then the list. plain: nothing but two pinned particles can exclude
+ * a pair (one layer, no exclusions), so the full filter is skipped. */
+TT_INLINE bool hit(tt_world *w, tt__collide *c, emit *e, const tt__grid *g, bool plain, uint32_t a, uint8_t kbits,
+                   uint32_t j, double rs)
+{
+    uint32_t b = g->idx[j];
+    if (plain ? kbits & g->bits[j] & TT__GRID_PINNED : !tt__pair_filter(w, c, a, b)) return true;
+    return push_pair(c, e, a, b, rs);
+}
+
+#define TT__MARGIN2 ((1.0 + TT__CONTACT_MARGIN) * (1.0 + TT__CONTACT_MARGIN))
+
+/* Pairs of sorted particle k with the sorted range [j0, j1), in j order. */
+TT_INLINE bool range_scalar(tt_world *w, tt__collide *c, emit *e, const tt__grid *g, bool plain, uint32_t k,
+                            uint32_t j0, uint32_t j1)
 {
     const double *sx = g->sx, *sy = g->sy, *sr = g->sr;
-    const double f = (1.0 + TT__CONTACT_MARGIN) * (1.0 + TT__CONTACT_MARGIN);
-    for (uint32_t k = k0; k < k1; k++) {
-        const double x = sx[k], y = sy[k], r = sr[k];
-        for (uint32_t j = same ? k + 1 : j0; j < j1; j++) {
-            double dx = x - sx[j], dy = y - sy[j], rs = r + sr[j];
-            if (dx * dx + dy * dy >= rs * rs * f || rs == 0.0) continue;
-            uint32_t a = g->idx[k], b = g->idx[j];
-            if (plain ? g->bits[k] & g->bits[j] & TT__GRID_PINNED : !tt__pair_filter(w, c, a, b)) continue;
-            if (!push_pair(c, a, b, rs)) return false;
-        }
+    const double x = sx[k], y = sy[k], r = sr[k];
+    const uint32_t a = g->idx[k]; /* read once: the pair stores could alias it */
+    const uint8_t kbits = g->bits[k];
+    for (uint32_t j = j0; j < j1; j++) {
+        double dx = x - sx[j], dy = y - sy[j], rs = r + sr[j];
+        if (dx * dx + dy * dy >= rs * rs * TT__MARGIN2 || rs == 0.0) continue;
+        if (!hit(w, c, e, g, plain, a, kbits, j, rs)) return false;
     }
     return true;
 }
 
-bool tt__grid_pairs(tt_world *w, tt__collide *c)
+#ifdef TT_SIMD_X86
+#define TT_AVX2 __attribute__((target("avx2")))
+
+/* As range_scalar, four candidates at a time: the same operations in the
+ * same order per lane (no FMA), so the same pairs. The sorted arrays carry
+ * padding, so the last group's loads stay inside. NGE_UQ and NEQ_UQ keep the
+ * scalar test's NaN behaviour (a NaN distance is a pair). */
+TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt__grid *g, bool plain,
+                                  uint32_t k, uint32_t j0, uint32_t j1)
 {
-    const tt__grid *g = &c->grid;
-    const int32_t nx = g->nx, ny = g->ny;
-    const uint32_t *st = g->start;
-    const bool plain = g->one_layer && c->nexcl == 0 && !tt__constraint_pairs_any(w);
-    for (int32_t y = 0; y < ny; y++) {
-        for (int32_t x = 0; x < nx; x++) {
-            uint32_t cell = (uint32_t)y * (uint32_t)nx + (uint32_t)x;
-            uint32_t k0 = st[cell], k1 = st[cell + 1];
-            if (k0 == k1) continue;
-            /* forward half of the neighbourhood: the rest of this cell and E (contiguous), then NW, N, NE */
-            if (!cell_pairs(w, c, g, plain, k0, k1, 0, x + 1 < nx ? st[cell + 2] : k1, true)) return false;
-            if (y + 1 < ny) {
-                uint32_t up = cell + (uint32_t)nx;
-                uint32_t lo = x > 0 ? up - 1 : up, hi = x + 1 < nx ? up + 1 : up;
-                /* the three cells above are contiguous in the sorted order */
-                if (!cell_pairs(w, c, g, plain, k0, k1, st[lo], st[hi + 1], false)) return false;
-            }
+    const double *sx = g->sx, *sy = g->sy, *sr = g->sr;
+    const double r = sr[k];
+    const uint32_t a = g->idx[k];
+    const uint8_t kbits = g->bits[k];
+    const __m256d x = _mm256_set1_pd(sx[k]), y = _mm256_set1_pd(sy[k]), vr = _mm256_set1_pd(r);
+    const __m256d f = _mm256_set1_pd(TT__MARGIN2), zero = _mm256_setzero_pd();
+    for (uint32_t j = j0; j < j1; j += 4) {
+        __m256d dx = _mm256_sub_pd(x, _mm256_loadu_pd(sx + j)), dy = _mm256_sub_pd(y, _mm256_loadu_pd(sy + j));
+        __m256d rs = _mm256_add_pd(vr, _mm256_loadu_pd(sr + j));
+        __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+        __m256d lim = _mm256_mul_pd(_mm256_mul_pd(rs, rs), f);
+        __m256d m = _mm256_and_pd(_mm256_cmp_pd(d2, lim, _CMP_NGE_UQ), _mm256_cmp_pd(rs, zero, _CMP_NEQ_UQ));
+        unsigned bits = (unsigned)_mm256_movemask_pd(m);
+        if (j1 - j < 4) bits &= (1u << (j1 - j)) - 1u;
+        while (bits) {
+            uint32_t jj = j + (uint32_t)__builtin_ctz(bits);
+            bits &= bits - 1;
+            if (!hit(w, c, e, g, plain, a, kbits, jj, r + sr[jj])) return false;
         }
     }
     return true;
+}
+#endif
+
+/* Every cell in row-major order: first each particle with the rest of its
+ * cell and the cell E (contiguous), then each with NW, N, NE (contiguous in
+ * the sorted order too): the forward half of the neighbourhood. One copy per
+ * kernel and filter, so both are fixed inside the loops. */
+#define TT__WALK(name, attr, range, plain)                                                              \
+    attr static bool name(tt_world *w, tt__collide *c, const tt__grid *g)                               \
+    {                                                                                                   \
+        const int32_t nx = g->nx, ny = g->ny;                                                           \
+        const uint32_t *st = g->start;                                                                  \
+        emit e = {c->pairs, c->npairs, c->paircap};                                                     \
+        bool ok = true;                                                                                 \
+        for (int32_t y = 0; y < ny && ok; y++) {                                                        \
+            const uint32_t row = (uint32_t)y * (uint32_t)nx;                                            \
+            for (int32_t x = 0; x < nx && ok; x++) {                                                    \
+                const uint32_t cell = row + (uint32_t)x;                                                \
+                const uint32_t k0 = st[cell], k1 = st[cell + 1];                                        \
+                if (k0 == k1) continue;                                                                 \
+                const uint32_t e1 = x + 1 < nx ? st[cell + 2] : k1;                                     \
+                for (uint32_t k = k0; k < k1 && ok; k++) ok = range(w, c, &e, g, plain, k, k + 1, e1);  \
+                if (y + 1 < ny) {                                                                       \
+                    const uint32_t up = cell + (uint32_t)nx;                                            \
+                    const uint32_t u0 = st[x > 0 ? up - 1 : up], u1 = st[(x + 1 < nx ? up + 1 : up) + 1]; \
+                    for (uint32_t k = k0; k < k1 && ok; k++) ok = range(w, c, &e, g, plain, k, u0, u1); \
+                }                                                                                       \
+            }                                                                                           \
+        }                                                                                               \
+        c->npairs = e.n;                                                                                \
+        return ok;                                                                                      \
+    }
+
+TT__WALK(walk_plain, , range_scalar, true)
+TT__WALK(walk_full, , range_scalar, false)
+#ifdef TT_SIMD_X86
+TT__WALK(walk_plain_avx2, TT_AVX2, range_avx2, true)
+TT__WALK(walk_full_avx2, TT_AVX2, range_avx2, false)
+#endif
+
+bool tt__grid_pairs(tt_world *w, tt__collide *c)
+{
+    const tt__grid *g = &c->grid;
+    const bool plain = g->one_layer && c->nexcl == 0 && !tt__constraint_pairs_any(w);
+#ifdef TT_SIMD_X86
+    if (__builtin_cpu_supports("avx2")) return plain ? walk_plain_avx2(w, c, g) : walk_full_avx2(w, c, g);
+#endif
+    return plain ? walk_plain(w, c, g) : walk_full(w, c, g);
 }
 
 void tt__grid_free(tt__grid *g)
