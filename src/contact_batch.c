@@ -48,6 +48,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, ui
 {
     B->n = 0;
     B->np = np;
+    if (npairs == 0) return true;
     if (np > B->stamp_cap) {
         uint32_t *st = realloc(B->stamp, (size_t)np * sizeof *st);
         if (!st) return false;

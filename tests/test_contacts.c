@@ -547,3 +547,25 @@ TEST(batched_pair_contacts_in_vector_lanes_are_bit_identical_to_the_scalar_code)
         ENSURE(hm == ref);
     }
 }
+
+/* Found by the sanitizer build in the Galton demo: a world sweeping more than
+ * once with collisions on and no particle yet planned its batches from a
+ * stamp array never allocated. */
+TEST(a_colliding_world_with_no_particles_or_pairs_steps)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.iterations = 4;
+    tt_world *w = tt_world_create(&wd);
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE(tt_world_set_collision(w, &cs) == TT_OK);
+    ground(w, 0.0);
+    for (int s = 0; s < 3; s++) ENSURE(tt_world_step(w, 1.0 / 60) == TT_OK);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){0, 3};
+    tt_particle p = tt_particle_create(w, &pd); /* one particle: no pair */
+    for (int s = 0; s < 3; s++) ENSURE(tt_world_step(w, 1.0 / 60) == TT_OK);
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    ENSURE(x.y < 3 && x.y > 0);
+    tt_world_destroy(w);
+}
