@@ -315,6 +315,7 @@ double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep)
     if (!keep) tt__rows_unpack(B->pk, w->px, w->py, B->np);
     return err;
 #else
+    (void)keep; /* never reached: no vector kind without TT_SIMD_X86 */
     return 0.0;
 #endif
 }
