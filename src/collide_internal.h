@@ -66,16 +66,6 @@ typedef struct tt__grid {
     uint64_t epoch;               /* w->epoch the grid reflects (queries), or UINT64_MAX */
 } tt__grid;
 
-/* Parts the pair list is cut into for batches (contact_batch.c). */
-#define TT__PARTS 8
-
-/* The particle grid's cell (x, y): column-major, so a column's cells are
- * contiguous (grid.c walks them bottom up). */
-static inline uint32_t tt__grid_cell(const tt__grid *g, int32_t x, int32_t y)
-{
-    return (uint32_t)x * (uint32_t)g->ny + (uint32_t)y;
-}
-
 typedef struct tt__pair { /* 16 bytes: hundreds of thousands are written every substep */
     uint32_t a, b;
     float rs;             /* radii sum (the radii are floats already) */
@@ -98,9 +88,8 @@ typedef struct tt__batches {
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
 
-/* Lays pairs [0, npairs) out in batches, part k being pairs [cut[k],
- * cut[k + 1]) (cut NULL: equal parts); false on no memory. */
-bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *cut, uint32_t np);
+/* Lays pairs [0, npairs) out in batches; false on no memory. */
+bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, uint32_t np);
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
  * seen. keep: leave the positions in the rows for the next sweep. */
 double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep);
@@ -171,7 +160,6 @@ typedef struct tt__collide {
     /* contacts of the current substep */
     tt__pair *pairs;
     uint32_t npairs, paircap;
-    uint32_t cut[TT__PARTS + 1]; /* the grid's pairs: where each band of columns starts (cut[0] = 0, 0 when none) */
     tt__batches bat;
     bool batched;         /* this substep's pairs are solved from bat */
     tt__scontact *sc;

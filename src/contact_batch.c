@@ -13,21 +13,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The pair list (the grid's order: column by column, each bottom up) is
- * cut into STREAMS parts, bands of columns; batch t holds the t/2-th pair
- * of parts 0-3 (t even) or 4-7 (t odd). Each part keeps the grid's order,
- * so a sweep still carries a pile's weight up a column in one pass, and the
- * order stays the same from step to step but where pairs come and go. Both
- * matter: a planner that regrouped neighbouring pairs greedily (8 batches
- * open at a time) solved each step in a different order, and 10 000
- * circles at 1 × 8 never came to rest (kinetic energy stuck at 0.05 J/kg);
- * parts cut by pair count moved their cuts with every pair and ended at
- * 0.003 J/kg; cut at columns, as here, 0.0007 at 20 s, as the grid's own
- * order without batches (0.0009). The parts are far apart, so a batch's
- * lanes seldom share a particle (those batches go lane by lane), and
- * consecutive batches come from different parts, so one need not wait for
- * the last one's stores. */
-#define STREAMS TT__PARTS
+/* The pair list (the grid's order: row by row, bottom up) is cut into
+ * STREAMS parts; batch t holds the t/2-th pair of parts 0-3 (t even) or
+ * 4-7 (t odd). Each part keeps the grid's order, so a sweep still carries a
+ * pile's weight up a part in one pass, and small changes to the list change
+ * the order only locally: a planner that regrouped neighbouring pairs into
+ * batches (greedily, 8 open at a time) had each step solve in a different
+ * order, and a deep pile never came to rest (10 000 circles at 1 × 8:
+ * kinetic energy stuck at 0.05 J/kg instead of falling under 0.001). The
+ * parts are far apart, so a batch's lanes seldom share a particle (those
+ * batches go lane by lane), and consecutive batches come from different
+ * parts, so one need not wait for the last one's stores. */
+#define STREAMS 8
 
 static bool reserve(tt__batches *B, uint32_t n)
 {
@@ -47,7 +44,7 @@ static bool reserve(tt__batches *B, uint32_t n)
     return true;
 }
 
-bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *cut, uint32_t np)
+bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, uint32_t np)
 {
     B->n = 0;
     B->np = np;
@@ -59,11 +56,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
         B->stamp_cap = np;
         B->mark = 0;
     }
-    uint32_t start[STREAMS + 1], L = 0;
-    for (uint32_t k = 0; k <= STREAMS; k++)
-        start[k] = cut ? cut[k] : (uint32_t)((uint64_t)npairs * k / STREAMS);
-    for (uint32_t k = 0; k < STREAMS; k++)
-        if (start[k + 1] - start[k] > L) L = start[k + 1] - start[k];
+    const uint32_t L = (uint32_t)(((uint64_t)npairs + STREAMS - 1) / STREAMS);
     if ((uint64_t)L * STREAMS > UINT32_MAX / 2 || !reserve(B, L * STREAMS)) return false;
     const uint32_t nb = L * STREAMS / 4;
     if (B->mark > UINT32_MAX - nb - 1 || B->mark == 0) { /* stamps from an earlier plan could look current */
@@ -74,9 +67,9 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
         const uint32_t i = t / 2, s0 = (t % 2) * 4, id = B->mark + t;
         bool solo = false;
         for (uint32_t s = s0; s < s0 + 4; s++) {
-            const uint32_t p = start[s] + i, e = 4 * t + s - s0;
+            const uint32_t p = s * L + i, e = 4 * t + s - s0;
             B->lam[e] = 0.0;
-            if (p >= start[s + 1]) { /* padding */
+            if (p >= npairs) { /* padding */
                 B->a[e] = B->b[e] = np;
                 B->rs[e] = 0.0;
                 continue;

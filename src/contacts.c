@@ -244,19 +244,17 @@ static void begin(tt_world *w, void *self, double h)
     if (c->nbullets && c->nprim) tt__ccd(w, c, h);
     if (pairs) {
         bool ok;
-        const uint32_t *cut = NULL; /* the grid's bands of columns, when there are enough to keep parts even */
         if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
             ok = tt__brute_pairs(w, c);
             c->grid.epoch = UINT64_MAX;
         } else {
             ok = tt__grid_build(w, &c->grid, c->set.cell_size) && tt__grid_pairs(w, c);
             c->cells_used = c->grid.ncell;
-            if (ok && c->grid.nx >= 4 * TT__PARTS) cut = c->cut;
         }
         if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
         /* batches pay for their planning from the second sweep on */
         c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
-                     tt__batches_plan(&c->bat, c->pairs, c->npairs, cut, n);
+                     tt__batches_plan(&c->bat, c->pairs, c->npairs, n);
     }
     if (c->nprim) {
         detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};

@@ -118,7 +118,7 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
             cy = cy < 0 ? 0 : cy >= ny ? ny - 1 : cy;
             out_list[nout++] = i;
         }
-        uint32_t c = (uint32_t)cx * (uint32_t)ny + (uint32_t)cy; /* column-major: tt__grid_cell */
+        uint32_t c = (uint32_t)cy * (uint32_t)nx + (uint32_t)cx;
         cell[i] = c | (out ? 0x80000000u : 0u);
         start[c]++;
     }
@@ -234,12 +234,9 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
 }
 #endif
 
-/* Every cell column by column, each bottom up (so pairs come out, and a
- * sweep solves them, from the floor up a column: a pile's weight is carried
- * up in one pass): first each particle with the rest of its cell and the
- * cell N (contiguous), then each with SE, E, NE (contiguous in the sorted
- * order too): the forward half of the neighbourhood. Notes where each of
- * TT__PARTS bands of columns starts in the list (c->cut). One copy per
+/* Every cell in row-major order: first each particle with the rest of its
+ * cell and the cell E (contiguous), then each with NW, N, NE (contiguous in
+ * the sorted order too): the forward half of the neighbourhood. One copy per
  * kernel and filter, so both are fixed inside the loops. */
 #define TT__WALK(name, attr, range, plain)                                                              \
     attr static bool name(tt_world *w, tt__collide *c, const tt__grid *g)                               \
@@ -248,25 +245,21 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
         const uint32_t *st = g->start;                                                                  \
         emit e = {c->pairs, c->npairs, c->paircap};                                                     \
         bool ok = true;                                                                                 \
-        uint32_t part = 0;                                                                              \
-        for (int32_t x = 0; x < nx && ok; x++) {                                                        \
-            const uint32_t col = (uint32_t)x * (uint32_t)ny;                                            \
-            while (part < TT__PARTS && (uint64_t)x * TT__PARTS >= (uint64_t)part * (uint32_t)nx)        \
-                c->cut[part++] = e.n;                                                                   \
-            for (int32_t y = 0; y < ny && ok; y++) {                                                    \
-                const uint32_t cell = col + (uint32_t)y;                                                \
+        for (int32_t y = 0; y < ny && ok; y++) {                                                        \
+            const uint32_t row = (uint32_t)y * (uint32_t)nx;                                            \
+            for (int32_t x = 0; x < nx && ok; x++) {                                                    \
+                const uint32_t cell = row + (uint32_t)x;                                                \
                 const uint32_t k0 = st[cell], k1 = st[cell + 1];                                        \
                 if (k0 == k1) continue;                                                                 \
-                const uint32_t e1 = y + 1 < ny ? st[cell + 2] : k1;                                     \
+                const uint32_t e1 = x + 1 < nx ? st[cell + 2] : k1;                                     \
                 for (uint32_t k = k0; k < k1 && ok; k++) ok = range(w, c, &e, g, plain, k, k + 1, e1);  \
-                if (x + 1 < nx) {                                                                       \
-                    const uint32_t rt = cell + (uint32_t)ny;                                            \
-                    const uint32_t u0 = st[y > 0 ? rt - 1 : rt], u1 = st[(y + 1 < ny ? rt + 1 : rt) + 1]; \
+                if (y + 1 < ny) {                                                                       \
+                    const uint32_t up = cell + (uint32_t)nx;                                            \
+                    const uint32_t u0 = st[x > 0 ? up - 1 : up], u1 = st[(x + 1 < nx ? up + 1 : up) + 1]; \
                     for (uint32_t k = k0; k < k1 && ok; k++) ok = range(w, c, &e, g, plain, k, u0, u1); \
                 }                                                                                       \
             }                                                                                           \
         }                                                                                               \
-        while (part <= TT__PARTS) c->cut[part++] = e.n;                                                 \
         c->npairs = e.n;                                                                                \
         return ok;                                                                                      \
     }

@@ -144,7 +144,7 @@ static bool ray_particle_cell(void *ctx, int32_t cx, int32_t cy, double te)
     for (int32_t y = cy - 1; y <= cy + 1; y++)
         for (int32_t x = cx - 1; x <= cx + 1; x++) {
             if (x < 0 || y < 0 || x >= g->nx || y >= g->ny) continue;
-            uint32_t cell = tt__grid_cell(g, x, y);
+            uint32_t cell = (uint32_t)y * (uint32_t)g->nx + (uint32_t)x;
             for (uint32_t j = g->start[cell]; j < g->start[cell + 1]; j++) ray_particle(r, g->idx[j]);
         }
     return true;
@@ -239,9 +239,9 @@ static tt_result area(tt_world *w, const char *fn, double lox, double loy, doubl
         if (y0 < 0) y0 = 0;
         if (x1 >= g->nx) x1 = g->nx - 1;
         if (y1 >= g->ny) y1 = g->ny - 1;
-        for (int32_t x = x0; x <= x1; x++)
-            for (int32_t y = y0; y <= y1; y++) {
-                uint32_t cell = tt__grid_cell(g, x, y);
+        for (int32_t y = y0; y <= y1; y++)
+            for (int32_t x = x0; x <= x1; x++) {
+                uint32_t cell = (uint32_t)y * (uint32_t)g->nx + (uint32_t)x;
                 for (uint32_t j = g->start[cell]; j < g->start[cell + 1]; j++) {
                     if (g->bits[j] & TT__GRID_OUTSIDE) continue; /* tested below, once */
                     uint32_t i = g->idx[j];
