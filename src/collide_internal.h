@@ -66,6 +66,9 @@ typedef struct tt__grid {
     uint64_t epoch;               /* w->epoch the grid reflects (queries), or UINT64_MAX */
 } tt__grid;
 
+/* Parts the pair list is cut into for batches (contact_batch.c). */
+#define TT__PARTS 8
+
 typedef struct tt__pair { /* 16 bytes: hundreds of thousands are written every substep */
     uint32_t a, b;
     float rs;             /* radii sum (the radii are floats already) */
@@ -88,8 +91,11 @@ typedef struct tt__batches {
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
 
-/* Lays pairs [0, npairs) out in batches; false on no memory. */
-bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, uint32_t np);
+/* Lays pairs [0, npairs) out in batches. Part k is, for each of nrows
+ * rows, pairs [runs[y·TT__PARTS + k], runs[y·TT__PARTS + k + 1]); runs NULL:
+ * TT__PARTS equal parts. False on no memory. */
+bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
+                      uint32_t np);
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
  * seen. keep: leave the positions in the rows for the next sweep. */
 double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep);
@@ -160,6 +166,8 @@ typedef struct tt__collide {
     /* contacts of the current substep */
     tt__pair *pairs;
     uint32_t npairs, paircap;
+    uint32_t *runs;       /* the grid's pairs by row and band of columns: row y, band k from runs[y·TT__PARTS + k] */
+    uint32_t runs_cap, nrows; /* nrows: rows in runs (0: none) */
     tt__batches bat;
     bool batched;         /* this substep's pairs are solved from bat */
     tt__scontact *sc;

@@ -14,17 +14,21 @@
 #include <string.h>
 
 /* The pair list (the grid's order: row by row, bottom up) is cut into
- * STREAMS parts; batch t holds the t/2-th pair of parts 0-3 (t even) or
- * 4-7 (t odd). Each part keeps the grid's order, so a sweep still carries a
- * pile's weight up a part in one pass, and small changes to the list change
- * the order only locally: a planner that regrouped neighbouring pairs into
- * batches (greedily, 8 open at a time) had each step solve in a different
- * order, and a deep pile never came to rest (10 000 circles at 1 × 8:
- * kinetic energy stuck at 0.05 J/kg instead of falling under 0.001). The
- * parts are far apart, so a batch's lanes seldom share a particle (those
- * batches go lane by lane), and consecutive batches come from different
- * parts, so one need not wait for the last one's stores. */
-#define STREAMS 8
+ * STREAMS parts, bands of columns; batch t holds the t/2-th pair of parts
+ * 0-3 (t even) or 4-7 (t odd). Each part keeps the grid's order, so a sweep
+ * still carries a pile's weight up from the floor in one pass, and the order
+ * stays the same from step to step but where pairs come and go. Both
+ * matter: a planner that regrouped neighbouring pairs greedily (8 batches
+ * open at a time) solved each step in a different order, and 10 000 circles
+ * at 1 × 8 never came to rest (kinetic energy stuck at 0.05 J/kg after
+ * 20 s). With bands of columns, as here, four jittered starts end at
+ * 0.0008–0.0022 J/kg, the grid's own order without batches at 0.0018–0.0047
+ * (bands of rows cut by pair count, which move with every pair: 0.0046 on
+ * one start). The parts are far apart, so a batch's
+ * lanes seldom share a particle (those batches go lane by lane), and
+ * consecutive batches come from different parts, so one need not wait for
+ * the last one's stores. */
+#define STREAMS TT__PARTS
 
 static bool reserve(tt__batches *B, uint32_t n)
 {
@@ -44,7 +48,13 @@ static bool reserve(tt__batches *B, uint32_t n)
     return true;
 }
 
-bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, uint32_t np)
+/* Where part k's pairs are: row y's run [runs[y·STREAMS + k], the next entry). */
+typedef struct cursor {
+    uint32_t y, p, end;
+} cursor;
+
+bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
+                      uint32_t np)
 {
     B->n = 0;
     B->np = np;
@@ -56,7 +66,23 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, ui
         B->stamp_cap = np;
         B->mark = 0;
     }
-    const uint32_t L = (uint32_t)(((uint64_t)npairs + STREAMS - 1) / STREAMS);
+    uint32_t eq[STREAMS + 1], L = 0;
+    for (uint32_t k = 0; runs && k < STREAMS; k++) {
+        uint32_t len = 0;
+        for (uint32_t y = 0; y < nrows; y++) len += runs[y * STREAMS + k + 1] - runs[y * STREAMS + k];
+        if (len > L) L = len;
+    }
+    if (!runs || nrows == 0 || (uint64_t)L * STREAMS > 2 * (uint64_t)npairs + 64) {
+        /* no bands, or bands so uneven that over half the lanes would pad: equal parts of the list */
+        for (uint32_t k = 0; k <= STREAMS; k++) eq[k] = (uint32_t)((uint64_t)npairs * k / STREAMS);
+        runs = eq;
+        nrows = 1;
+        L = eq[1];
+        for (uint32_t k = 1; k < STREAMS; k++)
+            if (eq[k + 1] - eq[k] > L) L = eq[k + 1] - eq[k];
+    }
+    cursor cur[STREAMS];
+    for (uint32_t k = 0; k < STREAMS; k++) cur[k] = (cursor){0, runs[k], runs[k + 1]};
     if ((uint64_t)L * STREAMS > UINT32_MAX / 2 || !reserve(B, L * STREAMS)) return false;
     const uint32_t nb = L * STREAMS / 4;
     if (B->mark > UINT32_MAX - nb - 1 || B->mark == 0) { /* stamps from an earlier plan could look current */
@@ -64,20 +90,27 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, ui
         B->mark = 1;
     }
     for (uint32_t t = 0; t < nb; t++) {
-        const uint32_t i = t / 2, s0 = (t % 2) * 4, id = B->mark + t;
+        const uint32_t s0 = (t % 2) * 4, id = B->mark + t;
         bool solo = false;
         for (uint32_t s = s0; s < s0 + 4; s++) {
-            const uint32_t p = s * L + i, e = 4 * t + s - s0;
+            cursor *c = &cur[s];
+            while (c->p == c->end && c->y + 1 < nrows) { /* the part's run in the next row */
+                c->y++;
+                c->p = runs[c->y * STREAMS + s];
+                c->end = runs[c->y * STREAMS + s + 1];
+            }
+            const uint32_t e = 4 * t + s - s0;
             B->lam[e] = 0.0;
-            if (p >= npairs) { /* padding */
+            if (c->p == c->end) { /* the part has no more: padding */
                 B->a[e] = B->b[e] = np;
                 B->rs[e] = 0.0;
                 continue;
             }
-            const uint32_t a = pairs[p].a, b = pairs[p].b;
+            const tt__pair *pr = &pairs[c->p++];
+            const uint32_t a = pr->a, b = pr->b;
             B->a[e] = a;
             B->b[e] = b;
-            B->rs[e] = pairs[p].rs;
+            B->rs[e] = pr->rs;
             solo |= B->stamp[a] == id || B->stamp[b] == id;
             B->stamp[a] = B->stamp[b] = id;
         }

@@ -244,6 +244,7 @@ static void begin(tt_world *w, void *self, double h)
     if (c->nbullets && c->nprim) tt__ccd(w, c, h);
     if (pairs) {
         bool ok;
+        c->nrows = 0;
         if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
             ok = tt__brute_pairs(w, c);
             c->grid.epoch = UINT64_MAX;
@@ -254,7 +255,7 @@ static void begin(tt_world *w, void *self, double h)
         if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
         /* batches pay for their planning from the second sweep on */
         c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
-                     tt__batches_plan(&c->bat, c->pairs, c->npairs, n);
+                     tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, n);
     }
     if (c->nprim) {
         detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
@@ -667,6 +668,7 @@ static size_t memory(const tt_world *w, const void *self)
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
     b += (size_t)c->exclcap * sizeof(uint64_t);
     b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
+    b += (size_t)c->runs_cap * sizeof *c->runs;
     b += ((size_t)c->reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
     return b;
 }
@@ -680,7 +682,7 @@ static void destroy(tt_world *w, void *self)
     free(c->vx0); free(c->vy0); free(c->sx0); free(c->sy0);
     free(c->mat); free(c->bullet); free(c->ccd_prim);
     free(c->excl);
-    free(c->pairs); free(c->sc);
+    free(c->pairs); free(c->sc); free(c->runs);
     tt__batches_free(&c->bat);
     free(c->rec); free(c->prev); free(c->events);
     free(c);

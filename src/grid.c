@@ -236,8 +236,10 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
 
 /* Every cell in row-major order: first each particle with the rest of its
  * cell and the cell E (contiguous), then each with NW, N, NE (contiguous in
- * the sorted order too): the forward half of the neighbourhood. One copy per
- * kernel and filter, so both are fixed inside the loops. */
+ * the sorted order too): the forward half of the neighbourhood. Notes where
+ * each row's TT__PARTS bands of columns start in the list (c->runs, for
+ * contact batches). One copy per kernel and filter, so both are fixed
+ * inside the loops. */
 #define TT__WALK(name, attr, range, plain)                                                              \
     attr static bool name(tt_world *w, tt__collide *c, const tt__grid *g)                               \
     {                                                                                                   \
@@ -247,7 +249,10 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
         bool ok = true;                                                                                 \
         for (int32_t y = 0; y < ny && ok; y++) {                                                        \
             const uint32_t row = (uint32_t)y * (uint32_t)nx;                                            \
+            uint32_t *run = c->runs + (size_t)y * TT__PARTS, part = 0;                                  \
             for (int32_t x = 0; x < nx && ok; x++) {                                                    \
+                while (part < TT__PARTS && (uint64_t)x * TT__PARTS >= (uint64_t)part * (uint32_t)nx)    \
+                    run[part++] = e.n;                                                                  \
                 const uint32_t cell = row + (uint32_t)x;                                                \
                 const uint32_t k0 = st[cell], k1 = st[cell + 1];                                        \
                 if (k0 == k1) continue;                                                                 \
@@ -259,7 +264,10 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
                     for (uint32_t k = k0; k < k1 && ok; k++) ok = range(w, c, &e, g, plain, k, u0, u1); \
                 }                                                                                       \
             }                                                                                           \
+            while (part < TT__PARTS) run[part++] = e.n;                                                 \
         }                                                                                               \
+        c->runs[(size_t)ny * TT__PARTS] = e.n;                                                          \
+        c->nrows = ok ? (uint32_t)ny : 0;                                                               \
         c->npairs = e.n;                                                                                \
         return ok;                                                                                      \
     }
@@ -274,6 +282,8 @@ TT__WALK(walk_full_avx2, TT_AVX2, range_avx2, false)
 bool tt__grid_pairs(tt_world *w, tt__collide *c)
 {
     const tt__grid *g = &c->grid;
+    c->nrows = 0;
+    if (!tt__grow((void **)&c->runs, &c->runs_cap, (uint32_t)g->ny * TT__PARTS + 1, sizeof *c->runs)) return false;
     const bool plain = g->one_layer && c->nexcl == 0 && !tt__constraint_pairs_any(w);
 #ifdef TT_SIMD_X86
     if (__builtin_cpu_supports("avx2")) return plain ? walk_plain_avx2(w, c, g) : walk_full_avx2(w, c, g);
