@@ -196,10 +196,10 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
         nb02 = _mm256_blendv_pd(pb02, nb02, u02);
         nb13 = _mm256_blendv_pd(pb13, nb13, u13);
     }
-    tt__rows_store2(pk, 4 * A[0], 4 * A[2], na02);
-    tt__rows_store2(pk, 4 * A[1], 4 * A[3], na13);
-    tt__rows_store2(pk, 4 * Bb[0], 4 * Bb[2], nb02);
-    tt__rows_store2(pk, 4 * Bb[1], 4 * Bb[3], nb13);
+    tt__rows_store2w(pk, 4 * A[0], 4 * A[2], na02, wa02);
+    tt__rows_store2w(pk, 4 * A[1], 4 * A[3], na13, wa13);
+    tt__rows_store2w(pk, 4 * Bb[0], 4 * Bb[2], nb02, wb02);
+    tt__rows_store2w(pk, 4 * Bb[1], 4 * Bb[3], nb13, wb13);
     const __m256d lam = _mm256_loadu_pd(B->lam + k);
     _mm256_storeu_pd(B->lam + k, _mm256_blendv_pd(lam, _mm256_add_pd(lam, pen), act));
     *err = _mm256_max_pd(*err, _mm256_and_pd(pen, act));

@@ -29,6 +29,15 @@ TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, uint32_t r0, uint32_t r1
     *w = _mm256_permute2f128_pd(a, b, 0x31);
 }
 
+/* (x, y) of both and their (w, w) back into rows r0, r1 as whole rows: a
+ * later load of the row is then served from the store (a half-row store
+ * cannot forward to a whole-row load, which waits for it to retire). */
+TT_AVX2 TT_INLINE void tt__rows_store2w(double *pk, uint32_t r0, uint32_t r1, __m256d p, __m256d w)
+{
+    _mm256_store_pd(pk + r0, _mm256_permute2f128_pd(p, w, 0x20));
+    _mm256_store_pd(pk + r1, _mm256_permute2f128_pd(p, w, 0x31));
+}
+
 /* (x, y) of both back into rows r0, r1; their w stays. */
 TT_AVX2 TT_INLINE void tt__rows_store2(double *pk, uint32_t r0, uint32_t r1, __m256d v)
 {
