@@ -90,7 +90,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
         B->mark = 1;
     }
     for (uint32_t t = 0; t < nb; t++) {
-        const uint32_t s0 = (t % 2) * 4, id = B->mark + t;
+        const uint32_t s0 = (t % (STREAMS / 4)) * 4, id = B->mark + t;
         bool solo = false;
         for (uint32_t s = s0; s < s0 + 4; s++) {
             cursor *c = &cur[s];
