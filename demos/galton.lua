@@ -4,8 +4,9 @@
 --   LUA_CPATH='build/?.so' lua5.4 demos/galton.lua   (stock Lua: 15 s simulated)
 --
 -- Pegs are static circles in a triangle of 12 rows; 600 balls are released
--- a few per step just above the top peg. Bins are walls below the pegs. At
--- the end it prints the histogram of the bins, which should look binomial.
+-- two every third step from a closed hopper just above the top peg. Bins
+-- are walls below the pegs. At the end it prints the histogram of the bins,
+-- which should look binomial.
 local tether = require "tether"
 
 local ROWS, SPACING, PEG_R, BALL_R = 12, 1.0, 0.12, 0.2
@@ -32,6 +33,7 @@ function tether.load()
   w:aabb(-half - 1, BIN_TOP - 13, half + 1, BIN_TOP - 12)
   w:segment(-half, BIN_TOP, -0.6, 2)
   w:segment(half, BIN_TOP, 0.6, 2)
+  w:segment(-0.6, 2, 0.6, 2) -- the hopper's lid: balls thrown up by the crowd stay on the board
   print(("galton: %d rows of pegs, %d bins, %d balls"):format(ROWS, BINS, BALLS))
 end
 
@@ -39,9 +41,10 @@ function tether.update(dt)
   steps = steps + 1
   if made < BALLS and steps % 3 == 0 then
     for _ = 1, PER_STEP do
-      -- a tiny deterministic offset so the first peg has something to decide
+      -- two side by side, thrown down so the next pair has room; a tiny
+      -- deterministic offset so the first peg has something to decide
       local jitter = ((made * 7919) % 101 - 50) * 1e-4
-      w:particle(jitter, 1.5, { radius = BALL_R })
+      w:particle(jitter + (made % 2 == 0 and -0.25 or 0.25), 1.5, { radius = BALL_R, vy = -4 })
       made = made + 1
     end
   end

@@ -3,7 +3,8 @@
  * the integrator put it, is swept as a circle against the static shapes.
  * At the first hit the particle stops at the time of impact and the contact
  * is handed to the solver, which bounces it with the velocity it had before
- * the cut. Slow scenes mark no bullet and never come here. */
+ * the cut. Slow scenes mark no bullet and never come here. The same sweep
+ * guards the solver's corrections (contacts.c, sweeps_done). */
 #include "collide_internal.h"
 
 typedef struct sweep_ctx {
@@ -35,6 +36,19 @@ static void sweep_visit(void *ctx, uint32_t k)
     }
 }
 
+int32_t tt__sweep_static(tt_world *w, tt__collide *c, uint32_t i, double x0, double y0, double x1, double y1,
+                         double *t, double *nx, double *ny)
+{
+    const double dx = x1 - x0, dy = y1 - y0, r = w->radius[i];
+    if (dx == 0.0 && dy == 0.0) return -1;
+    sweep_ctx s = {w, c, i, x0, y0, dx, dy, r, 1.0, 0.0, 0.0, -1};
+    tt__sgrid_query(c, fmin(x0, x1) - r, fmin(y0, y1) - r, fmax(x0, x1) + r, fmax(y0, y1) + r, sweep_visit, &s);
+    *t = s.best;
+    *nx = s.nx;
+    *ny = s.ny;
+    return s.prim;
+}
+
 void tt__ccd(tt_world *w, tt__collide *c, double h)
 {
     const uint32_t n = w->ppool.count < c->bulletcap ? w->ppool.count : c->bulletcap;
@@ -44,15 +58,13 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
         if (!c->bullet[i] || w->inv_mass[i] == 0.0) continue;
         double x1 = w->px[i], y1 = w->py[i];
         double x0 = verlet ? w->qx[i] : x1 - w->qx[i] * h, y0 = verlet ? w->qy[i] : y1 - w->qy[i] * h;
-        double dx = x1 - x0, dy = y1 - y0, r = w->radius[i];
-        if (dx == 0.0 && dy == 0.0) continue;
-        sweep_ctx s = {w, c, i, x0, y0, dx, dy, r, 1.0, 0.0, 0.0, -1};
-        tt__sgrid_query(c, fmin(x0, x1) - r, fmin(y0, y1) - r, fmax(x0, x1) + r, fmax(y0, y1) + r, sweep_visit, &s);
-        if (s.prim < 0) continue;
-        w->px[i] = x0 + dx * s.best;
-        w->py[i] = y0 + dy * s.best;
-        c->ccd_prim[i] = s.prim;
+        double t, nx, ny;
+        const int32_t prim = tt__sweep_static(w, c, i, x0, y0, x1, y1, &t, &nx, &ny);
+        if (prim < 0) continue;
+        w->px[i] = x0 + (x1 - x0) * t;
+        w->py[i] = y0 + (y1 - y0) * t;
+        c->ccd_prim[i] = prim;
         if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) continue;
-        c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)s.prim, s.nx, s.ny, 0.0, 0.0, 0.0, 1};
+        c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)prim, nx, ny, 0.0, 0.0, 0.0, 1};
     }
 }

@@ -154,6 +154,8 @@ typedef struct tt__collide {
     double *vx0, *vy0;    /* pre-solve velocity per particle slot (this substep) */
     uint32_t vcap;
     double *sx0, *sy0;    /* velocity integrators: position at the start of the substep (Verlet has x_old) */
+    double *gx0, *gy0;    /* positions before the sweeps (shapes present): the guard against pushes through walls */
+    uint32_t gcap;
     uint32_t scap, s_count;
     uint64_t s_epoch;     /* the world epoch at which sx0/sy0 hold the last substep's end positions */
     float *mat;           /* per slot: restitution, μs, μk (−1 = world default); NULL until used */
@@ -249,5 +251,10 @@ bool tt__prim_vs_aabb(const tt__collide *c, const tt__prim *p, double lox, doubl
 /* Continuous detection (ccd.c): sweeps bullets from their start to their
  * position, stops them at the first static hit and records the contact. */
 void tt__ccd(tt_world *w, tt__collide *c, double h);
+/* Particle i swept as a circle from (x0, y0) to (x1, y1) against the static
+ * shapes it does not touch at the start: the first primitive hit (−1: none),
+ * at fraction *t of the way, with normal (*nx, *ny). */
+int32_t tt__sweep_static(tt_world *w, tt__collide *c, uint32_t i, double x0, double y0, double x1, double y1,
+                         double *t, double *nx, double *ny);
 
 #endif
