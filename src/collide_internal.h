@@ -170,6 +170,8 @@ typedef struct tt__collide {
     uint32_t npairs, paircap;
     uint32_t *runs;       /* the grid's pairs by row and band of columns: row y, band k from runs[y·TT__PARTS + k] */
     uint32_t runs_cap, nrows; /* nrows: rows in runs (0: none) */
+    uint8_t *near;        /* per particle-grid cell: a static primitive is within reach (this substep) */
+    uint32_t near_cap;
     tt__batches bat;
     bool batched;         /* this substep's pairs are solved from bat */
     tt__scontact *sc;

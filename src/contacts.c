@@ -211,6 +211,38 @@ static bool static_near(const tt__collide *c, double lox, double loy, double hix
     return false;
 }
 
+/* Marks the cells of the particle grid, just built, (c->near) a particle
+ * centred in could touch a static primitive: each primitive's box grown by
+ * the largest radius and the margin, clamped into the grid as particles are
+ * (clamping is monotone, so a particle outside still lands in a marked cell).
+ * One byte load then spares most particles the static test. False on no
+ * memory. */
+static bool grid_near_shapes(tt__collide *c)
+{
+    const tt__grid *g = &c->grid;
+    if (g->ncell == 0) return false;
+    if (g->ncell > c->near_cap) {
+        uint8_t *p = realloc(c->near, g->ncell);
+        if (!p) return false;
+        c->near = p;
+        c->near_cap = g->ncell;
+    }
+    memset(c->near, 0, g->ncell);
+    const double grow = g->rmax * (1.0 + TT__CONTACT_MARGIN);
+    for (uint32_t k = 0; k < c->nprim; k++) {
+        const tt__prim *p = &c->prims[k];
+        int32_t x0 = tt__cell_coord(p->lox - grow, g->ox, g->inv), x1 = tt__cell_coord(p->hix + grow, g->ox, g->inv);
+        int32_t y0 = tt__cell_coord(p->loy - grow, g->oy, g->inv), y1 = tt__cell_coord(p->hiy + grow, g->oy, g->inv);
+        x0 = x0 < 0 ? 0 : x0 >= g->nx ? g->nx - 1 : x0;
+        x1 = x1 < 0 ? 0 : x1 >= g->nx ? g->nx - 1 : x1;
+        y0 = y0 < 0 ? 0 : y0 >= g->ny ? g->ny - 1 : y0;
+        y1 = y1 < 0 ? 0 : y1 >= g->ny ? g->ny - 1 : y1;
+        for (int32_t y = y0; y <= y1; y++)
+            memset(c->near + (size_t)y * (size_t)g->nx + (size_t)x0, 1, (size_t)(x1 - x0 + 1));
+    }
+    return true;
+}
+
 static void begin(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
@@ -265,6 +297,7 @@ static void begin(tt_world *w, void *self, double h)
         }
     }
     if (c->nbullets && c->nprim) tt__ccd(w, c, h);
+    bool grid_built = false; /* this substep: its cells can filter the static test */
     if (pairs) {
         bool ok;
         c->nrows = 0;
@@ -274,6 +307,7 @@ static void begin(tt_world *w, void *self, double h)
         } else {
             ok = tt__grid_build(w, &c->grid, c->set.cell_size) && tt__grid_pairs(w, c);
             c->cells_used = c->grid.ncell;
+            grid_built = ok;
         }
         if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
         /* batches pay for their planning from the second sweep on */
@@ -282,8 +316,10 @@ static void begin(tt_world *w, void *self, double h)
     }
     if (c->nprim) {
         detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
+        const uint8_t *near = grid_built && grid_near_shapes(c) ? c->near : NULL;
         for (uint32_t i = 0; i < n; i++) {
             if (w->inv_mass[i] == 0.0) continue; /* pinned or removed: shapes never push them */
+            if (near && !near[c->grid.cell[i] & 0x7FFFFFFFu]) continue; /* its cell is far from every shape */
             double r = w->radius[i], m = r * TT__CONTACT_MARGIN;
             d.i = i;
             d.x = w->px[i];
@@ -716,7 +752,7 @@ static size_t memory(const tt_world *w, const void *self)
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
     b += (size_t)c->exclcap * sizeof(uint64_t);
     b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
-    b += (size_t)c->runs_cap * sizeof *c->runs;
+    b += (size_t)c->runs_cap * sizeof *c->runs + c->near_cap;
     b += ((size_t)c->reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
     return b;
 }
@@ -730,7 +766,7 @@ static void destroy(tt_world *w, void *self)
     free(c->vx0); free(c->vy0); free(c->sx0); free(c->sy0); free(c->gx0); free(c->gy0);
     free(c->mat); free(c->bullet); free(c->ccd_prim);
     free(c->excl);
-    free(c->pairs); free(c->sc); free(c->runs);
+    free(c->pairs); free(c->sc); free(c->runs); free(c->near);
     tt__batches_free(&c->bat);
     free(c->rec); free(c->prev); free(c->events);
     free(c);
