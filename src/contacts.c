@@ -342,7 +342,7 @@ static void begin(tt_world *w, void *self, double h)
             if (b) c->gy0 = b;
             c->gcap = a && b ? cap : 0;
         }
-        if (c->gcap >= n) {
+        if (n && c->gcap >= n) {
             memcpy(c->gx0, w->px, (size_t)n * sizeof *c->gx0);
             memcpy(c->gy0, w->py, (size_t)n * sizeof *c->gy0);
         }
