@@ -87,6 +87,8 @@ typedef struct tt__batches {
     uint32_t stamp_cap, mark;
     double *pk;           /* rows (simd.h) of particles [0, np) and the padding row np */
     uint32_t pk_cap, np;
+    double *qk;           /* the velocity pass's rows: x_old, y_old, pre-solve vx, vy */
+    uint32_t qk_cap;
     bool live;            /* pk holds the positions; w->px, py are stale until tt__batches_release */
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
@@ -105,12 +107,12 @@ typedef struct tt__respond_in {
     double e, mus, muk, thr; /* the world's materials; restitution threshold */
     double h;                /* substep */
 } tt__respond_in;
-/* The velocity pass of batch k's pairs in vector lanes, as contacts.c's
- * pair_end does it lane by lane for Verlet and world materials; false,
- * touching nothing, when the batch must go through pair_end instead. */
-typedef bool (*tt__batch_respond_fn)(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in);
-/* The vector velocity pass of this processor and mode; NULL when none. */
-tt__batch_respond_fn tt__batches_respond_fn(const tt__batches *B);
+/* The velocity pass of the batches' pairs in vector lanes, as contacts.c's
+ * pair_end does it lane by lane for Verlet and world materials; one(ctx,
+ * entry) takes the batches the lanes cannot (solo, two particles on one
+ * centre) through pair_end. False, touching nothing, when there are no
+ * vector lanes here: then the caller runs pair_end on every pair. */
+bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t), void *ctx);
 /* Positions back from the rows when they hold them. */
 void tt__batches_release(tt_world *w, tt__batches *B);
 void tt__batches_free(tt__batches *B);

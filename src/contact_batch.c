@@ -224,42 +224,52 @@ TT_AVX2 static double run_avx2(tt__batches *B) { return batches_run(B); }
 TT_AVX512 static double run_avx512(tt__batches *B) { return batches_run(B); }
 
 /* pair_end's Verlet arithmetic (contacts.c, with respond), lane by lane in
- * the same order: the normal from the final positions, restitution or no
- * approach (settled: no more separation than before the sweeps), Coulomb
- * friction (sticking undoes the tangential slide, sliding removes μk·Δvn),
- * then x moved by the slide undone and x_old by the velocity change. */
-TT_AVX2 TT_INLINE bool respond4(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in)
+ * the same order, in pair form on rows: pk (x, y, w, w) and qk (x_old,
+ * y_old, pre-solve vx, vy). The normal from the final positions,
+ * restitution or no approach (settled: no more separation than before the
+ * sweeps), Coulomb friction (sticking undoes the tangential slide, sliding
+ * removes μk·Δvn), then x moved by the slide undone and x_old by the
+ * velocity change. Per-lane values (link order 0 1 2 3) come from pair form
+ * with one unpack, as in the sweep kernel. Returns false, touching nothing,
+ * when an active lane has two particles on one centre. */
+TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__respond_in *in, double dtp)
 {
     const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
     const __m256d lam = _mm256_loadu_pd(B->lam + k);
     const __m256d live = _mm256_cmp_pd(lam, zero, _CMP_GT_OQ);
     if (!_mm256_movemask_pd(live)) return true;
-    const __m128i ia4 = _mm_loadu_si128((const __m128i *)(const void *)(B->a + k));
-    const __m128i ib4 = _mm_loadu_si128((const __m128i *)(const void *)(B->b + k));
-#define GATHER(base, idx, m) _mm256_mask_i32gather_pd(zero, (base), (idx), (m), 8)
-    const __m256d ia = GATHER(w->inv_mass, ia4, live), ib = GATHER(w->inv_mass, ib4, live), ws = _mm256_add_pd(ia, ib);
+    double *pk = B->pk, *qk = B->qk;
+    const uint32_t *A = B->a + k, *Bb = B->b + k;
+    __m256d pa02, wa02, pa13, wa13, pb02, wb02, pb13, wb13, qa02, va02, qa13, va13, qb02, vb02, qb13, vb13;
+    tt__rows_load2(pk, 4 * A[0], 4 * A[2], &pa02, &wa02);
+    tt__rows_load2(pk, 4 * A[1], 4 * A[3], &pa13, &wa13);
+    tt__rows_load2(pk, 4 * Bb[0], 4 * Bb[2], &pb02, &wb02);
+    tt__rows_load2(pk, 4 * Bb[1], 4 * Bb[3], &pb13, &wb13);
+    const __m256d ia = _mm256_blend_pd(wa02, wa13, 0xA), ib = _mm256_blend_pd(wb02, wb13, 0xA), ws = _mm256_add_pd(ia, ib);
     const __m256d act = _mm256_and_pd(live, _mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ));
     const int m = _mm256_movemask_pd(act);
     if (!m) return true;
-    const __m256d pax = GATHER(w->px, ia4, act), pay = GATHER(w->py, ia4, act);
-    const __m256d pbx = GATHER(w->px, ib4, act), pby = GATHER(w->py, ib4, act);
-    __m256d nx = _mm256_sub_pd(pax, pbx), ny = _mm256_sub_pd(pay, pby);
-    const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(nx, nx), _mm256_mul_pd(ny, ny));
+    const __m256d d02 = _mm256_sub_pd(pa02, pb02), d13 = _mm256_sub_pd(pa13, pb13);
+    const __m256d s02 = _mm256_mul_pd(d02, d02), s13 = _mm256_mul_pd(d13, d13);
+    const __m256d d2 = _mm256_add_pd(_mm256_unpacklo_pd(s02, s13), _mm256_unpackhi_pd(s02, s13));
     if (_mm256_movemask_pd(_mm256_and_pd(act, _mm256_cmp_pd(d2, zero, _CMP_NGT_UQ)))) return false; /* one centre */
-    const __m256d qax = GATHER(w->qx, ia4, act), qay = GATHER(w->qy, ia4, act);
-    const __m256d qbx = GATHER(w->qx, ib4, act), qby = GATHER(w->qy, ib4, act);
-    const __m256d v0x = _mm256_sub_pd(GATHER(in->vx0, ia4, act), GATHER(in->vx0, ib4, act));
-    const __m256d v0y = _mm256_sub_pd(GATHER(in->vy0, ia4, act), GATHER(in->vy0, ib4, act));
-#undef GATHER
-    const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(w->dt_prev);
+    tt__rows_load2(qk, 4 * A[0], 4 * A[2], &qa02, &va02);
+    tt__rows_load2(qk, 4 * A[1], 4 * A[3], &qa13, &va13);
+    tt__rows_load2(qk, 4 * Bb[0], 4 * Bb[2], &qb02, &vb02);
+    tt__rows_load2(qk, 4 * Bb[1], 4 * Bb[3], &qb13, &vb13);
+    const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(dtp);
     const __m256d iws = _mm256_div_pd(one, ws), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
     const __m256d id = _mm256_div_pd(one, _mm256_sqrt_pd(d2));
-    nx = _mm256_mul_pd(nx, id);
-    ny = _mm256_mul_pd(ny, id);
-    const __m256d vx = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pax, qax), dt), _mm256_div_pd(_mm256_sub_pd(pbx, qbx), dt));
-    const __m256d vy = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pay, qay), dt), _mm256_div_pd(_mm256_sub_pd(pby, qby), dt));
-    const __m256d vn0 = _mm256_add_pd(_mm256_mul_pd(v0x, nx), _mm256_mul_pd(v0y, ny));
-    const __m256d vn = _mm256_add_pd(_mm256_mul_pd(vx, nx), _mm256_mul_pd(vy, ny));
+#define LO(v) _mm256_unpacklo_pd((v), (v)) /* lanes 0, 2 of a per-lane vector in pair form */
+#define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
+#define LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
+    const __m256d n02 = _mm256_mul_pd(d02, LO(id)), n13 = _mm256_mul_pd(d13, HI(id));
+    /* relative velocity (va − vb), each (x − x_old)/dt as tt__velocity; and before the sweeps */
+    const __m256d r02 = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pa02, qa02), dt), _mm256_div_pd(_mm256_sub_pd(pb02, qb02), dt));
+    const __m256d r13 = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pa13, qa13), dt), _mm256_div_pd(_mm256_sub_pd(pb13, qb13), dt));
+    const __m256d o02 = _mm256_sub_pd(va02, vb02), o13 = _mm256_sub_pd(va13, vb13);
+    const __m256d vn0 = LANES(_mm256_mul_pd(o02, n02), _mm256_mul_pd(o13, n13));
+    const __m256d vn = LANES(_mm256_mul_pd(r02, n02), _mm256_mul_pd(r13, n13));
     const __m256d up = _mm256_and_pd(vn, _mm256_cmp_pd(vn, zero, _CMP_GT_OQ));
     const __m256d up0 = _mm256_and_pd(vn0, _mm256_cmp_pd(vn0, zero, _CMP_GT_OQ));
     __m256d target = _mm256_blendv_pd(up, up0, _mm256_cmp_pd(up, up0, _CMP_GT_OQ));
@@ -268,65 +278,107 @@ TT_AVX2 TT_INLINE bool respond4(tt_world *w, const tt__batches *B, uint32_t k, c
     __m256d change = _mm256_sub_pd(target, vn0);
     change = _mm256_blendv_pd(change, zero, _mm256_cmp_pd(change, zero, _CMP_LT_OQ));
     const __m256d tv = _mm256_sub_pd(target, vn);
-    __m256d dvx = _mm256_mul_pd(tv, nx), dvy = _mm256_mul_pd(tv, ny), sx = zero, sy = zero;
+    __m256d dv02 = _mm256_mul_pd(LO(tv), n02), dv13 = _mm256_mul_pd(HI(tv), n13), st02 = zero, st13 = zero;
     if (!(in->mus == 0.0 && in->muk == 0.0)) {
-        const __m256d tx = _mm256_sub_pd(vx, _mm256_mul_pd(vn, nx)), ty = _mm256_sub_pd(vy, _mm256_mul_pd(vn, ny));
-        const __m256d t2 = _mm256_add_pd(_mm256_mul_pd(tx, tx), _mm256_mul_pd(ty, ty));
+        const __m256d t02 = _mm256_sub_pd(r02, _mm256_mul_pd(LO(vn), n02)), t13 = _mm256_sub_pd(r13, _mm256_mul_pd(HI(vn), n13));
+        const __m256d t2 = LANES(_mm256_mul_pd(t02, t02), _mm256_mul_pd(t13, t13));
         const __m256d lim = _mm256_mul_pd(_mm256_set1_pd(in->mus), change);
         const __m256d stick = _mm256_cmp_pd(t2, _mm256_mul_pd(lim, lim), _CMP_LE_OQ);
         const __m256d tl = _mm256_sqrt_pd(t2), mc = _mm256_mul_pd(_mm256_set1_pd(in->muk), change);
         const __m256d f = _mm256_div_pd(_mm256_blendv_pd(tl, mc, _mm256_cmp_pd(mc, tl, _CMP_LT_OQ)), tl);
-        dvx = _mm256_blendv_pd(_mm256_sub_pd(dvx, _mm256_mul_pd(tx, f)), dvx, stick);
-        dvy = _mm256_blendv_pd(_mm256_sub_pd(dvy, _mm256_mul_pd(ty, f)), dvy, stick);
-        sx = _mm256_and_pd(tx, stick);
-        sy = _mm256_and_pd(ty, stick);
+        dv02 = _mm256_blendv_pd(_mm256_sub_pd(dv02, _mm256_mul_pd(t02, LO(f))), dv02, LO(stick));
+        dv13 = _mm256_blendv_pd(_mm256_sub_pd(dv13, _mm256_mul_pd(t13, HI(f))), dv13, HI(stick));
+        st02 = _mm256_and_pd(t02, LO(stick));
+        st13 = _mm256_and_pd(t13, HI(stick));
     }
+    /* a lane slid (its stick velocity is not zero): x moves back; both components of a lane agree */
+    const __m256d z02 = _mm256_cmp_pd(st02, zero, _CMP_NEQ_UQ), z13 = _mm256_cmp_pd(st13, zero, _CMP_NEQ_UQ);
+    const __m256d m02 = LO(act), m13 = HI(act);
+    const __m256d sl02 = _mm256_and_pd(_mm256_or_pd(z02, _mm256_permute_pd(z02, 5)), m02);
+    const __m256d sl13 = _mm256_and_pd(_mm256_or_pd(z13, _mm256_permute_pd(z13, 5)), m13);
     const __m256d h = _mm256_set1_pd(in->h);
-    const __m256d slid = _mm256_or_pd(_mm256_cmp_pd(sx, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(sy, zero, _CMP_NEQ_UQ));
-    const __m256d hx = _mm256_mul_pd(sx, h), hy = _mm256_mul_pd(sy, h);
-    const __m256d nhx = _mm256_mul_pd(_mm256_xor_pd(sx, sign), h), nhy = _mm256_mul_pd(_mm256_xor_pd(sy, sign), h);
-    double o[8][4];
-    _mm256_storeu_pd(o[0], _mm256_blendv_pd(pax, _mm256_sub_pd(pax, _mm256_mul_pd(hx, wa)), slid));
-    _mm256_storeu_pd(o[1], _mm256_blendv_pd(pay, _mm256_sub_pd(pay, _mm256_mul_pd(hy, wa)), slid));
-    _mm256_storeu_pd(o[2], _mm256_blendv_pd(pbx, _mm256_sub_pd(pbx, _mm256_mul_pd(nhx, wb)), slid));
-    _mm256_storeu_pd(o[3], _mm256_blendv_pd(pby, _mm256_sub_pd(pby, _mm256_mul_pd(nhy, wb)), slid));
-    _mm256_storeu_pd(o[4], _mm256_sub_pd(qax, _mm256_mul_pd(_mm256_mul_pd(dvx, wa), dt)));
-    _mm256_storeu_pd(o[5], _mm256_sub_pd(qay, _mm256_mul_pd(_mm256_mul_pd(dvy, wa), dt)));
-    _mm256_storeu_pd(o[6], _mm256_sub_pd(qbx, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dvx, sign), wb), dt)));
-    _mm256_storeu_pd(o[7], _mm256_sub_pd(qby, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dvy, sign), wb), dt)));
-    for (int j = 0; j < 4; j++) {
-        if (!(m >> j & 1)) continue;
-        const uint32_t a = B->a[k + j], b = B->b[k + j];
-        w->px[a] = o[0][j];
-        w->py[a] = o[1][j];
-        w->px[b] = o[2][j];
-        w->py[b] = o[3][j];
-        w->qx[a] = o[4][j];
-        w->qy[a] = o[5][j];
-        w->qx[b] = o[6][j];
-        w->qy[b] = o[7][j];
-    }
+    const __m256d wa02l = LO(wa), wa13l = HI(wa), wb02l = LO(wb), wb13l = HI(wb);
+    const __m256d hs02 = _mm256_mul_pd(st02, h), hs13 = _mm256_mul_pd(st13, h);
+    const __m256d nhs02 = _mm256_mul_pd(_mm256_xor_pd(st02, sign), h), nhs13 = _mm256_mul_pd(_mm256_xor_pd(st13, sign), h);
+    tt__rows_store2w(pk, 4 * A[0], 4 * A[2], _mm256_blendv_pd(pa02, _mm256_sub_pd(pa02, _mm256_mul_pd(hs02, wa02l)), sl02), wa02);
+    tt__rows_store2w(pk, 4 * A[1], 4 * A[3], _mm256_blendv_pd(pa13, _mm256_sub_pd(pa13, _mm256_mul_pd(hs13, wa13l)), sl13), wa13);
+    tt__rows_store2w(pk, 4 * Bb[0], 4 * Bb[2], _mm256_blendv_pd(pb02, _mm256_sub_pd(pb02, _mm256_mul_pd(nhs02, wb02l)), sl02), wb02);
+    tt__rows_store2w(pk, 4 * Bb[1], 4 * Bb[3], _mm256_blendv_pd(pb13, _mm256_sub_pd(pb13, _mm256_mul_pd(nhs13, wb13l)), sl13), wb13);
+    const __m256d qa02n = _mm256_sub_pd(qa02, _mm256_mul_pd(_mm256_mul_pd(dv02, wa02l), dt));
+    const __m256d qa13n = _mm256_sub_pd(qa13, _mm256_mul_pd(_mm256_mul_pd(dv13, wa13l), dt));
+    const __m256d qb02n = _mm256_sub_pd(qb02, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dv02, sign), wb02l), dt));
+    const __m256d qb13n = _mm256_sub_pd(qb13, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dv13, sign), wb13l), dt));
+    tt__rows_store2w(qk, 4 * A[0], 4 * A[2], _mm256_blendv_pd(qa02, qa02n, m02), va02);
+    tt__rows_store2w(qk, 4 * A[1], 4 * A[3], _mm256_blendv_pd(qa13, qa13n, m13), va13);
+    tt__rows_store2w(qk, 4 * Bb[0], 4 * Bb[2], _mm256_blendv_pd(qb02, qb02n, m02), vb02);
+    tt__rows_store2w(qk, 4 * Bb[1], 4 * Bb[3], _mm256_blendv_pd(qb13, qb13n, m13), vb13);
+#undef LO
+#undef HI
+#undef LANES
     return true;
 }
 
-TT_AVX2 static bool respond_avx2(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in)
+/* Rows and world arrays agree again for batch k's particles: to the world
+ * (to_world) before the scalar code takes the batch, back after. */
+static void sync_batch(tt_world *w, tt__batches *B, uint32_t k, bool to_world)
 {
-    return respond4(w, B, k, in);
+    for (uint32_t j = k; j < k + 4; j++) {
+        const uint32_t ids[2] = {B->a[j], B->b[j]};
+        for (int s = 0; s < 2; s++) {
+            const uint32_t i = ids[s];
+            if (i >= B->np) continue; /* padding */
+            double *p = B->pk + 4 * (size_t)i, *q = B->qk + 4 * (size_t)i;
+            if (to_world) {
+                w->px[i] = p[0], w->py[i] = p[1], w->qx[i] = q[0], w->qy[i] = q[1];
+            } else {
+                p[0] = w->px[i], p[1] = w->py[i], q[0] = w->qx[i], q[1] = w->qy[i];
+            }
+        }
+    }
 }
-TT_AVX512 static bool respond_avx512(tt_world *w, const tt__batches *B, uint32_t k, const tt__respond_in *in)
+
+TT_AVX2 TT_INLINE void respond_run(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t),
+                                   void *ctx)
 {
-    return respond4(w, B, k, in);
+    const double dtp = w->dt_prev;
+    for (uint32_t k = 0; k < B->n; k += 4) {
+        if (!B->solo[k / 4] && respond4(B, k, in, dtp)) continue;
+        sync_batch(w, B, k, true);
+        for (uint32_t j = k; j < k + 4; j++)
+            if (B->lam[j] > 0.0) one(ctx, j);
+        sync_batch(w, B, k, false);
+    }
+}
+
+TT_AVX2 static void respond_avx2(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t), void *ctx)
+{
+    respond_run(w, B, in, one, ctx);
+}
+TT_AVX512 static void respond_avx512(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t),
+                                     void *ctx)
+{
+    respond_run(w, B, in, one, ctx);
 }
 #endif
 
-tt__batch_respond_fn tt__batches_respond_fn(const tt__batches *B)
+bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t), void *ctx)
 {
 #ifdef TT_SIMD_X86
     const uint8_t kind = tt__simd_kind(B->simd);
-    return kind == TT__SIMD_AVX512 ? respond_avx512 : kind == TT__SIMD_AVX2 ? respond_avx2 : NULL;
+    if (kind == TT__SIMD_SCALAR || B->live || !tt__rows_reserve(&B->pk, &B->pk_cap, B->np + 1) ||
+        !tt__rows_reserve(&B->qk, &B->qk_cap, B->np + 1))
+        return false;
+    tt__rows_pack(B->pk, w->px, w->py, w->inv_mass, B->np);
+    tt__rows_pack4(B->qk, w->qx, w->qy, in->vx0, in->vy0, B->np);
+    for (int j = 0; j < 4; j++) B->pk[4 * (size_t)B->np + j] = B->qk[4 * (size_t)B->np + j] = 0.0; /* padding: no mass */
+    if (kind == TT__SIMD_AVX512) respond_avx512(w, B, in, one, ctx);
+    else respond_avx2(w, B, in, one, ctx);
+    tt__rows_unpack(B->pk, w->px, w->py, B->np);
+    tt__rows_unpack(B->qk, w->qx, w->qy, B->np);
+    return true;
 #else
-    (void)B;
-    return NULL;
+    (void)w, (void)B, (void)in, (void)one, (void)ctx;
+    return false;
 #endif
 }
 
@@ -364,12 +416,13 @@ void tt__batches_free(tt__batches *B)
     free(B->rs);
     free(B->stamp);
     free(B->pk);
+    free(B->qk);
     memset(B, 0, sizeof *B);
 }
 
 size_t tt__batches_bytes(const tt__batches *B)
 {
-    return (size_t)B->cap * (2 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) + (size_t)B->pk_cap * 4 * sizeof(double);
+    return (size_t)B->cap * (2 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) + ((size_t)B->pk_cap + B->qk_cap) * 4 * sizeof(double);
 }
 
 bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode)

@@ -536,6 +536,19 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
                        a < b ? ny : -ny, dvn / ws);
 }
 
+typedef struct pair_ctx {
+    tt_world *w;
+    tt__collide *c;
+    double h, thr;
+} pair_ctx;
+
+/* Batch entry k through pair_end (no events: the vector pass runs without them). */
+static void pair_one(void *ctx, uint32_t k)
+{
+    pair_ctx *p = ctx;
+    pair_end(p->w, p->c, p->c->bat.a[k], p->c->bat.b[k], p->h, p->thr, false);
+}
+
 static void end(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
@@ -544,15 +557,13 @@ static void end(tt_world *w, void *self, double h)
     const bool events = c->set.events != 0, fr = rub_in_sweeps(w);
     const double *inv = w->inv_mass;
     if (c->batched) {
-        const tt__batches *B = &c->bat;
+        tt__batches *B = &c->bat;
         /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, world materials) */
-        const tt__batch_respond_fn lanes = w->integrator == TT_VERLET && !c->mat && !events ? tt__batches_respond_fn(B) : NULL;
         const tt__respond_in in = {c->vx0, c->vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
-        for (uint32_t k = 0; k < B->n; k += 4) {
-            if (lanes && !B->solo[k / 4] && lanes(w, B, k, &in)) continue;
-            for (uint32_t j = k; j < k + 4; j++)
-                if (B->lam[j] > 0.0) pair_end(w, c, B->a[j], B->b[j], h, thr, events);
-        }
+        pair_ctx pc = {w, c, h, thr};
+        if (!(w->integrator == TT_VERLET && !c->mat && !events && tt__batches_respond(w, B, &in, pair_one, &pc)))
+            for (uint32_t k = 0; k < B->n; k++)
+                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], h, thr, events);
     } else {
         for (uint32_t k = 0; k < c->npairs; k++)
             if (c->pairs[k].lambda > 0.0f) pair_end(w, c, c->pairs[k].a, c->pairs[k].b, h, thr, events);

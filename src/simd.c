@@ -88,3 +88,14 @@ void tt__rows_unpack(const double *pk, double *px, double *py, uint32_t np)
     }
 #endif
 }
+
+void tt__rows_pack4(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np)
+{
+    for (uint32_t i = 0; i < np; i++) {
+        double *r = pk + 4 * (size_t)i;
+        r[0] = a[i];
+        r[1] = b[i];
+        r[2] = c[i];
+        r[3] = d[i];
+    }
+}

@@ -54,5 +54,7 @@ bool tt__rows_reserve(double **pk, uint32_t *cap, uint32_t np);
 /* x, y, inverse mass of particles [0, np) into rows, and x, y back. */
 void tt__rows_pack(double *pk, const double *px, const double *py, const double *im, uint32_t np);
 void tt__rows_unpack(const double *pk, double *px, double *py, uint32_t np);
+/* Any four arrays into rows (a, b, c, d); tt__rows_unpack takes a, b back. */
+void tt__rows_pack4(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np);
 
 #endif
