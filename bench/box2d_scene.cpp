@@ -1,17 +1,23 @@
 // tether — the Box2D 2.4.1 side of the collision benchmark: n circles of
 // radius r settling in a box `width` wide, 8 velocity / 3 position
-// iterations, continuous physics off, sleeping allowed (its best setting);
-// the final centres into xy (2n doubles) when it is not NULL.
+// iterations, continuous physics off, sleeping allowed (its best setting).
 // Linked into the bench binary only; the engine never links Box2D.
 #include <box2d/box2d.h>
 
-#include <algorithm>
 #include <chrono>
 #include <vector>
 
-extern "C" double box2d_settle_ms(int n, double radius, double width, int steps, double *max_step_ms, double *xy)
+// The scene as an opaque handle, so the bench can step it in turn with
+// tether's and both see the same machine load.
+struct box2d_scene {
+    b2World world{b2Vec2(0.0f, -9.81f)};
+    std::vector<b2Body *> bodies;
+};
+
+extern "C" box2d_scene *box2d_scene_create(int n, double radius, double width)
 {
-    b2World world(b2Vec2(0.0f, -9.81f));
+    box2d_scene *sc = new box2d_scene;
+    b2World &world = sc->world;
     world.SetContinuousPhysics(false);
     world.SetAllowSleeping(true);
     b2BodyDef gd;
@@ -32,7 +38,6 @@ extern "C" double box2d_settle_ms(int n, double radius, double width, int steps,
     fd.density = 1.0f;
     fd.friction = 0.6f;
     const int cols = (int)(width / (2.4 * radius));
-    std::vector<b2Body *> bodies;
     for (int i = 0; i < n; i++) {
         b2BodyDef bd;
         bd.type = b2_dynamicBody;
@@ -41,20 +46,26 @@ extern "C" double box2d_settle_ms(int n, double radius, double width, int steps,
         bd.position.Set((float)x, (float)y);
         b2Body *b = world.CreateBody(&bd);
         b->CreateFixture(&fd);
-        bodies.push_back(b);
+        sc->bodies.push_back(b);
     }
-    double total = 0, worst = 0;
-    for (int s = 0; s < steps; s++) {
-        auto t0 = std::chrono::steady_clock::now();
-        world.Step(1.0f / 60.0f, 8, 3);
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        total += ms;
-        worst = std::max(worst, ms);
-    }
-    for (int i = 0; xy && i < n; i++) {
-        xy[2 * i] = bodies[i]->GetPosition().x;
-        xy[2 * i + 1] = bodies[i]->GetPosition().y;
-    }
-    if (max_step_ms) *max_step_ms = worst;
-    return total / steps;
+    return sc;
 }
+
+// One step of 1/60 s; returns its wall time, ms.
+extern "C" double box2d_scene_step(box2d_scene *sc)
+{
+    auto t0 = std::chrono::steady_clock::now();
+    sc->world.Step(1.0f / 60.0f, 8, 3);
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The centres into xy (2n doubles).
+extern "C" void box2d_scene_positions(const box2d_scene *sc, double *xy)
+{
+    for (size_t i = 0; i < sc->bodies.size(); i++) {
+        xy[2 * i] = sc->bodies[i]->GetPosition().x;
+        xy[2 * i + 1] = sc->bodies[i]->GetPosition().y;
+    }
+}
+
+extern "C" void box2d_scene_destroy(box2d_scene *sc) { delete sc; }
