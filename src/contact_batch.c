@@ -24,10 +24,9 @@
  * 20 s). With bands of columns, as here, four jittered starts end at
  * 0.0008–0.0022 J/kg, the grid's own order without batches at 0.0018–0.0047
  * (bands of rows cut by pair count, which move with every pair: 0.0046 on
- * one start). The parts are far apart, so a batch's
- * lanes seldom share a particle (those batches go lane by lane), and
- * consecutive batches come from different parts, so one need not wait for
- * the last one's stores. */
+ * one start). The parts are far apart, so a batch's lanes seldom share a
+ * particle (those batches go lane by lane), and consecutive batches come
+ * from different parts, so one need not wait for the last one's stores. */
 #define STREAMS TT__PARTS
 
 static bool reserve(tt__batches *B, uint32_t n)
