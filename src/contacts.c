@@ -477,9 +477,10 @@ static void sweeps_done(tt_world *w, void *self)
  * leapfrog, RK4; a sweep's contact whose velocity restarts here): static
  * (tangential v under μs·Δvn) writes the tangential velocity to undo into
  * stick, kinetic reduces it by μk·Δvn. */
-static inline __attribute__((always_inline)) void respond(double vx, double vy, double v0x, double v0y, double nx, double ny, double e, bool settled,
-                    double mus, double muk, double thr, double *dvx, double *dvy, double *stick_x, double *stick_y,
-                    double *dvn)
+static inline __attribute__((always_inline)) void respond(double vx, double vy, double v0x, double v0y, double nx,
+                                                         double ny, double e, bool settled, double mus, double muk,
+                                                         double thr, double *dvx, double *dvy, double *stick_x,
+                                                         double *stick_y, double *dvn)
 {
     const double vn0 = v0x * nx + v0y * ny, vn = vx * nx + vy * ny;
     /* no approach: vn ≥ 0; settled: nor more separation than before, min(vn, max(vn0, 0)) */
