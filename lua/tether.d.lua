@@ -111,7 +111,8 @@ function tether.quit() end
 ---@field kinetic number Σ ½ m |v|²
 ---@field gravity number Σ −m g·x
 ---@field spring number Σ ½ k (length − rest)²
----@field total number the sum of the three
+---@field constraint number Σ ½ C²/α over compliant (XPBD) constraints
+---@field total number the sum of the four
 
 ---What `w:memory` returns.
 ---@class tether.memory

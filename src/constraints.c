@@ -718,6 +718,31 @@ static double gen_error(const tt_world *w, const tt__gcon *c)
     return 0.0;
 }
 
+/* Energy stored by compliant constraints, Σ ½ C²/α, C as the solver sees it. */
+double tt__constraints_energy(const tt_world *w)
+{
+    const tt__cgroup *g = tt__cgroup_peek(w);
+    if (!g) return 0.0;
+    double e = 0.0;
+    for (uint32_t i = 0; i < g->ndist; i++) {
+        const tt__dist *d = &g->dist[i];
+        if (!(d->alpha > 0.0)) continue;
+        const double len = dist_of(w, d->a, d->b), C = len < d->lo ? d->lo - len : len > d->hi ? len - d->hi : 0.0;
+        e += 0.5 * C * C / d->alpha;
+    }
+    for (uint32_t i = 0; i < g->ngen; i++) {
+        const tt__gcon *c = &g->gen[i];
+        if (!(c->alpha > 0.0)) continue;
+        double C = gen_error(w, c);
+        if (c->kind == TT_CONSTRAINT_COLLINEAR) { /* the solver's C is the cross product, not the distance */
+            const uint32_t a = c->p[0], b = c->p[1], cc = c->p[2];
+            C = (w->px[b] - w->px[a]) * (w->py[cc] - w->py[a]) - (w->py[b] - w->py[a]) * (w->px[cc] - w->px[a]);
+        }
+        e += 0.5 * C * C / c->alpha;
+    }
+    return e;
+}
+
 tt_result tt_constraint_get_error(const tt_world *w, tt_constraint c, double *out)
 {
     const tt__cgroup *g;

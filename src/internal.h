@@ -154,6 +154,7 @@ double *tt__scratch(tt_world *w, int which);
 /* Springs. */
 void tt__springs_detach(tt_world *w, uint32_t particle);
 double tt__springs_energy(const tt_world *w);
+double tt__constraints_energy(const tt_world *w); /* constraints.c: Σ ½ C²/α over compliant constraints */
 void tt__springs_free(tt_world *w);
 
 /* Solver (solver.c). */

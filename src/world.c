@@ -291,7 +291,8 @@ tt_result tt_world_get_energy(const tt_world *w, tt_energy *out)
     out->kinetic = ke;
     out->gravity = pe;
     out->spring = tt__springs_energy(w);
-    out->total = ke + pe + out->spring;
+    out->constraint = tt__constraints_energy(w);
+    out->total = ke + pe + out->spring + out->constraint;
     return TT_OK;
 }
 

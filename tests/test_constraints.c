@@ -182,6 +182,57 @@ TEST(xpbd_stretch_does_not_depend_on_iterations_plain_stiffness_does)
     ENSURE(fabs(p5 - p50) > 0.5 * p5);
 }
 
+/* A compliant link is a spring of stiffness 1/α: a particle on one, pulled
+ * 0.1 m past its length and let go, swings with its energy moving between
+ * motion and the link. The world's energy counts what the link stores (½
+ * C²/α). XPBD's solve is implicit, so the swing is damped: the total never
+ * rises, and what it loses in 2 s falls in proportion to the substep
+ * (measured, 4 iterations: 70 %, 45 %, 26 %, 14 % at 4, 8, 16, 32 substeps). */
+static double xpbd_swing(int substeps, double *stored, double *kmax, double *rise)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.gravity = (tt_vec2){0, 0};
+    wd.substeps = (uint32_t)substeps;
+    wd.iterations = 4;
+    wd.tolerance = 0;
+    tt_world *w = tt_world_create(&wd);
+    tt_particle a = add(w, 0, 0, 1, true), b = add(w, 1.1, 0, 1, false);
+    tt_distance_def d = tt_distance_def_default();
+    d.a = a;
+    d.b = b;
+    d.length = 1.0;
+    d.compliance = 1.0 / 144.0; /* k = 144 N/m: ω = 12 rad/s, a period of 0.52 s */
+    tt_distance_create(w, &d);
+    tt_energy e;
+    tt_world_get_energy(w, &e);
+    *stored = e.constraint;
+    const double e0 = e.total;
+    double prev = e0;
+    *kmax = *rise = 0;
+    for (int s = 0; s < 120; s++) { /* two seconds, about four periods */
+        tt_world_step(w, 1.0 / 60);
+        tt_world_get_energy(w, &e);
+        *kmax = fmax(*kmax, e.kinetic);
+        *rise = fmax(*rise, e.total - prev);
+        prev = e.total;
+    }
+    tt_world_destroy(w);
+    return (e0 - e.total) / e0;
+}
+
+TEST(xpbd_link_stores_energy_and_its_damping_falls_with_the_substep)
+{
+    double stored, kmax, rise;
+    const double lost16 = xpbd_swing(16, &stored, &kmax, &rise);
+    ENSURE_NEAR(stored, 0.5 * 0.1 * 0.1 * 144.0, 1e-9); /* all of it in the link at the start */
+    ENSURE(kmax > 0.5 * stored);                         /* it went into motion */
+    ENSURE(rise <= 1e-12);                               /* and never came back more than it was */
+    const double lost32 = xpbd_swing(32, &stored, &kmax, &rise);
+    ENSURE(rise <= 1e-12);
+    ENSURE(lost32 > 0.0);
+    ENSURE(lost16 / lost32 > 1.6 && lost16 / lost32 < 2.4); /* first order in h */
+}
+
 TEST(xpbd_chain_of_compliant_links_matches_hooke)
 {
     /* two links, two 1 kg weights: the top one carries 2 m g, the lower m g */

@@ -65,7 +65,8 @@ typedef struct tt_energy {
     double kinetic;   ///< Σ ½ m |v|²
     double gravity;   ///< Σ −m g·x (zero at the origin)
     double spring;    ///< Σ ½ k (|xa − xb| − rest)²
-    double total;     ///< the sum of the three
+    double constraint;///< Σ ½ C²/α over compliant (XPBD) constraints: what they store as springs of stiffness 1/α
+    double total;     ///< the sum of the four
 } tt_energy;
 
 /// Memory held by a world, bytes.

@@ -21,6 +21,19 @@ T.test("a rope hangs at its rest lengths", function()
   T.eq(w:stats().iterations >= 1, true, "iterations reported")
 end)
 
+T.test("a compliant link stores its energy", function()
+  local w = tether.world { gravity = { 0, 0 } }
+  local a = w:particle(0, 0, { pinned = true })
+  local b = w:particle(1.1, 0)
+  w:distance(a, b, { length = 1, compliance = 1 / 144 })
+  local e = w:energy()
+  T.near(e.constraint, 0.5 * 0.01 * 144, 1e-9, "½ C²/α")
+  T.near(e.total, e.constraint, 1e-12, "all of it in the link")
+  w:step(1 / 60, 8)
+  e = w:energy()
+  T.ok(e.kinetic > 0 and e.total <= 0.72 + 1e-12, "into motion, never more than it was")
+end)
+
 T.test("pendulum period from a pin and a distance", function()
   local w = tether.world { iterations = 50, tolerance = 1e-12 }
   local top = w:particle(0, 0)
