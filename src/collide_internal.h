@@ -158,6 +158,7 @@ typedef struct tt__collide {
     double *sx0, *sy0;    /* velocity integrators: position at the start of the substep (Verlet has x_old) */
     double *gx0, *gy0;    /* positions before the sweeps (shapes present): the guard against pushes through walls */
     uint32_t gcap;
+    bool guard;           /* gx0, gy0 hold this substep's */
     uint32_t scap, s_count;
     uint64_t s_epoch;     /* the world epoch at which sx0/sy0 hold the last substep's end positions */
     float *mat;           /* per slot: restitution, μs, μk (−1 = world default); NULL until used */

@@ -167,10 +167,10 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
 {
     const uint32_t *A = B->a + k, *Bb = B->b + k;
     __m256d pa02, wa02, pa13, wa13, pb02, wb02, pb13, wb13;
-    tt__rows_load2(pk, 4 * A[0], 4 * A[2], &pa02, &wa02);
-    tt__rows_load2(pk, 4 * A[1], 4 * A[3], &pa13, &wa13);
-    tt__rows_load2(pk, 4 * Bb[0], 4 * Bb[2], &pb02, &wb02);
-    tt__rows_load2(pk, 4 * Bb[1], 4 * Bb[3], &pb13, &wb13);
+    tt__rows_load2(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], &pa02, &wa02);
+    tt__rows_load2(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], &pa13, &wa13);
+    tt__rows_load2(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], &pb02, &wb02);
+    tt__rows_load2(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], &pb13, &wb13);
     const __m256d zero = _mm256_setzero_pd();
     const __m256d d02 = _mm256_sub_pd(pa02, pb02), d13 = _mm256_sub_pd(pa13, pb13); /* dx0 dy0 dx2 dy2 */
     const __m256d q02 = _mm256_mul_pd(d02, d02), q13 = _mm256_mul_pd(d13, d13);
@@ -181,8 +181,9 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
     const int m = _mm256_movemask_pd(act);
     if (!m) return true;
     if (_mm256_movemask_pd(_mm256_and_pd(act, _mm256_cmp_pd(d2, zero, _CMP_EQ_OQ)))) return false;
-    const __m256d d = _mm256_sqrt_pd(d2), pen = _mm256_sub_pd(rs, d);
-    const __m256d t = _mm256_div_pd(pen, _mm256_mul_pd(ws, d));
+    const __m256d d = _mm256_sqrt_pd(d2), pen = _mm256_sub_pd(rs, d), one = _mm256_set1_pd(1.0);
+    /* a lane out of contact divides by 1: no division by zero the scalar code would not do */
+    const __m256d t = _mm256_div_pd(pen, _mm256_blendv_pd(one, _mm256_mul_pd(ws, d), act));
     const __m256d ca = _mm256_mul_pd(t, wa), cb = _mm256_mul_pd(t, wb);
     __m256d na02 = _mm256_add_pd(pa02, _mm256_mul_pd(d02, _mm256_unpacklo_pd(ca, ca)));
     __m256d na13 = _mm256_add_pd(pa13, _mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)));
@@ -195,10 +196,10 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
         nb02 = _mm256_blendv_pd(pb02, nb02, u02);
         nb13 = _mm256_blendv_pd(pb13, nb13, u13);
     }
-    tt__rows_store2w(pk, 4 * A[0], 4 * A[2], na02, wa02);
-    tt__rows_store2w(pk, 4 * A[1], 4 * A[3], na13, wa13);
-    tt__rows_store2w(pk, 4 * Bb[0], 4 * Bb[2], nb02, wb02);
-    tt__rows_store2w(pk, 4 * Bb[1], 4 * Bb[3], nb13, wb13);
+    tt__rows_store2w(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], na02, wa02);
+    tt__rows_store2w(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], na13, wa13);
+    tt__rows_store2w(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], nb02, wb02);
+    tt__rows_store2w(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], nb13, wb13);
     const __m256d lam = _mm256_loadu_pd(B->lam + k);
     _mm256_storeu_pd(B->lam + k, _mm256_blendv_pd(lam, _mm256_add_pd(lam, pen), act));
     *err = _mm256_max_pd(*err, _mm256_and_pd(pen, act));
@@ -240,10 +241,10 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     double *pk = B->pk, *qk = B->qk;
     const uint32_t *A = B->a + k, *Bb = B->b + k;
     __m256d pa02, wa02, pa13, wa13, pb02, wb02, pb13, wb13, qa02, va02, qa13, va13, qb02, vb02, qb13, vb13;
-    tt__rows_load2(pk, 4 * A[0], 4 * A[2], &pa02, &wa02);
-    tt__rows_load2(pk, 4 * A[1], 4 * A[3], &pa13, &wa13);
-    tt__rows_load2(pk, 4 * Bb[0], 4 * Bb[2], &pb02, &wb02);
-    tt__rows_load2(pk, 4 * Bb[1], 4 * Bb[3], &pb13, &wb13);
+    tt__rows_load2(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], &pa02, &wa02);
+    tt__rows_load2(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], &pa13, &wa13);
+    tt__rows_load2(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], &pb02, &wb02);
+    tt__rows_load2(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], &pb13, &wb13);
     const __m256d ia = _mm256_blend_pd(wa02, wa13, 0xA), ib = _mm256_blend_pd(wb02, wb13, 0xA), ws = _mm256_add_pd(ia, ib);
     const __m256d act = _mm256_and_pd(live, _mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ));
     const int m = _mm256_movemask_pd(act);
@@ -252,13 +253,14 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d s02 = _mm256_mul_pd(d02, d02), s13 = _mm256_mul_pd(d13, d13);
     const __m256d d2 = _mm256_add_pd(_mm256_unpacklo_pd(s02, s13), _mm256_unpackhi_pd(s02, s13));
     if (_mm256_movemask_pd(_mm256_and_pd(act, _mm256_cmp_pd(d2, zero, _CMP_NGT_UQ)))) return false; /* one centre */
-    tt__rows_load2(qk, 4 * A[0], 4 * A[2], &qa02, &va02);
-    tt__rows_load2(qk, 4 * A[1], 4 * A[3], &qa13, &va13);
-    tt__rows_load2(qk, 4 * Bb[0], 4 * Bb[2], &qb02, &vb02);
-    tt__rows_load2(qk, 4 * Bb[1], 4 * Bb[3], &qb13, &vb13);
+    tt__rows_load2(qk, 4 * (size_t)A[0], 4 * (size_t)A[2], &qa02, &va02);
+    tt__rows_load2(qk, 4 * (size_t)A[1], 4 * (size_t)A[3], &qa13, &va13);
+    tt__rows_load2(qk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], &qb02, &vb02);
+    tt__rows_load2(qk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], &qb13, &vb13);
     const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(dtp);
-    const __m256d iws = _mm256_div_pd(one, ws), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
-    const __m256d id = _mm256_div_pd(one, _mm256_sqrt_pd(d2));
+    /* lanes out of play divide by 1 (no exception the scalar code would not raise) */
+    const __m256d iws = _mm256_div_pd(one, _mm256_blendv_pd(one, ws, act)), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
+    const __m256d id = _mm256_div_pd(one, _mm256_sqrt_pd(_mm256_blendv_pd(one, d2, act)));
 #define LO(v) _mm256_unpacklo_pd((v), (v)) /* lanes 0, 2 of a per-lane vector in pair form */
 #define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
 #define LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
@@ -284,7 +286,8 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
         const __m256d lim = _mm256_mul_pd(_mm256_set1_pd(in->mus), change);
         const __m256d stick = _mm256_cmp_pd(t2, _mm256_mul_pd(lim, lim), _CMP_LE_OQ);
         const __m256d tl = _mm256_sqrt_pd(t2), mc = _mm256_mul_pd(_mm256_set1_pd(in->muk), change);
-        const __m256d f = _mm256_div_pd(_mm256_blendv_pd(tl, mc, _mm256_cmp_pd(mc, tl, _CMP_LT_OQ)), tl);
+        const __m256d slides = _mm256_andnot_pd(stick, act);
+        const __m256d f = _mm256_div_pd(_mm256_blendv_pd(tl, mc, _mm256_cmp_pd(mc, tl, _CMP_LT_OQ)), _mm256_blendv_pd(one, tl, slides));
         dv02 = _mm256_blendv_pd(_mm256_sub_pd(dv02, _mm256_mul_pd(t02, LO(f))), dv02, LO(stick));
         dv13 = _mm256_blendv_pd(_mm256_sub_pd(dv13, _mm256_mul_pd(t13, HI(f))), dv13, HI(stick));
         st02 = _mm256_and_pd(t02, LO(stick));
@@ -299,18 +302,18 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d wa02l = LO(wa), wa13l = HI(wa), wb02l = LO(wb), wb13l = HI(wb);
     const __m256d hs02 = _mm256_mul_pd(st02, h), hs13 = _mm256_mul_pd(st13, h);
     const __m256d nhs02 = _mm256_mul_pd(_mm256_xor_pd(st02, sign), h), nhs13 = _mm256_mul_pd(_mm256_xor_pd(st13, sign), h);
-    tt__rows_store2w(pk, 4 * A[0], 4 * A[2], _mm256_blendv_pd(pa02, _mm256_sub_pd(pa02, _mm256_mul_pd(hs02, wa02l)), sl02), wa02);
-    tt__rows_store2w(pk, 4 * A[1], 4 * A[3], _mm256_blendv_pd(pa13, _mm256_sub_pd(pa13, _mm256_mul_pd(hs13, wa13l)), sl13), wa13);
-    tt__rows_store2w(pk, 4 * Bb[0], 4 * Bb[2], _mm256_blendv_pd(pb02, _mm256_sub_pd(pb02, _mm256_mul_pd(nhs02, wb02l)), sl02), wb02);
-    tt__rows_store2w(pk, 4 * Bb[1], 4 * Bb[3], _mm256_blendv_pd(pb13, _mm256_sub_pd(pb13, _mm256_mul_pd(nhs13, wb13l)), sl13), wb13);
+    tt__rows_store2w(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], _mm256_blendv_pd(pa02, _mm256_sub_pd(pa02, _mm256_mul_pd(hs02, wa02l)), sl02), wa02);
+    tt__rows_store2w(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], _mm256_blendv_pd(pa13, _mm256_sub_pd(pa13, _mm256_mul_pd(hs13, wa13l)), sl13), wa13);
+    tt__rows_store2w(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], _mm256_blendv_pd(pb02, _mm256_sub_pd(pb02, _mm256_mul_pd(nhs02, wb02l)), sl02), wb02);
+    tt__rows_store2w(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], _mm256_blendv_pd(pb13, _mm256_sub_pd(pb13, _mm256_mul_pd(nhs13, wb13l)), sl13), wb13);
     const __m256d qa02n = _mm256_sub_pd(qa02, _mm256_mul_pd(_mm256_mul_pd(dv02, wa02l), dt));
     const __m256d qa13n = _mm256_sub_pd(qa13, _mm256_mul_pd(_mm256_mul_pd(dv13, wa13l), dt));
     const __m256d qb02n = _mm256_sub_pd(qb02, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dv02, sign), wb02l), dt));
     const __m256d qb13n = _mm256_sub_pd(qb13, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dv13, sign), wb13l), dt));
-    tt__rows_store2w(qk, 4 * A[0], 4 * A[2], _mm256_blendv_pd(qa02, qa02n, m02), va02);
-    tt__rows_store2w(qk, 4 * A[1], 4 * A[3], _mm256_blendv_pd(qa13, qa13n, m13), va13);
-    tt__rows_store2w(qk, 4 * Bb[0], 4 * Bb[2], _mm256_blendv_pd(qb02, qb02n, m02), vb02);
-    tt__rows_store2w(qk, 4 * Bb[1], 4 * Bb[3], _mm256_blendv_pd(qb13, qb13n, m13), vb13);
+    tt__rows_store2w(qk, 4 * (size_t)A[0], 4 * (size_t)A[2], _mm256_blendv_pd(qa02, qa02n, m02), va02);
+    tt__rows_store2w(qk, 4 * (size_t)A[1], 4 * (size_t)A[3], _mm256_blendv_pd(qa13, qa13n, m13), va13);
+    tt__rows_store2w(qk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], _mm256_blendv_pd(qb02, qb02n, m02), vb02);
+    tt__rows_store2w(qk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], _mm256_blendv_pd(qb13, qb13n, m13), vb13);
 #undef LO
 #undef HI
 #undef LANES

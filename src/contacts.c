@@ -249,6 +249,7 @@ static void begin(tt_world *w, void *self, double h)
     c->npairs = 0;
     c->nsc = 0;
     c->batched = false;
+    c->guard = false; /* until this substep's start positions are copied */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     bool pairs = c->set.particles;
     if (!pairs && c->nprim == 0) return;
@@ -345,11 +346,42 @@ static void begin(tt_world *w, void *self, double h)
         if (n && c->gcap >= n) {
             memcpy(c->gx0, w->px, (size_t)n * sizeof *c->gx0);
             memcpy(c->gy0, w->py, (size_t)n * sizeof *c->gy0);
+            c->guard = true;
         }
     }
 }
 
 /* --- projection ----------------------------------------------------------- */
+
+/* The normal of a contact has turned round since the contact began: when
+ * another correction carried the centre through the shape (across a
+ * segment or capsule's core, its projection inside it; past the middle of
+ * a polygon), the shape's nearest side is the far one. hit becomes the push
+ * back to the side the contact began on, along that side's normal, until
+ * the particle clears. (Round a segment's end or a circle the normal may
+ * turn legitimately: those are left alone.) */
+static void uncross(const tt__collide *c, const tt__prim *p, double x, double y, double r, const tt__scontact *s,
+                    tt__hit *hit)
+{
+    double far; /* the shape's extent along −n from the centre */
+    if (p->kind == TT__PRIM_CAPSULE) {
+        const double ex = p->bx - p->ax, ey = p->by - p->ay, l2 = ex * ex + ey * ey;
+        const double t = l2 > 0.0 ? ((x - p->ax) * ex + (y - p->ay) * ey) / l2 : -1.0;
+        if (!(t > 0.0 && t < 1.0)) return;
+        const double da = (p->ax - x) * s->nx + (p->ay - y) * s->ny, db = (p->bx - x) * s->nx + (p->by - y) * s->ny;
+        far = p->r + (da > db ? da : db);
+    } else {
+        const tt_vec2 *v = c->verts + p->v0;
+        far = -INFINITY;
+        for (uint32_t k = 0; k < p->nv; k++) {
+            const double d = (v[k].x - x) * s->nx + (v[k].y - y) * s->ny;
+            far = d > far ? d : far;
+        }
+    }
+    hit->nx = s->nx;
+    hit->ny = s->ny;
+    hit->depth = r + far;
+}
 
 /* Moves particle i by (dx, dy) on positions X, Y (stride st): the rows
  * while the batches keep them, else through tt__correct (Jacobi). */
@@ -408,13 +440,7 @@ static double relax(tt_world *w, void *self, double h)
         const uint32_t a = s->a;
         tt__hit hit;
         tt__circle_vs_prim(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], &hit);
-        if (hit.depth > 0.0 && hit.nx * s->nx + hit.ny * s->ny < 0.0) {
-            /* another correction carried the centre across a thin shape (a segment's normal
-             * flips there): back to the side the contact began on, exact for a segment */
-            hit.nx = s->nx;
-            hit.ny = s->ny;
-            hit.depth = 2.0 * w->radius[a] - hit.depth;
-        }
+        if (hit.nx * s->nx + hit.ny * s->ny < 0.0) uncross(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], s, &hit);
         if (hit.depth > 0.0) {
             move(w, X, Y, st, a, hit.nx * hit.depth, hit.ny * hit.depth);
             s->nx = hit.nx;
@@ -439,18 +465,14 @@ static double relax(tt_world *w, void *self, double h)
  * demo left through its slanted walls). Its path through the sweeps is
  * swept against the shapes, and it stops where it would first touch one.
  * A move within the contact margin cannot reach a shape it had no contact
- * with; a particle with a contact is kept on its side by it (relax) and
- * not swept. */
+ * with; shapes it touched at the start are skipped by the sweep (a contact
+ * keeps it on its side: relax, uncross). */
 static void sweeps_done(tt_world *w, void *self)
 {
     tt__collide *c = self;
     tt__batches_release(w, &c->bat);
     const uint32_t n = w->ppool.count;
-    if (!c->nprim || c->gcap < n) return;
-    for (uint32_t k = 0; k < c->nsc; k++) { /* a contact keeps its particle on its side: no sweep */
-        c->gx0[c->sc[k].a] = w->px[c->sc[k].a];
-        c->gy0[c->sc[k].a] = w->py[c->sc[k].a];
-    }
+    if (!c->nprim || !c->guard || c->gcap < n) return;
     for (uint32_t i = 0; i < n; i++) {
         const double dx = w->px[i] - c->gx0[i], dy = w->py[i] - c->gy0[i], r = w->radius[i];
         const double m = r * TT__CONTACT_MARGIN;

@@ -8,6 +8,7 @@
 #define TT_SIMD_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 /* Which sweep runs: AUTO picks the widest the processor has; the others
@@ -22,7 +23,7 @@ typedef enum tt__simd_mode { TT__SIMD_AUTO, TT__SIMD_SCALAR, TT__SIMD_AVX2, TT__
 #define TT_INLINE static inline __attribute__((always_inline))
 
 /* Rows at offsets r0, r1 (4·slot) into p = (x, y) of both and w = (w, w) of both. */
-TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, uint32_t r0, uint32_t r1, __m256d *p, __m256d *w)
+TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, size_t r0, size_t r1, __m256d *p, __m256d *w)
 {
     const __m256d a = _mm256_load_pd(pk + r0), b = _mm256_load_pd(pk + r1);
     *p = _mm256_permute2f128_pd(a, b, 0x20);
@@ -32,14 +33,14 @@ TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, uint32_t r0, uint32_t r1
 /* (x, y) of both and their (w, w) back into rows r0, r1 as whole rows: a
  * later load of the row is then served from the store (a half-row store
  * cannot forward to a whole-row load, which waits for it to retire). */
-TT_AVX2 TT_INLINE void tt__rows_store2w(double *pk, uint32_t r0, uint32_t r1, __m256d p, __m256d w)
+TT_AVX2 TT_INLINE void tt__rows_store2w(double *pk, size_t r0, size_t r1, __m256d p, __m256d w)
 {
     _mm256_store_pd(pk + r0, _mm256_permute2f128_pd(p, w, 0x20));
     _mm256_store_pd(pk + r1, _mm256_permute2f128_pd(p, w, 0x31));
 }
 
 /* (x, y) of both back into rows r0, r1; their w stays. */
-TT_AVX2 TT_INLINE void tt__rows_store2(double *pk, uint32_t r0, uint32_t r1, __m256d v)
+TT_AVX2 TT_INLINE void tt__rows_store2(double *pk, size_t r0, size_t r1, __m256d v)
 {
     _mm_store_pd(pk + r0, _mm256_castpd256_pd128(v));
     _mm_store_pd(pk + r1, _mm256_extractf128_pd(v, 1));
