@@ -63,7 +63,7 @@ TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32
 }
 #endif
 
-/* Rows are only made where a vector sweep runs, so AVX2 is there. */
+/* Rows are only made where a vector sweep runs, so AVX2 is there (pack4 too). */
 void tt__rows_pack(double *pk, const double *px, const double *py, const double *im, uint32_t np)
 {
 #ifdef TT_SIMD_X86
@@ -89,8 +89,29 @@ void tt__rows_unpack(const double *pk, double *px, double *py, uint32_t np)
 #endif
 }
 
+#ifdef TT_SIMD_X86
+TT_AVX2 static void pack4_avx2(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np)
+{
+    uint32_t i = 0;
+    for (; i + 4 <= np; i += 4) { /* a 4×4 transpose */
+        const __m256d va = _mm256_loadu_pd(a + i), vb = _mm256_loadu_pd(b + i);
+        const __m256d vc = _mm256_loadu_pd(c + i), vd = _mm256_loadu_pd(d + i);
+        const __m256d t0 = _mm256_unpacklo_pd(va, vb), t1 = _mm256_unpackhi_pd(va, vb); /* a0 b0 a2 b2 | a1 b1 a3 b3 */
+        const __m256d u0 = _mm256_unpacklo_pd(vc, vd), u1 = _mm256_unpackhi_pd(vc, vd); /* c0 d0 c2 d2 | c1 d1 c3 d3 */
+        _mm256_store_pd(pk + 4 * (size_t)i, _mm256_permute2f128_pd(t0, u0, 0x20));
+        _mm256_store_pd(pk + 4 * (size_t)i + 4, _mm256_permute2f128_pd(t1, u1, 0x20));
+        _mm256_store_pd(pk + 4 * (size_t)i + 8, _mm256_permute2f128_pd(t0, u0, 0x31));
+        _mm256_store_pd(pk + 4 * (size_t)i + 12, _mm256_permute2f128_pd(t1, u1, 0x31));
+    }
+    for (; i < np; i++) _mm256_store_pd(pk + 4 * (size_t)i, _mm256_setr_pd(a[i], b[i], c[i], d[i]));
+}
+#endif
+
 void tt__rows_pack4(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np)
 {
+#ifdef TT_SIMD_X86
+    pack4_avx2(pk, a, b, c, d, np);
+#else
     for (uint32_t i = 0; i < np; i++) {
         double *r = pk + 4 * (size_t)i;
         r[0] = a[i];
@@ -98,4 +119,5 @@ void tt__rows_pack4(double *pk, const double *a, const double *b, const double *
         r[2] = c[i];
         r[3] = d[i];
     }
+#endif
 }
