@@ -178,8 +178,8 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
     const __m256d wa = _mm256_blend_pd(wa02, wa13, 0xA), wb = _mm256_blend_pd(wb02, wb13, 0xA);
     const __m256d ws = _mm256_add_pd(wa, wb), rs = _mm256_loadu_pd(B->rs + k);
     const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(d2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ));
-    const int m = _mm256_movemask_pd(act);
-    if (!m) return true;
+    /* no early exit when no lane is in contact: in a pile that branch is a coin toss, and a
+     * mispredicted one costs more than the arithmetic (the blends keep every value) */
     if (_mm256_movemask_pd(_mm256_and_pd(act, _mm256_cmp_pd(d2, zero, _CMP_EQ_OQ)))) return false;
     const __m256d d = _mm256_sqrt_pd(d2), pen = _mm256_sub_pd(rs, d), one = _mm256_set1_pd(1.0);
     /* a lane out of contact divides by 1: no division by zero the scalar code would not do */
@@ -189,13 +189,11 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
     __m256d na13 = _mm256_add_pd(pa13, _mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)));
     __m256d nb02 = _mm256_sub_pd(pb02, _mm256_mul_pd(d02, _mm256_unpacklo_pd(cb, cb)));
     __m256d nb13 = _mm256_sub_pd(pb13, _mm256_mul_pd(d13, _mm256_unpackhi_pd(cb, cb)));
-    if (m != 15) { /* a lane out of contact keeps its old value */
-        const __m256d u02 = _mm256_unpacklo_pd(act, act), u13 = _mm256_unpackhi_pd(act, act);
-        na02 = _mm256_blendv_pd(pa02, na02, u02);
-        na13 = _mm256_blendv_pd(pa13, na13, u13);
-        nb02 = _mm256_blendv_pd(pb02, nb02, u02);
-        nb13 = _mm256_blendv_pd(pb13, nb13, u13);
-    }
+    const __m256d u02 = _mm256_unpacklo_pd(act, act), u13 = _mm256_unpackhi_pd(act, act); /* out of contact: as was */
+    na02 = _mm256_blendv_pd(pa02, na02, u02);
+    na13 = _mm256_blendv_pd(pa13, na13, u13);
+    nb02 = _mm256_blendv_pd(pb02, nb02, u02);
+    nb13 = _mm256_blendv_pd(pb13, nb13, u13);
     tt__rows_store2w(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], na02, wa02);
     tt__rows_store2w(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], na13, wa13);
     tt__rows_store2w(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], nb02, wb02);
