@@ -31,21 +31,6 @@ bool tt__rows_reserve(double **pk, uint32_t *cap, uint32_t np)
 }
 
 #ifdef TT_SIMD_X86
-TT_AVX2 static void pack_avx2(double *pk, const double *px, const double *py, const double *im, uint32_t np)
-{
-    uint32_t i = 0;
-    for (; i + 4 <= np; i += 4) {
-        const __m256d x = _mm256_loadu_pd(px + i), y = _mm256_loadu_pd(py + i), m = _mm256_loadu_pd(im + i);
-        const __m256d t0 = _mm256_unpacklo_pd(x, y), t1 = _mm256_unpackhi_pd(x, y); /* x0 y0 x2 y2 | x1 y1 x3 y3 */
-        const __m256d u0 = _mm256_unpacklo_pd(m, m), u1 = _mm256_unpackhi_pd(m, m); /* w0 w0 w2 w2 | w1 w1 w3 w3 */
-        _mm256_store_pd(pk + 4 * (size_t)i, _mm256_permute2f128_pd(t0, u0, 0x20));
-        _mm256_store_pd(pk + 4 * (size_t)i + 4, _mm256_permute2f128_pd(t1, u1, 0x20));
-        _mm256_store_pd(pk + 4 * (size_t)i + 8, _mm256_permute2f128_pd(t0, u0, 0x31));
-        _mm256_store_pd(pk + 4 * (size_t)i + 12, _mm256_permute2f128_pd(t1, u1, 0x31));
-    }
-    for (; i < np; i++) _mm256_store_pd(pk + 4 * (size_t)i, _mm256_setr_pd(px[i], py[i], im[i], im[i]));
-}
-
 TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32_t np)
 {
     uint32_t i = 0;
@@ -63,18 +48,9 @@ TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32
 }
 #endif
 
-/* Rows are only made where a vector sweep runs, so AVX2 is there (pack4 too). */
 void tt__rows_pack(double *pk, const double *px, const double *py, const double *im, uint32_t np)
 {
-#ifdef TT_SIMD_X86
-    pack_avx2(pk, px, py, im, np);
-#else
-    for (uint32_t i = 0; i < np; i++) {
-        pk[4 * (size_t)i] = px[i];
-        pk[4 * (size_t)i + 1] = py[i];
-        pk[4 * (size_t)i + 2] = pk[4 * (size_t)i + 3] = im[i];
-    }
-#endif
+    tt__rows_pack4(pk, px, py, im, im, np);
 }
 
 void tt__rows_unpack(const double *pk, double *px, double *py, uint32_t np)
@@ -107,6 +83,7 @@ TT_AVX2 static void pack4_avx2(double *pk, const double *a, const double *b, con
 }
 #endif
 
+/* Rows are only made where a vector sweep runs, so AVX2 is there (unpack too). */
 void tt__rows_pack4(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np)
 {
 #ifdef TT_SIMD_X86
