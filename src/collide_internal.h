@@ -119,6 +119,26 @@ void tt__batches_free(tt__batches *B);
 size_t tt__batches_bytes(const tt__batches *B);
 /* The same-centre direction of pair (a, b): fixed and deterministic. */
 void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny);
+/* Pair (a, b)'s overlap, (dx, dy) = xa − xb, rs the radii sum, ws > 0 the
+ * inverse-mass sum: false when apart. Else pen, the overlap, and t: a moves
+ * by (dx, dy)·t·ia, b by −(dx, dy)·t·ib; on one centre (dx, dy) becomes the
+ * pair's fixed direction. The one projection both pair sweeps do. */
+static inline bool tt__pair_push(uint32_t a, uint32_t b, double rs, double ws, double *dx, double *dy, double *pen,
+                                 double *t)
+{
+    const double d2 = *dx * *dx + *dy * *dy;
+    if (!(d2 < rs * rs)) return false;
+    if (d2 > 0.0) {
+        const double d = sqrt(d2);
+        *pen = rs - d;
+        *t = *pen / (ws * d);
+    } else {
+        tt__pair_apart(a, b, dx, dy);
+        *pen = rs;
+        *t = *pen / ws;
+    }
+    return true;
+}
 /* Forces w's pair sweep mode (tests compare them bit for bit); false when
  * this build or processor lacks it. */
 bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode);

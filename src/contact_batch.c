@@ -14,7 +14,7 @@
 #include <string.h>
 
 /* The pair list (the grid's order: row by row, bottom up) is cut into
- * STREAMS parts, bands of columns; batch t holds the t/2-th pair of parts
+ * TT__PARTS parts, bands of columns; batch t holds the t/2-th pair of parts
  * 0-3 (t even) or 4-7 (t odd). Each part keeps the grid's order, so a sweep
  * still carries a pile's weight up from the floor in one pass, and the order
  * stays the same from step to step but where pairs come and go. Both
@@ -27,7 +27,6 @@
  * one start). The parts are far apart, so a batch's lanes seldom share a
  * particle (those batches go lane by lane), and consecutive batches come
  * from different parts, so one need not wait for the last one's stores. */
-#define STREAMS TT__PARTS
 
 static bool reserve(tt__batches *B, uint32_t n)
 {
@@ -47,7 +46,7 @@ static bool reserve(tt__batches *B, uint32_t n)
     return true;
 }
 
-/* Where part k's pairs are: row y's run [runs[y·STREAMS + k], the next entry). */
+/* Where part k's pairs are: row y's run [runs[y·TT__PARTS + k], the next entry). */
 typedef struct cursor {
     uint32_t y, p, end;
 } cursor;
@@ -65,38 +64,38 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
         B->stamp_cap = np;
         B->mark = 0;
     }
-    uint32_t eq[STREAMS + 1], L = 0;
-    for (uint32_t k = 0; runs && k < STREAMS; k++) {
+    uint32_t eq[TT__PARTS + 1], L = 0;
+    for (uint32_t k = 0; runs && k < TT__PARTS; k++) {
         uint32_t len = 0;
-        for (uint32_t y = 0; y < nrows; y++) len += runs[y * STREAMS + k + 1] - runs[y * STREAMS + k];
+        for (uint32_t y = 0; y < nrows; y++) len += runs[y * TT__PARTS + k + 1] - runs[y * TT__PARTS + k];
         if (len > L) L = len;
     }
-    if (!runs || nrows == 0 || (uint64_t)L * STREAMS > 2 * (uint64_t)npairs + 64) {
+    if (!runs || nrows == 0 || (uint64_t)L * TT__PARTS > 2 * (uint64_t)npairs + 64) {
         /* no bands, or bands so uneven that over half the lanes would pad: equal parts of the list */
-        for (uint32_t k = 0; k <= STREAMS; k++) eq[k] = (uint32_t)((uint64_t)npairs * k / STREAMS);
+        for (uint32_t k = 0; k <= TT__PARTS; k++) eq[k] = (uint32_t)((uint64_t)npairs * k / TT__PARTS);
         runs = eq;
         nrows = 1;
         L = eq[1];
-        for (uint32_t k = 1; k < STREAMS; k++)
+        for (uint32_t k = 1; k < TT__PARTS; k++)
             if (eq[k + 1] - eq[k] > L) L = eq[k + 1] - eq[k];
     }
-    cursor cur[STREAMS];
-    for (uint32_t k = 0; k < STREAMS; k++) cur[k] = (cursor){0, runs[k], runs[k + 1]};
-    if ((uint64_t)L * STREAMS > UINT32_MAX / 2 || !reserve(B, L * STREAMS)) return false;
-    const uint32_t nb = L * STREAMS / 4;
+    cursor cur[TT__PARTS];
+    for (uint32_t k = 0; k < TT__PARTS; k++) cur[k] = (cursor){0, runs[k], runs[k + 1]};
+    if ((uint64_t)L * TT__PARTS > UINT32_MAX / 2 || !reserve(B, L * TT__PARTS)) return false;
+    const uint32_t nb = L * TT__PARTS / 4;
     if (B->mark > UINT32_MAX - nb - 1 || B->mark == 0) { /* stamps from an earlier plan could look current */
         memset(B->stamp, 0, (size_t)np * sizeof *B->stamp);
         B->mark = 1;
     }
     for (uint32_t t = 0; t < nb; t++) {
-        const uint32_t s0 = (t % (STREAMS / 4)) * 4, id = B->mark + t;
+        const uint32_t s0 = (t % (TT__PARTS / 4)) * 4, id = B->mark + t;
         bool solo = false;
         for (uint32_t s = s0; s < s0 + 4; s++) {
             cursor *c = &cur[s];
             while (c->p == c->end && c->y + 1 < nrows) { /* the part's run in the next row */
                 c->y++;
-                c->p = runs[c->y * STREAMS + s];
-                c->end = runs[c->y * STREAMS + s + 1];
+                c->p = runs[c->y * TT__PARTS + s];
+                c->end = runs[c->y * TT__PARTS + s + 1];
             }
             const uint32_t e = 4 * t + s - s0;
             B->lam[e] = 0.0;
@@ -137,17 +136,8 @@ static double solve(const tt__batches *B, double *X, double *Y, const double *W,
         if (B->a[k] == B->np) continue; /* padding */
         const double ia = W[a], ib = W[b], ws = ia + ib, rs = B->rs[k];
         if (ws == 0.0) continue;
-        double dx = X[a] - X[b], dy = Y[a] - Y[b], d2 = dx * dx + dy * dy, pen, t;
-        if (!(d2 < rs * rs)) continue;
-        if (d2 > 0.0) {
-            const double d = sqrt(d2);
-            pen = rs - d;
-            t = pen / (ws * d);
-        } else {
-            tt__pair_apart(B->a[k], B->b[k], &dx, &dy);
-            pen = rs;
-            t = pen / ws;
-        }
+        double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
+        if (!tt__pair_push(B->a[k], B->b[k], rs, ws, &dx, &dy, &pen, &t)) continue;
         const double ca = t * ia, cb = t * ib;
         X[a] += dx * ca;
         Y[a] += dy * ca;

@@ -416,17 +416,8 @@ static double relax(tt_world *w, void *self, double h)
             const uint32_t a = p->a, b = p->b;
             const double ia = inv[a], ib = inv[b], ws = ia + ib;
             if (ws == 0.0) continue;
-            double dx = X[a] - X[b], dy = Y[a] - Y[b], d2 = dx * dx + dy * dy, rs = p->rs, pen, t;
-            if (!(d2 < rs * rs)) continue;
-            if (d2 > 0.0) {
-                const double d = sqrt(d2);
-                pen = rs - d;
-                t = pen / (ws * d);
-            } else { /* same centre */
-                tt__pair_apart(a, b, &dx, &dy);
-                pen = rs;
-                t = pen / ws;
-            }
+            double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
+            if (!tt__pair_push(a, b, p->rs, ws, &dx, &dy, &pen, &t)) continue;
             tt__correct(w, a, dx * t * ia, dy * t * ia);
             tt__correct(w, b, -dx * t * ib, -dy * t * ib);
             p->lambda += (float)pen;
@@ -481,8 +472,8 @@ static void sweeps_done(tt_world *w, void *self)
         if (!static_near(c, fmin(x0, x1) - r, fmin(y0, y1) - r, fmax(x0, x1) + r, fmax(y0, y1) + r)) continue;
         double t, nx, ny;
         if (tt__sweep_static(w, c, i, x0, y0, x1, y1, &t, &nx, &ny) < 0) continue;
-        w->px[i] = c->gx0[i] + dx * t;
-        w->py[i] = c->gy0[i] + dy * t;
+        w->px[i] = x0 + dx * t;
+        w->py[i] = y0 + dy * t;
     }
 }
 
