@@ -12,13 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TT_NO_SIMD)
-#define TT_SIMD_X86 1
-#include <immintrin.h>
-#endif
-
-#define TT_INLINE static inline __attribute__((always_inline))
-
 /* Entries after the last sorted one: the vector test reads whole groups of four. */
 #define TT__GRID_PAD 3
 
@@ -201,7 +194,6 @@ TT_INLINE bool range_scalar(tt_world *w, tt__collide *c, emit *e, const tt__grid
 }
 
 #ifdef TT_SIMD_X86
-#define TT_AVX2 __attribute__((target("avx2")))
 
 /* As range_scalar, four candidates at a time: the same operations in the
  * same order per lane (no FMA), so the same pairs. The sorted arrays carry
@@ -286,7 +278,7 @@ bool tt__grid_pairs(tt_world *w, tt__collide *c)
     if (!tt__grow((void **)&c->runs, &c->runs_cap, (uint32_t)g->ny * TT__PARTS + 1, sizeof *c->runs)) return false;
     const bool plain = g->one_layer && c->nexcl == 0 && !tt__constraint_pairs_any(w);
 #ifdef TT_SIMD_X86
-    if (__builtin_cpu_supports("avx2")) return plain ? walk_plain_avx2(w, c, g) : walk_full_avx2(w, c, g);
+    if (tt__simd_kind(TT__SIMD_AUTO) != TT__SIMD_SCALAR) return plain ? walk_plain_avx2(w, c, g) : walk_full_avx2(w, c, g);
 #endif
     return plain ? walk_plain(w, c, g) : walk_full(w, c, g);
 }

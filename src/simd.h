@@ -15,12 +15,13 @@
  * force one (tests compare them bit for bit). */
 typedef enum tt__simd_mode { TT__SIMD_AUTO, TT__SIMD_SCALAR, TT__SIMD_AVX2, TT__SIMD_AVX512 } tt__simd_mode;
 
+#define TT_INLINE static inline __attribute__((always_inline))
+
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TT_NO_SIMD)
 #define TT_SIMD_X86 1
 #include <immintrin.h>
 #define TT_AVX2 __attribute__((target("avx2")))
 #define TT_AVX512 __attribute__((target("avx2,avx512f,avx512vl")))
-#define TT_INLINE static inline __attribute__((always_inline))
 
 /* Rows at offsets r0, r1 (4·slot) into p = (x, y) of both and w = (w, w) of both. */
 TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, size_t r0, size_t r1, __m256d *p, __m256d *w)
