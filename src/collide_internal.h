@@ -258,6 +258,9 @@ size_t tt__shapes_bytes(const tt__collide *c);
 /* Calls visit for each primitive whose cell range meets the box (each at most once per call). */
 typedef void (*tt__prim_visit)(void *ctx, uint32_t prim);
 void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double hiy, tt__prim_visit visit, void *ctx);
+/* Whether some primitive's box meets the box: the cheap test before a
+ * query (most particles, most steps, are near no shape). */
+bool tt__sgrid_near(const tt__collide *c, double lox, double loy, double hix, double hiy);
 bool tt__shape_ok(const tt__collide *c, tt_shape s);
 
 /* Narrowphase (narrowphase.c). depth > 0 is penetration; the nearest valid

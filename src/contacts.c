@@ -188,29 +188,6 @@ static void detect_visit(void *ctx, uint32_t k)
     c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0};
 }
 
-/* Whether some static primitive's box meets box lo–hi: the cheap test
- * before a query (most particles, most steps, are near none). */
-static bool static_near(const tt__collide *c, double lox, double loy, double hix, double hiy)
-{
-    const tt__sgrid *sg = &c->sgrid;
-    for (uint32_t k = 0; k < sg->nbig; k++)
-        if (tt__prim_box_meets(&c->prims[sg->big[k]], lox, loy, hix, hiy)) return true;
-    if (sg->nx <= 0) return false;
-    int32_t x0 = tt__cell_coord(lox, sg->ox, sg->inv), x1 = tt__cell_coord(hix, sg->ox, sg->inv);
-    int32_t y0 = tt__cell_coord(loy, sg->oy, sg->inv), y1 = tt__cell_coord(hiy, sg->oy, sg->inv);
-    if (x1 < 0 || y1 < 0 || x0 >= sg->nx || y0 >= sg->ny) return false;
-    x0 = x0 < 0 ? 0 : x0;
-    y0 = y0 < 0 ? 0 : y0;
-    x1 = x1 >= sg->nx ? sg->nx - 1 : x1;
-    y1 = y1 >= sg->ny ? sg->ny - 1 : y1;
-    for (int32_t y = y0; y <= y1; y++) { /* the cells of a row are contiguous in items */
-        const uint32_t row = (uint32_t)y * (uint32_t)sg->nx;
-        for (uint32_t j = sg->start[row + (uint32_t)x0]; j < sg->start[row + (uint32_t)x1 + 1]; j++)
-            if (tt__prim_box_meets(&c->prims[sg->items[j]], lox, loy, hix, hiy)) return true;
-    }
-    return false;
-}
-
 /* Marks the cells of the particle grid, just built, (c->near) a particle
  * centred in could touch a static primitive: each primitive's box grown by
  * the largest radius and the margin, clamped into the grid as particles are
@@ -328,7 +305,7 @@ static void begin(tt_world *w, void *self, double h)
             d.r = r;
             d.margin = m;
             /* fast path: no primitive's box near the particle (most particles, most steps) */
-            if (!static_near(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m)) continue;
+            if (!tt__sgrid_near(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m)) continue;
             tt__sgrid_query(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m, detect_visit, &d);
             if (!d.ok) {
                 tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
@@ -469,7 +446,7 @@ static void sweeps_done(tt_world *w, void *self)
         const double m = r * TT__CONTACT_MARGIN;
         if (dx * dx + dy * dy <= m * m || w->inv_mass[i] == 0.0) continue;
         const double x0 = c->gx0[i], y0 = c->gy0[i], x1 = w->px[i], y1 = w->py[i];
-        if (!static_near(c, fmin(x0, x1) - r, fmin(y0, y1) - r, fmax(x0, x1) + r, fmax(y0, y1) + r)) continue;
+        if (!tt__sgrid_near(c, fmin(x0, x1) - r, fmin(y0, y1) - r, fmax(x0, x1) + r, fmax(y0, y1) + r)) continue;
         double t, nx, ny;
         if (tt__sweep_static(w, c, i, x0, y0, x1, y1, &t, &nx, &ny) < 0) continue;
         w->px[i] = x0 + dx * t;

@@ -424,6 +424,24 @@ tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c)
     return TT_OK;
 }
 
+bool tt__sgrid_near(const tt__collide *c, double lox, double loy, double hix, double hiy)
+{
+    const tt__sgrid *g = &c->sgrid;
+    if (c->nprim == 0) return false;
+    for (uint32_t k = 0; k < g->nbig; k++)
+        if (tt__prim_box_meets(&c->prims[g->big[k]], lox, loy, hix, hiy)) return true;
+    if (g->nx == 0) return false;
+    if (hix < g->ox || hiy < g->oy || lox > g->ox + g->nx * g->cs || loy > g->oy + g->ny * g->cs) return false;
+    int32_t x0, y0, x1, y1;
+    cell_range(g, lox, loy, hix, hiy, &x0, &y0, &x1, &y1);
+    for (int32_t y = y0; y <= y1; y++) { /* the cells of a row are contiguous in items */
+        const uint32_t row = (uint32_t)y * (uint32_t)g->nx;
+        for (uint32_t j = g->start[row + (uint32_t)x0]; j < g->start[row + (uint32_t)x1 + 1]; j++)
+            if (tt__prim_box_meets(&c->prims[g->items[j]], lox, loy, hix, hiy)) return true;
+    }
+    return false;
+}
+
 void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double hiy, tt__prim_visit visit, void *ctx)
 {
     const tt__sgrid *g = &c->sgrid;
