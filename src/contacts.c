@@ -220,6 +220,22 @@ static bool grid_near_shapes(tt__collide *c)
     return true;
 }
 
+/* A pair of per-particle arrays grown to hold n (to the world's capacity
+ * at once); false, the old ones kept, on no memory. */
+static bool grow_xy(const tt_world *w, double **x, double **y, uint32_t *cap, uint32_t n)
+{
+    if (*cap >= n) return true;
+    const uint32_t want = w->pcap > n ? w->pcap : n;
+    double *a = realloc(*x, (size_t)want * sizeof *a);
+    if (!a) return false;
+    *x = a;
+    double *b = realloc(*y, (size_t)want * sizeof *b);
+    if (!b) return false;
+    *y = b;
+    *cap = want;
+    return true;
+}
+
 static void begin(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
@@ -232,16 +248,7 @@ static void begin(tt_world *w, void *self, double h)
     if (!pairs && c->nprim == 0) return;
     const uint32_t n = w->ppool.count;
     /* pre-solve velocities: what restitution and friction measure against */
-    if (c->vcap < n) {
-        uint32_t cap = w->pcap > n ? w->pcap : n;
-        double *a = realloc(c->vx0, (size_t)cap * sizeof *a);
-        if (!a) return;
-        c->vx0 = a;
-        double *b = realloc(c->vy0, (size_t)cap * sizeof *b);
-        if (!b) return;
-        c->vy0 = b;
-        c->vcap = cap;
-    }
+    if (!grow_xy(w, &c->vx0, &c->vy0, &c->vcap, n)) return;
     if (w->integrator == TT_VERLET) {
         const double inv_h = 1.0 / h;
         for (uint32_t i = 0; i < n; i++) {
@@ -253,16 +260,7 @@ static void begin(tt_world *w, void *self, double h)
         memcpy(c->vy0, w->qy, (size_t)n * sizeof *c->vy0);
     }
     if (w->integrator != TT_VERLET) {
-        if (c->scap < n) {
-            uint32_t cap = w->pcap > n ? w->pcap : n;
-            double *a = realloc(c->sx0, (size_t)cap * sizeof *a);
-            if (!a) return;
-            c->sx0 = a;
-            double *b = realloc(c->sy0, (size_t)cap * sizeof *b);
-            if (!b) return;
-            c->sy0 = b;
-            c->scap = cap;
-        }
+        if (!grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return;
         /* the last substep's end positions, unless something moved or appeared since: then x − v·h */
         if (!(c->s_epoch == w->epoch && c->s_count == n)) {
             /* where each integrator started the substep, exact under gravity alone */
@@ -313,14 +311,7 @@ static void begin(tt_world *w, void *self, double h)
             }
         }
         /* where the sweeps start from, for the guard in sweeps_done */
-        if (c->gcap < n) {
-            uint32_t cap = w->pcap > n ? w->pcap : n;
-            double *a = realloc(c->gx0, (size_t)cap * sizeof *a), *b = a ? realloc(c->gy0, (size_t)cap * sizeof *b) : NULL;
-            if (a) c->gx0 = a;
-            if (b) c->gy0 = b;
-            c->gcap = a && b ? cap : 0;
-        }
-        if (n && c->gcap >= n) {
+        if (n && grow_xy(w, &c->gx0, &c->gy0, &c->gcap, n)) {
             memcpy(c->gx0, w->px, (size_t)n * sizeof *c->gx0);
             memcpy(c->gy0, w->py, (size_t)n * sizeof *c->gy0);
             c->guard = true;
