@@ -81,23 +81,25 @@ typedef struct tt__pair { /* 16 bytes: hundreds of thousands are written every s
 typedef struct tt__batches {
     uint32_t *a, *b;      /* particle slots, 4 per batch; padding lanes name np */
     double *rs, *lam;     /* radii sum; normal correction accumulated this substep, m */
+    double *wa, *wb;      /* inverse masses of a and b (0: padding), beside the entry the sweeps read them with */
     uint32_t n, cap;      /* entries (a multiple of 4), room */
     uint8_t *solo;        /* per batch: its lanes share a particle, so they go one by one */
     uint32_t *stamp;      /* planner: per particle slot, the last batch (+ mark) naming it */
     uint32_t stamp_cap, mark;
-    double *pk;           /* rows (simd.h) of particles [0, np) and the padding row np */
-    uint32_t pk_cap, np;
-    double *qk;           /* the velocity pass's rows: x_old, y_old, pre-solve vx, vy */
-    uint32_t qk_cap;
-    bool live;            /* pk holds the positions; w->px, py are stale until tt__batches_release */
+    double *xy;           /* xy rows (simd.h) of particles [0, np) and the padding row np */
+    uint32_t xy_cap, np;
+    double *q, *v0;       /* the velocity pass's xy rows: x_old, y_old; pre-solve vx, vy */
+    uint32_t q_cap, v0_cap;
+    bool live;            /* xy holds the positions; w->px, py are stale until tt__batches_release */
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
 
 /* Lays pairs [0, npairs) out in batches. Part k is, for each of nrows
  * rows, pairs [runs[y·TT__PARTS + k], runs[y·TT__PARTS + k + 1]); runs NULL:
- * TT__PARTS equal parts. False on no memory. */
+ * TT__PARTS equal parts. inv: the particles' inverse masses, which stay
+ * as they are until the substep ends. False on no memory. */
 bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
-                      uint32_t np);
+                      const double *inv, uint32_t np);
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
  * seen. keep: leave the positions in the rows for the next sweep. */
 double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep);

@@ -33,13 +33,15 @@ static bool reserve(tt__batches *B, uint32_t n)
     if (n <= B->cap) return true;
     uint32_t cap = B->cap ? B->cap : 1024;
     while (cap < n) cap = cap > UINT32_MAX / 2 ? n : cap * 2;
-    /* one block: rs and lam (doubles), then a and b, then solo */
-    double *p = malloc((size_t)cap * (2 * sizeof(double) + 2 * sizeof(uint32_t)) + cap / 4);
+    /* one block: rs, lam, wa, wb (doubles), then a and b, then solo */
+    double *p = malloc((size_t)cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + cap / 4);
     if (!p) return false;
     free(B->rs);
     B->rs = p;
     B->lam = p + cap;
-    B->a = (uint32_t *)(p + 2 * (size_t)cap);
+    B->wa = p + 2 * (size_t)cap;
+    B->wb = p + 3 * (size_t)cap;
+    B->a = (uint32_t *)(p + 4 * (size_t)cap);
     B->b = B->a + cap;
     B->solo = (uint8_t *)(B->b + cap);
     B->cap = cap;
@@ -52,7 +54,7 @@ typedef struct cursor {
 } cursor;
 
 bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
-                      uint32_t np)
+                      const double *inv, uint32_t np)
 {
     B->n = 0;
     B->np = np;
@@ -101,7 +103,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
             B->lam[e] = 0.0;
             if (c->p == c->end) { /* the part has no more: padding */
                 B->a[e] = B->b[e] = np;
-                B->rs[e] = 0.0;
+                B->rs[e] = B->wa[e] = B->wb[e] = 0.0;
                 continue;
             }
             const tt__pair *pr = &pairs[c->p++];
@@ -109,6 +111,8 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
             B->a[e] = a;
             B->b[e] = b;
             B->rs[e] = pr->rs;
+            B->wa[e] = inv[a];
+            B->wb[e] = inv[b];
             solo |= B->stamp[a] == id || B->stamp[b] == id;
             B->stamp[a] = B->stamp[b] = id;
         }
@@ -126,16 +130,14 @@ void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny)
     *ny = sin(ang);
 }
 
-/* Entries [k0, k1) in order on positions X, Y and inverse masses W, the
- * particle i's at i·st: the reference every vector lane reproduces. */
-static double solve(const tt__batches *B, double *X, double *Y, const double *W, size_t st, uint32_t k0, uint32_t k1,
-                    double err)
+/* Entries [k0, k1) in order on positions X, Y, the particle i's at i·st:
+ * the reference every vector lane reproduces. */
+static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint32_t k0, uint32_t k1, double err)
 {
     for (uint32_t k = k0; k < k1; k++) {
         const size_t a = B->a[k] * st, b = B->b[k] * st;
-        if (B->a[k] == B->np) continue; /* padding */
-        const double ia = W[a], ib = W[b], ws = ia + ib, rs = B->rs[k];
-        if (ws == 0.0) continue;
+        const double ia = B->wa[k], ib = B->wb[k], ws = ia + ib, rs = B->rs[k];
+        if (ws == 0.0) continue; /* padding too */
         double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
         if (!tt__pair_push(B->a[k], B->b[k], rs, ws, &dx, &dy, &pen, &t)) continue;
         const double ca = t * ia, cb = t * ib;
@@ -153,19 +155,16 @@ static double solve(const tt__batches *B, double *X, double *Y, const double *W,
 /* One batch in "pair form" (as constraints.c: a ymm holds (x, y) of lanes
  * 0 and 2, or of 1 and 3). Returns false, touching nothing, when an active
  * lane has two particles on one centre: the scalar code takes that batch. */
-TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m256d *err)
+TT_AVX2 TT_INLINE bool batch(double *xy, const tt__batches *B, uint32_t k, __m256d *err)
 {
     const uint32_t *A = B->a + k, *Bb = B->b + k;
-    __m256d pa02, wa02, pa13, wa13, pb02, wb02, pb13, wb13;
-    tt__rows_load2(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], &pa02, &wa02);
-    tt__rows_load2(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], &pa13, &wa13);
-    tt__rows_load2(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], &pb02, &wb02);
-    tt__rows_load2(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], &pb13, &wb13);
+    const __m256d pa02 = tt__xy_load2(xy, A[0], A[2]), pa13 = tt__xy_load2(xy, A[1], A[3]);
+    const __m256d pb02 = tt__xy_load2(xy, Bb[0], Bb[2]), pb13 = tt__xy_load2(xy, Bb[1], Bb[3]);
     const __m256d zero = _mm256_setzero_pd();
     const __m256d d02 = _mm256_sub_pd(pa02, pb02), d13 = _mm256_sub_pd(pa13, pb13); /* dx0 dy0 dx2 dy2 */
     const __m256d q02 = _mm256_mul_pd(d02, d02), q13 = _mm256_mul_pd(d13, d13);
     const __m256d d2 = _mm256_add_pd(_mm256_unpacklo_pd(q02, q13), _mm256_unpackhi_pd(q02, q13)); /* lanes 0 1 2 3 */
-    const __m256d wa = _mm256_blend_pd(wa02, wa13, 0xA), wb = _mm256_blend_pd(wb02, wb13, 0xA);
+    const __m256d wa = _mm256_loadu_pd(B->wa + k), wb = _mm256_loadu_pd(B->wb + k);
     const __m256d ws = _mm256_add_pd(wa, wb), rs = _mm256_loadu_pd(B->rs + k);
     const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(d2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ));
     /* no early exit when no lane is in contact: in a pile that branch is a coin toss, and a
@@ -174,32 +173,27 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
     const __m256d d = _mm256_sqrt_pd(d2), pen = _mm256_sub_pd(rs, d), one = _mm256_set1_pd(1.0);
     /* a lane out of contact divides by 1: no division by zero the scalar code would not do */
     const __m256d t = _mm256_div_pd(pen, _mm256_blendv_pd(one, _mm256_mul_pd(ws, d), act));
-    const __m256d ca = _mm256_mul_pd(t, wa), cb = _mm256_mul_pd(t, wb);
-    __m256d na02 = _mm256_add_pd(pa02, _mm256_mul_pd(d02, _mm256_unpacklo_pd(ca, ca)));
-    __m256d na13 = _mm256_add_pd(pa13, _mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)));
-    __m256d nb02 = _mm256_sub_pd(pb02, _mm256_mul_pd(d02, _mm256_unpacklo_pd(cb, cb)));
-    __m256d nb13 = _mm256_sub_pd(pb13, _mm256_mul_pd(d13, _mm256_unpackhi_pd(cb, cb)));
-    const __m256d u02 = _mm256_unpacklo_pd(act, act), u13 = _mm256_unpackhi_pd(act, act); /* out of contact: as was */
-    na02 = _mm256_blendv_pd(pa02, na02, u02);
-    na13 = _mm256_blendv_pd(pa13, na13, u13);
-    nb02 = _mm256_blendv_pd(pb02, nb02, u02);
-    nb13 = _mm256_blendv_pd(pb13, nb13, u13);
-    tt__rows_store2w(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], na02, wa02);
-    tt__rows_store2w(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], na13, wa13);
-    tt__rows_store2w(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], nb02, wb02);
-    tt__rows_store2w(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], nb13, wb13);
-    const __m256d lam = _mm256_loadu_pd(B->lam + k);
-    _mm256_storeu_pd(B->lam + k, _mm256_blendv_pd(lam, _mm256_add_pd(lam, pen), act));
-    *err = _mm256_max_pd(*err, _mm256_and_pd(pen, act));
+    /* lane by lane x_a + dx·t·w_a as x_a − dx·(t·(−w_a)), the same rounding; a lane out of
+     * contact subtracts +0, which leaves any x as it was (adding 0 would turn −0 into +0) */
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    const __m256d ca = _mm256_mul_pd(t, _mm256_xor_pd(wa, sign)), cb = _mm256_mul_pd(t, wb);
+    const __m256d u02 = _mm256_unpacklo_pd(act, act), u13 = _mm256_unpackhi_pd(act, act);
+    tt__xy_store2(xy, A[0], A[2], _mm256_sub_pd(pa02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(ca, ca)), u02)));
+    tt__xy_store2(xy, A[1], A[3], _mm256_sub_pd(pa13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)), u13)));
+    tt__xy_store2(xy, Bb[0], Bb[2], _mm256_sub_pd(pb02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(cb, cb)), u02)));
+    tt__xy_store2(xy, Bb[1], Bb[3], _mm256_sub_pd(pb13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(cb, cb)), u13)));
+    const __m256d got = _mm256_and_pd(pen, act); /* lam ≥ +0 stays as it was plus +0 */
+    _mm256_storeu_pd(B->lam + k, _mm256_add_pd(_mm256_loadu_pd(B->lam + k), got));
+    *err = _mm256_max_pd(*err, got);
     return true;
 }
 
 TT_AVX2 TT_INLINE double batches_run(tt__batches *B)
 {
-    double *pk = B->pk, err = 0.0;
+    double *xy = B->xy, err = 0.0;
     __m256d e = _mm256_setzero_pd();
     for (uint32_t k = 0; k < B->n; k += 4)
-        if (B->solo[k / 4] || !batch(pk, B, k, &e)) err = solve(B, pk, pk + 1, pk + 2, 4, k, k + 4, err);
+        if (B->solo[k / 4] || !batch(xy, B, k, &e)) err = solve(B, xy, xy + 1, 2, k, k + 4, err);
     double l[4];
     _mm256_storeu_pd(l, e);
     for (int j = 0; j < 4; j++)
@@ -212,8 +206,8 @@ TT_AVX2 static double run_avx2(tt__batches *B) { return batches_run(B); }
 TT_AVX512 static double run_avx512(tt__batches *B) { return batches_run(B); }
 
 /* pair_end's Verlet arithmetic (contacts.c, with respond), lane by lane in
- * the same order, in pair form on rows: pk (x, y, w, w) and qk (x_old,
- * y_old, pre-solve vx, vy). The normal from the final positions,
+ * the same order, in pair form on xy rows: positions, (x_old, y_old) and
+ * the pre-solve (vx, vy). The normal from the final positions,
  * restitution or no approach (settled: no more separation than before the
  * sweeps), Coulomb friction (sticking undoes the tangential slide, sliding
  * removes μk·Δvn), then x moved by the slide undone and x_old by the
@@ -226,14 +220,12 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d lam = _mm256_loadu_pd(B->lam + k);
     const __m256d live = _mm256_cmp_pd(lam, zero, _CMP_GT_OQ);
     if (!_mm256_movemask_pd(live)) return true;
-    double *pk = B->pk, *qk = B->qk;
+    double *xy = B->xy, *q = B->q;
+    const double *v0 = B->v0;
     const uint32_t *A = B->a + k, *Bb = B->b + k;
-    __m256d pa02, wa02, pa13, wa13, pb02, wb02, pb13, wb13, qa02, va02, qa13, va13, qb02, vb02, qb13, vb13;
-    tt__rows_load2(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], &pa02, &wa02);
-    tt__rows_load2(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], &pa13, &wa13);
-    tt__rows_load2(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], &pb02, &wb02);
-    tt__rows_load2(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], &pb13, &wb13);
-    const __m256d ia = _mm256_blend_pd(wa02, wa13, 0xA), ib = _mm256_blend_pd(wb02, wb13, 0xA), ws = _mm256_add_pd(ia, ib);
+    const __m256d pa02 = tt__xy_load2(xy, A[0], A[2]), pa13 = tt__xy_load2(xy, A[1], A[3]);
+    const __m256d pb02 = tt__xy_load2(xy, Bb[0], Bb[2]), pb13 = tt__xy_load2(xy, Bb[1], Bb[3]);
+    const __m256d ia = _mm256_loadu_pd(B->wa + k), ib = _mm256_loadu_pd(B->wb + k), ws = _mm256_add_pd(ia, ib);
     const __m256d act = _mm256_and_pd(live, _mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ));
     const int m = _mm256_movemask_pd(act);
     if (!m) return true;
@@ -241,10 +233,10 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d s02 = _mm256_mul_pd(d02, d02), s13 = _mm256_mul_pd(d13, d13);
     const __m256d d2 = _mm256_add_pd(_mm256_unpacklo_pd(s02, s13), _mm256_unpackhi_pd(s02, s13));
     if (_mm256_movemask_pd(_mm256_and_pd(act, _mm256_cmp_pd(d2, zero, _CMP_NGT_UQ)))) return false; /* one centre */
-    tt__rows_load2(qk, 4 * (size_t)A[0], 4 * (size_t)A[2], &qa02, &va02);
-    tt__rows_load2(qk, 4 * (size_t)A[1], 4 * (size_t)A[3], &qa13, &va13);
-    tt__rows_load2(qk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], &qb02, &vb02);
-    tt__rows_load2(qk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], &qb13, &vb13);
+    const __m256d qa02 = tt__xy_load2(q, A[0], A[2]), qa13 = tt__xy_load2(q, A[1], A[3]);
+    const __m256d qb02 = tt__xy_load2(q, Bb[0], Bb[2]), qb13 = tt__xy_load2(q, Bb[1], Bb[3]);
+    const __m256d va02 = tt__xy_load2(v0, A[0], A[2]), va13 = tt__xy_load2(v0, A[1], A[3]);
+    const __m256d vb02 = tt__xy_load2(v0, Bb[0], Bb[2]), vb13 = tt__xy_load2(v0, Bb[1], Bb[3]);
     const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(dtp);
     /* lanes out of play divide by 1 (no exception the scalar code would not raise) */
     const __m256d iws = _mm256_div_pd(one, _mm256_blendv_pd(one, ws, act)), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
@@ -290,18 +282,18 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d wa02l = LO(wa), wa13l = HI(wa), wb02l = LO(wb), wb13l = HI(wb);
     const __m256d hs02 = _mm256_mul_pd(st02, h), hs13 = _mm256_mul_pd(st13, h);
     const __m256d nhs02 = _mm256_mul_pd(_mm256_xor_pd(st02, sign), h), nhs13 = _mm256_mul_pd(_mm256_xor_pd(st13, sign), h);
-    tt__rows_store2w(pk, 4 * (size_t)A[0], 4 * (size_t)A[2], _mm256_blendv_pd(pa02, _mm256_sub_pd(pa02, _mm256_mul_pd(hs02, wa02l)), sl02), wa02);
-    tt__rows_store2w(pk, 4 * (size_t)A[1], 4 * (size_t)A[3], _mm256_blendv_pd(pa13, _mm256_sub_pd(pa13, _mm256_mul_pd(hs13, wa13l)), sl13), wa13);
-    tt__rows_store2w(pk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], _mm256_blendv_pd(pb02, _mm256_sub_pd(pb02, _mm256_mul_pd(nhs02, wb02l)), sl02), wb02);
-    tt__rows_store2w(pk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], _mm256_blendv_pd(pb13, _mm256_sub_pd(pb13, _mm256_mul_pd(nhs13, wb13l)), sl13), wb13);
+    tt__xy_store2(xy, A[0], A[2], _mm256_blendv_pd(pa02, _mm256_sub_pd(pa02, _mm256_mul_pd(hs02, wa02l)), sl02));
+    tt__xy_store2(xy, A[1], A[3], _mm256_blendv_pd(pa13, _mm256_sub_pd(pa13, _mm256_mul_pd(hs13, wa13l)), sl13));
+    tt__xy_store2(xy, Bb[0], Bb[2], _mm256_blendv_pd(pb02, _mm256_sub_pd(pb02, _mm256_mul_pd(nhs02, wb02l)), sl02));
+    tt__xy_store2(xy, Bb[1], Bb[3], _mm256_blendv_pd(pb13, _mm256_sub_pd(pb13, _mm256_mul_pd(nhs13, wb13l)), sl13));
     const __m256d qa02n = _mm256_sub_pd(qa02, _mm256_mul_pd(_mm256_mul_pd(dv02, wa02l), dt));
     const __m256d qa13n = _mm256_sub_pd(qa13, _mm256_mul_pd(_mm256_mul_pd(dv13, wa13l), dt));
     const __m256d qb02n = _mm256_sub_pd(qb02, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dv02, sign), wb02l), dt));
     const __m256d qb13n = _mm256_sub_pd(qb13, _mm256_mul_pd(_mm256_mul_pd(_mm256_xor_pd(dv13, sign), wb13l), dt));
-    tt__rows_store2w(qk, 4 * (size_t)A[0], 4 * (size_t)A[2], _mm256_blendv_pd(qa02, qa02n, m02), va02);
-    tt__rows_store2w(qk, 4 * (size_t)A[1], 4 * (size_t)A[3], _mm256_blendv_pd(qa13, qa13n, m13), va13);
-    tt__rows_store2w(qk, 4 * (size_t)Bb[0], 4 * (size_t)Bb[2], _mm256_blendv_pd(qb02, qb02n, m02), vb02);
-    tt__rows_store2w(qk, 4 * (size_t)Bb[1], 4 * (size_t)Bb[3], _mm256_blendv_pd(qb13, qb13n, m13), vb13);
+    tt__xy_store2(q, A[0], A[2], _mm256_blendv_pd(qa02, qa02n, m02));
+    tt__xy_store2(q, A[1], A[3], _mm256_blendv_pd(qa13, qa13n, m13));
+    tt__xy_store2(q, Bb[0], Bb[2], _mm256_blendv_pd(qb02, qb02n, m02));
+    tt__xy_store2(q, Bb[1], Bb[3], _mm256_blendv_pd(qb13, qb13n, m13));
 #undef LO
 #undef HI
 #undef LANES
@@ -317,7 +309,7 @@ static void sync_batch(tt_world *w, tt__batches *B, uint32_t k, bool to_world)
         for (int s = 0; s < 2; s++) {
             const uint32_t i = ids[s];
             if (i >= B->np) continue; /* padding */
-            double *p = B->pk + 4 * (size_t)i, *q = B->qk + 4 * (size_t)i;
+            double *p = B->xy + 2 * (size_t)i, *q = B->q + 2 * (size_t)i;
             if (to_world) {
                 w->px[i] = p[0], w->py[i] = p[1], w->qx[i] = q[0], w->qy[i] = q[1];
             } else {
@@ -355,16 +347,18 @@ bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, 
 {
 #ifdef TT_SIMD_X86
     const uint8_t kind = tt__simd_kind(B->simd);
-    if (kind == TT__SIMD_SCALAR || B->live || !tt__rows_reserve(&B->pk, &B->pk_cap, B->np + 1) ||
-        !tt__rows_reserve(&B->qk, &B->qk_cap, B->np + 1))
+    const uint32_t np = B->np;
+    if (kind == TT__SIMD_SCALAR || B->live || !tt__xy_reserve(&B->xy, &B->xy_cap, np + 1) ||
+        !tt__xy_reserve(&B->q, &B->q_cap, np + 1) || !tt__xy_reserve(&B->v0, &B->v0_cap, np + 1))
         return false;
-    tt__rows_pack(B->pk, w->px, w->py, w->inv_mass, B->np);
-    tt__rows_pack4(B->qk, w->qx, w->qy, in->vx0, in->vy0, B->np);
-    for (int j = 0; j < 4; j++) B->pk[4 * (size_t)B->np + j] = B->qk[4 * (size_t)B->np + j] = 0.0; /* padding: no mass */
+    tt__xy_pack(B->xy, w->px, w->py, np);
+    tt__xy_pack(B->q, w->qx, w->qy, np);
+    tt__xy_pack(B->v0, in->vx0, in->vy0, np);
+    for (int j = 0; j < 2; j++) B->xy[2 * (size_t)np + j] = B->q[2 * (size_t)np + j] = B->v0[2 * (size_t)np + j] = 0.0; /* padding */
     if (kind == TT__SIMD_AVX512) respond_avx512(w, B, in, one, ctx);
     else respond_avx2(w, B, in, one, ctx);
-    tt__rows_unpack(B->pk, w->px, w->py, B->np);
-    tt__rows_unpack(B->qk, w->qx, w->qy, B->np);
+    tt__xy_unpack(B->xy, w->px, w->py, np);
+    tt__xy_unpack(B->q, w->qx, w->qy, np);
     return true;
 #else
     (void)w, (void)B, (void)in, (void)one, (void)ctx;
@@ -375,19 +369,18 @@ bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, 
 double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep)
 {
     const uint8_t kind = tt__simd_kind(B->simd);
-    if (kind == TT__SIMD_SCALAR || !tt__rows_reserve(&B->pk, &B->pk_cap, B->np + 1)) {
+    if (kind == TT__SIMD_SCALAR || !tt__xy_reserve(&B->xy, &B->xy_cap, B->np + 1)) {
         tt__batches_release(w, B);
-        return solve(B, w->px, w->py, w->inv_mass, 1, 0, B->n, 0.0);
+        return solve(B, w->px, w->py, 1, 0, B->n, 0.0);
     }
 #ifdef TT_SIMD_X86
     if (!B->live) {
-        tt__rows_pack(B->pk, w->px, w->py, w->inv_mass, B->np);
-        double *pad = B->pk + 4 * (size_t)B->np; /* no mass: never active */
-        pad[0] = pad[1] = pad[2] = pad[3] = 0.0;
+        tt__xy_pack(B->xy, w->px, w->py, B->np);
+        B->xy[2 * (size_t)B->np] = B->xy[2 * (size_t)B->np + 1] = 0.0; /* padding: no mass, never active */
     }
     const double err = kind == TT__SIMD_AVX512 ? run_avx512(B) : run_avx2(B);
     B->live = keep;
-    if (!keep) tt__rows_unpack(B->pk, w->px, w->py, B->np);
+    if (!keep) tt__xy_unpack(B->xy, w->px, w->py, B->np);
     return err;
 #else
     (void)keep; /* never reached: no vector kind without TT_SIMD_X86 */
@@ -397,7 +390,7 @@ double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep)
 
 void tt__batches_release(tt_world *w, tt__batches *B)
 {
-    if (B->live) tt__rows_unpack(B->pk, w->px, w->py, B->np);
+    if (B->live) tt__xy_unpack(B->xy, w->px, w->py, B->np);
     B->live = false;
 }
 
@@ -405,14 +398,16 @@ void tt__batches_free(tt__batches *B)
 {
     free(B->rs);
     free(B->stamp);
-    free(B->pk);
-    free(B->qk);
+    free(B->xy);
+    free(B->q);
+    free(B->v0);
     memset(B, 0, sizeof *B);
 }
 
 size_t tt__batches_bytes(const tt__batches *B)
 {
-    return (size_t)B->cap * (2 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) + ((size_t)B->pk_cap + B->qk_cap) * 4 * sizeof(double);
+    return (size_t)B->cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
+           ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double);
 }
 
 bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode)

@@ -288,7 +288,7 @@ static void begin(tt_world *w, void *self, double h)
         if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
         /* batches pay for their planning from the second sweep on */
         c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
-                     tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, n);
+                     tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, w->inv_mass, n);
     }
     if (c->nprim) {
         detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
@@ -373,9 +373,9 @@ static double relax(tt_world *w, void *self, double h)
     if (c->batched) { /* Gauss-Seidel, several sweeps */
         err = tt__batches_sweep(w, &c->bat, w->group_count == 1); /* rows kept while nothing else sweeps */
         if (c->bat.live) {
-            X = c->bat.pk;
-            Y = c->bat.pk + 1;
-            st = 4;
+            X = c->bat.xy;
+            Y = c->bat.xy + 1;
+            st = 2;
         }
     } else {
         const double *inv = w->inv_mass;

@@ -19,16 +19,19 @@ uint8_t tt__simd_kind(uint8_t m)
 #endif
 }
 
-bool tt__rows_reserve(double **pk, uint32_t *cap, uint32_t np)
+static bool reserve(double **pk, uint32_t *cap, uint32_t np, size_t width)
 {
     if (np <= *cap) return true;
-    double *p = aligned_alloc(32, (size_t)np * 4 * sizeof(double)); /* the contents are made by the sweeps */
+    double *p = aligned_alloc(32, (size_t)np * width * sizeof(double)); /* the contents are made by the sweeps */
     if (!p) return false;
     free(*pk);
     *pk = p;
     *cap = np;
     return true;
 }
+
+bool tt__rows_reserve(double **pk, uint32_t *cap, uint32_t np) { return reserve(pk, cap, np, 4); }
+bool tt__xy_reserve(double **xy, uint32_t *cap, uint32_t np) { return reserve(xy, cap, np + (np & 1), 2); }
 
 #ifdef TT_SIMD_X86
 TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32_t np)
@@ -96,5 +99,50 @@ void tt__rows_pack4(double *pk, const double *a, const double *b, const double *
         r[2] = c[i];
         r[3] = d[i];
     }
+#endif
+}
+
+#ifdef TT_SIMD_X86
+TT_AVX2 static void xy_pack_avx2(double *xy, const double *a, const double *b, uint32_t np)
+{
+    uint32_t i = 0;
+    for (; i + 4 <= np; i += 4) {
+        const __m256d va = _mm256_loadu_pd(a + i), vb = _mm256_loadu_pd(b + i);
+        const __m256d lo = _mm256_unpacklo_pd(va, vb), hi = _mm256_unpackhi_pd(va, vb); /* a0 b0 a2 b2 | a1 b1 a3 b3 */
+        _mm256_store_pd(xy + 2 * (size_t)i, _mm256_permute2f128_pd(lo, hi, 0x20));
+        _mm256_store_pd(xy + 2 * (size_t)i + 4, _mm256_permute2f128_pd(lo, hi, 0x31));
+    }
+    for (; i < np; i++) xy[2 * (size_t)i] = a[i], xy[2 * (size_t)i + 1] = b[i];
+}
+
+TT_AVX2 static void xy_unpack_avx2(const double *xy, double *a, double *b, uint32_t np)
+{
+    uint32_t i = 0;
+    for (; i + 4 <= np; i += 4) {
+        const __m256d r0 = _mm256_load_pd(xy + 2 * (size_t)i), r1 = _mm256_load_pd(xy + 2 * (size_t)i + 4);
+        const __m256d lo = _mm256_permute2f128_pd(r0, r1, 0x20), hi = _mm256_permute2f128_pd(r0, r1, 0x31);
+        _mm256_storeu_pd(a + i, _mm256_unpacklo_pd(lo, hi));
+        _mm256_storeu_pd(b + i, _mm256_unpackhi_pd(lo, hi));
+    }
+    for (; i < np; i++) a[i] = xy[2 * (size_t)i], b[i] = xy[2 * (size_t)i + 1];
+}
+#endif
+
+/* Like the rows: only made where a vector sweep runs. */
+void tt__xy_pack(double *xy, const double *a, const double *b, uint32_t np)
+{
+#ifdef TT_SIMD_X86
+    xy_pack_avx2(xy, a, b, np);
+#else
+    for (uint32_t i = 0; i < np; i++) xy[2 * (size_t)i] = a[i], xy[2 * (size_t)i + 1] = b[i];
+#endif
+}
+
+void tt__xy_unpack(const double *xy, double *a, double *b, uint32_t np)
+{
+#ifdef TT_SIMD_X86
+    xy_unpack_avx2(xy, a, b, np);
+#else
+    for (uint32_t i = 0; i < np; i++) a[i] = xy[2 * (size_t)i], b[i] = xy[2 * (size_t)i + 1];
 #endif
 }

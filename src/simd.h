@@ -1,7 +1,8 @@
 /* tether — what the SIMD sweeps share (constraints.c, contact_batch.c):
  * the runtime choice of vector width, and "rows": a packed copy of x, y and
  * inverse mass, one 32-byte row (x, y, w, w) per particle, so a particle is
- * one vector load and one store. Kernels that give bit-identical results to
+ * one vector load and one store; or "xy rows", (x, y) alone in 16 bytes,
+ * for sweeps that keep the inverse masses beside their own entries. Kernels that give bit-identical results to
  * their scalar loops do the scalar arithmetic lane by lane (no FMA: the
  * build has -ffp-contract=off and these targets enable none). */
 #ifndef TT_SIMD_H
@@ -40,6 +41,21 @@ TT_AVX2 TT_INLINE void tt__rows_store2w(double *pk, size_t r0, size_t r1, __m256
     _mm256_store_pd(pk + r1, _mm256_permute2f128_pd(p, w, 0x31));
 }
 
+/* xy rows of particles i0, i1 into (x0, y0, x1, y1): the second half goes
+ * in with a load-and-insert, no lane-crossing shuffle. */
+TT_AVX2 TT_INLINE __m256d tt__xy_load2(const double *xy, size_t i0, size_t i1)
+{
+    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(xy + 2 * i0)), _mm_load_pd(xy + 2 * i1), 1);
+}
+
+/* (x0, y0, x1, y1) back into xy rows i0, i1: stores the size of the loads,
+ * so the next load of either row is served from its store. */
+TT_AVX2 TT_INLINE void tt__xy_store2(double *xy, size_t i0, size_t i1, __m256d v)
+{
+    _mm_store_pd(xy + 2 * i0, _mm256_castpd256_pd128(v));
+    _mm_store_pd(xy + 2 * i1, _mm256_extractf128_pd(v, 1));
+}
+
 /* (x, y) of both back into rows r0, r1; their w stays. */
 TT_AVX2 TT_INLINE void tt__rows_store2(double *pk, size_t r0, size_t r1, __m256d v)
 {
@@ -58,5 +74,10 @@ void tt__rows_pack(double *pk, const double *px, const double *py, const double 
 void tt__rows_unpack(const double *pk, double *px, double *py, uint32_t np);
 /* Any four arrays into rows (a, b, c, d); tt__rows_unpack takes a, b back. */
 void tt__rows_pack4(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np);
+
+/* Room for xy rows [0, np), 16-byte aligned; a, b of [0, np) into them and back. */
+bool tt__xy_reserve(double **xy, uint32_t *cap, uint32_t np);
+void tt__xy_pack(double *xy, const double *a, const double *b, uint32_t np);
+void tt__xy_unpack(const double *xy, double *a, double *b, uint32_t np);
 
 #endif
