@@ -237,7 +237,7 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d qb02 = tt__xy_load2(q, Bb[0], Bb[2]), qb13 = tt__xy_load2(q, Bb[1], Bb[3]);
     const __m256d va02 = tt__xy_load2(v0, A[0], A[2]), va13 = tt__xy_load2(v0, A[1], A[3]);
     const __m256d vb02 = tt__xy_load2(v0, Bb[0], Bb[2]), vb13 = tt__xy_load2(v0, Bb[1], Bb[3]);
-    const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(dtp);
+    const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(dtp), idt = _mm256_set1_pd(1.0 / dtp);
     /* lanes out of play divide by 1 (no exception the scalar code would not raise) */
     const __m256d iws = _mm256_div_pd(one, _mm256_blendv_pd(one, ws, act)), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
     const __m256d id = _mm256_div_pd(one, _mm256_sqrt_pd(_mm256_blendv_pd(one, d2, act)));
@@ -245,9 +245,9 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
 #define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
 #define LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
     const __m256d n02 = _mm256_mul_pd(d02, LO(id)), n13 = _mm256_mul_pd(d13, HI(id));
-    /* relative velocity (va − vb), each (x − x_old)/dt as tt__velocity; and before the sweeps */
-    const __m256d r02 = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pa02, qa02), dt), _mm256_div_pd(_mm256_sub_pd(pb02, qb02), dt));
-    const __m256d r13 = _mm256_sub_pd(_mm256_div_pd(_mm256_sub_pd(pa13, qa13), dt), _mm256_div_pd(_mm256_sub_pd(pb13, qb13), dt));
+    /* relative velocity ((xa − xa_old) − (xb − xb_old))·(1/dt), as pair_end; and before the sweeps */
+    const __m256d r02 = _mm256_mul_pd(_mm256_sub_pd(_mm256_sub_pd(pa02, qa02), _mm256_sub_pd(pb02, qb02)), idt);
+    const __m256d r13 = _mm256_mul_pd(_mm256_sub_pd(_mm256_sub_pd(pa13, qa13), _mm256_sub_pd(pb13, qb13)), idt);
     const __m256d o02 = _mm256_sub_pd(va02, vb02), o13 = _mm256_sub_pd(va13, vb13);
     const __m256d vn0 = LANES(_mm256_mul_pd(o02, n02), _mm256_mul_pd(o13, n13));
     const __m256d vn = LANES(_mm256_mul_pd(r02, n02), _mm256_mul_pd(r13, n13));

@@ -503,11 +503,19 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
     }
     double mus = c->mat ? sqrt(mat(c, a, 1) * mat(c, b, 1)) : c->set.friction_static;
     double muk = c->mat ? sqrt(mat(c, a, 2) * mat(c, b, 2)) : c->set.friction_kinetic;
-    tt_vec2 va = tt__velocity(w, a), vb = tt__velocity(w, b);
+    double rvx, rvy; /* velocity of a relative to b; Verlet: the displacements' difference times 1/dt */
+    if (w->integrator == TT_VERLET) {
+        const double idt = 1.0 / w->dt_prev;
+        rvx = ((w->px[a] - w->qx[a]) - (w->px[b] - w->qx[b])) * idt;
+        rvy = ((w->py[a] - w->qy[a]) - (w->py[b] - w->qy[b])) * idt;
+    } else {
+        rvx = w->qx[a] - w->qx[b];
+        rvy = w->qy[a] - w->qy[b];
+    }
     double ea = mat(c, a, 0), eb = mat(c, b, 0), e = ea > eb ? ea : eb;
     double dvx, dvy, sx, sy, dvn;
-    respond(va.x - vb.x, va.y - vb.y, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr,
-            &dvx, &dvy, &sx, &sy, &dvn);
+    respond(rvx, rvy, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr, &dvx, &dvy, &sx, &sy,
+            &dvn);
     if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
         unslide(w, c, a, h, nx, ny, wa, sx, sy);
         unslide(w, c, b, h, nx, ny, wb, -sx, -sy);
