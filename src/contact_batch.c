@@ -89,9 +89,14 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
         memset(B->stamp, 0, (size_t)np * sizeof *B->stamp);
         B->mark = 1;
     }
+    /* locals: the stores below could otherwise alias B's fields */
+    uint32_t *restrict A = B->a, *restrict Bb = B->b, *restrict stamp = B->stamp;
+    double *restrict rs = B->rs, *restrict wa = B->wa, *restrict wb = B->wb;
+    uint8_t *restrict solo = B->solo;
+    memset(B->lam, 0, (size_t)nb * 4 * sizeof *B->lam);
     for (uint32_t t = 0; t < nb; t++) {
         const uint32_t s0 = (t % (TT__PARTS / 4)) * 4, id = B->mark + t;
-        bool solo = false;
+        bool shared = false;
         for (uint32_t s = s0; s < s0 + 4; s++) {
             cursor *c = &cur[s];
             while (c->p == c->end && c->y + 1 < nrows) { /* the part's run in the next row */
@@ -100,23 +105,22 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
                 c->end = runs[c->y * TT__PARTS + s + 1];
             }
             const uint32_t e = 4 * t + s - s0;
-            B->lam[e] = 0.0;
             if (c->p == c->end) { /* the part has no more: padding */
-                B->a[e] = B->b[e] = np;
-                B->rs[e] = B->wa[e] = B->wb[e] = 0.0;
+                A[e] = Bb[e] = np;
+                rs[e] = wa[e] = wb[e] = 0.0;
                 continue;
             }
             const tt__pair *pr = &pairs[c->p++];
             const uint32_t a = pr->a, b = pr->b;
-            B->a[e] = a;
-            B->b[e] = b;
-            B->rs[e] = pr->rs;
-            B->wa[e] = inv[a];
-            B->wb[e] = inv[b];
-            solo |= B->stamp[a] == id || B->stamp[b] == id;
-            B->stamp[a] = B->stamp[b] = id;
+            A[e] = a;
+            Bb[e] = b;
+            rs[e] = pr->rs;
+            wa[e] = inv[a];
+            wb[e] = inv[b];
+            shared |= stamp[a] == id || stamp[b] == id;
+            stamp[a] = stamp[b] = id;
         }
-        B->solo[t] = solo;
+        solo[t] = shared;
     }
     B->mark += nb;
     B->n = 4 * nb;
