@@ -167,11 +167,11 @@ TT_INLINE bool push_pair(tt__collide *c, emit *e, uint32_t a, uint32_t b, double
 /* A hit of sorted particle a (slot; kbits its flags) with sorted j: the
  * filter, then the list. plain: nothing but two pinned particles can exclude
  * a pair (one layer, no exclusions), so the full filter is skipped. */
-TT_INLINE bool hit(tt_world *w, tt__collide *c, emit *e, const tt__grid *g, bool plain, uint32_t a, uint8_t kbits,
-                   uint32_t j, double rs)
+TT_INLINE bool hit(tt_world *w, tt__collide *c, emit *e, const uint32_t *idx, const uint8_t *gbits, bool plain,
+                   uint32_t a, uint8_t kbits, uint32_t j, double rs)
 {
-    uint32_t b = g->idx[j];
-    if (plain ? kbits & g->bits[j] & TT__GRID_PINNED : !tt__pair_filter(w, c, a, b)) return true;
+    uint32_t b = idx[j];
+    if (plain ? kbits & gbits[j] & TT__GRID_PINNED : !tt__pair_filter(w, c, a, b)) return true;
     return push_pair(c, e, a, b, rs);
 }
 
@@ -182,13 +182,15 @@ TT_INLINE bool range_scalar(tt_world *w, tt__collide *c, emit *e, const tt__grid
                             uint32_t j0, uint32_t j1)
 {
     const double *sx = g->sx, *sy = g->sy, *sr = g->sr;
+    const uint32_t *idx = g->idx; /* read once: the pair stores could alias them */
+    const uint8_t *gbits = g->bits;
     const double x = sx[k], y = sy[k], r = sr[k];
-    const uint32_t a = g->idx[k]; /* read once: the pair stores could alias it */
+    const uint32_t a = idx[k];
     const uint8_t kbits = g->bits[k];
     for (uint32_t j = j0; j < j1; j++) {
         double dx = x - sx[j], dy = y - sy[j], rs = r + sr[j];
         if (dx * dx + dy * dy >= rs * rs * TT__MARGIN2 || rs == 0.0) continue;
-        if (!hit(w, c, e, g, plain, a, kbits, j, rs)) return false;
+        if (!hit(w, c, e, idx, gbits, plain, a, kbits, j, rs)) return false;
     }
     return true;
 }
@@ -203,8 +205,10 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
                                   uint32_t k, uint32_t j0, uint32_t j1)
 {
     const double *sx = g->sx, *sy = g->sy, *sr = g->sr;
+    const uint32_t *idx = g->idx; /* read once: the pair stores could alias them */
+    const uint8_t *gbits = g->bits;
     const double r = sr[k];
-    const uint32_t a = g->idx[k];
+    const uint32_t a = idx[k];
     const uint8_t kbits = g->bits[k];
     const __m256d x = _mm256_set1_pd(sx[k]), y = _mm256_set1_pd(sy[k]), vr = _mm256_set1_pd(r);
     const __m256d f = _mm256_set1_pd(TT__MARGIN2), zero = _mm256_setzero_pd();
@@ -219,7 +223,7 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
         while (bits) {
             uint32_t jj = j + (uint32_t)__builtin_ctz(bits);
             bits &= bits - 1;
-            if (!hit(w, c, e, g, plain, a, kbits, jj, r + sr[jj])) return false;
+            if (!hit(w, c, e, idx, gbits, plain, a, kbits, jj, r + sr[jj])) return false;
         }
     }
     return true;
