@@ -474,8 +474,9 @@ TEST(collision_api_refuses_bad_input)
 /* A pile that reaches every branch of the batched pair sweep and velocity
  * pass (bounce, no approach, stick, slide): radii 0.2 to
  * 0.6, a pinned row (pairs of two pinned particles are left out, a pinned
- * and a free one are solved), pairs on one centre (the batch goes to the
- * scalar code), particles removed and added while it settles. Returns the
+ * and a free one are solved), a pinned particle at x = −0, pairs on one
+ * centre (the batch goes to the scalar code), particles removed and added
+ * while it settles. Returns the
  * world hash folded with every step's largest error; *pairs: pair contacts
  * in the last substep. */
 static uint64_t batch_scene(tt__simd_mode mode, uint32_t *pairs)
@@ -498,6 +499,18 @@ static uint64_t batch_scene(tt__simd_mode mode, uint32_t *pairs)
     sd.a = (tt_vec2){-11, 0}; sd.b = (tt_vec2){-10, 60};  tt_shape_create(w, &sd);
     sd.a = (tt_vec2){10, 0}; sd.b = (tt_vec2){11, 60};    tt_shape_create(w, &sd);
     tt_particle_def pd = tt_particle_def_default();
+    /* first, pinned at x = −0, with free ones east and north of it just out of touch (pairs
+     * in which it comes first, no overlap): a lane that leaves a particle where it was must
+     * leave the sign of its zero */
+    pd.radius = 0.3;
+    pd.pinned = true;
+    pd.position = (tt_vec2){-0.0, 100.0};
+    tt_particle_create(w, &pd);
+    pd.pinned = false;
+    pd.position = (tt_vec2){0.63, 100.0};
+    tt_particle_create(w, &pd);
+    pd.position = (tt_vec2){0.0, 100.63};
+    tt_particle_create(w, &pd);
     tt_particle ps[900];
     uint64_t r = 99;
     for (int i = 0; i < 900; i++) {
