@@ -51,10 +51,6 @@ TT_AVX2 static void unpack_avx2(const double *pk, double *px, double *py, uint32
 }
 #endif
 
-void tt__rows_pack(double *pk, const double *px, const double *py, const double *im, uint32_t np)
-{
-    tt__rows_pack4(pk, px, py, im, im, np);
-}
 
 void tt__rows_unpack(const double *pk, double *px, double *py, uint32_t np)
 {
@@ -87,17 +83,16 @@ TT_AVX2 static void pack4_avx2(double *pk, const double *a, const double *b, con
 #endif
 
 /* Rows are only made where a vector sweep runs, so AVX2 is there (unpack too). */
-void tt__rows_pack4(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np)
+void tt__rows_pack(double *pk, const double *px, const double *py, const double *im, uint32_t np)
 {
 #ifdef TT_SIMD_X86
-    pack4_avx2(pk, a, b, c, d, np);
+    pack4_avx2(pk, px, py, im, im, np);
 #else
     for (uint32_t i = 0; i < np; i++) {
         double *r = pk + 4 * (size_t)i;
-        r[0] = a[i];
-        r[1] = b[i];
-        r[2] = c[i];
-        r[3] = d[i];
+        r[0] = px[i];
+        r[1] = py[i];
+        r[2] = r[3] = im[i];
     }
 #endif
 }

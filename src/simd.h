@@ -2,9 +2,10 @@
  * the runtime choice of vector width, and "rows": a packed copy of x, y and
  * inverse mass, one 32-byte row (x, y, w, w) per particle, so a particle is
  * one vector load and one store; or "xy rows", (x, y) alone in 16 bytes,
- * for sweeps that keep the inverse masses beside their own entries. Kernels that give bit-identical results to
- * their scalar loops do the scalar arithmetic lane by lane (no FMA: the
- * build has -ffp-contract=off and these targets enable none). */
+ * for sweeps that keep the inverse masses beside their own entries.
+ * Kernels that give bit-identical results to their scalar loops do the
+ * scalar arithmetic lane by lane (no FMA: the build has -ffp-contract=off
+ * and these targets enable none). */
 #ifndef TT_SIMD_H
 #define TT_SIMD_H
 
@@ -30,15 +31,6 @@ TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, size_t r0, size_t r1, __
     const __m256d a = _mm256_load_pd(pk + r0), b = _mm256_load_pd(pk + r1);
     *p = _mm256_permute2f128_pd(a, b, 0x20);
     *w = _mm256_permute2f128_pd(a, b, 0x31);
-}
-
-/* (x, y) of both and their (w, w) back into rows r0, r1 as whole rows: a
- * later load of the row is then served from the store (a half-row store
- * cannot forward to a whole-row load, which waits for it to retire). */
-TT_AVX2 TT_INLINE void tt__rows_store2w(double *pk, size_t r0, size_t r1, __m256d p, __m256d w)
-{
-    _mm256_store_pd(pk + r0, _mm256_permute2f128_pd(p, w, 0x20));
-    _mm256_store_pd(pk + r1, _mm256_permute2f128_pd(p, w, 0x31));
 }
 
 /* xy rows of particles i0, i1 into (x0, y0, x1, y1): the second half goes
@@ -72,8 +64,6 @@ bool tt__rows_reserve(double **pk, uint32_t *cap, uint32_t np);
 /* x, y, inverse mass of particles [0, np) into rows, and x, y back. */
 void tt__rows_pack(double *pk, const double *px, const double *py, const double *im, uint32_t np);
 void tt__rows_unpack(const double *pk, double *px, double *py, uint32_t np);
-/* Any four arrays into rows (a, b, c, d); tt__rows_unpack takes a, b back. */
-void tt__rows_pack4(double *pk, const double *a, const double *b, const double *c, const double *d, uint32_t np);
 
 /* Room for xy rows [0, np), 16-byte aligned; a, b of [0, np) into them and back. */
 bool tt__xy_reserve(double **xy, uint32_t *cap, uint32_t np);
