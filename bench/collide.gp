@@ -13,8 +13,8 @@ set grid
 set format y '%g'
 plot dir.'/collide.csv' using 1:(strcol(2) eq 'equal' ? $3 : 1/0) with linespoints lw 2 pt 7 title 'grid, equal radii', \
      ''                 using 1:(strcol(2) eq 'mix' ? $3 : 1/0) with linespoints lw 2 pt 5 title 'grid, radii 1:4', \
-     ''                 using 1:(strcol(2) eq 'equal' ? $7 : 1/0) with linespoints lw 1 dt 4 pt 6 title 'its detection stage, equal radii', \
-     ''                 using 1:(strcol(2) eq 'mix' ? $7 : 1/0) with linespoints lw 1 dt 4 pt 4 title 'its detection stage, radii 1:4', \
+     ''                 using 1:(strcol(2) eq 'equal' ? $8 : 1/0) with linespoints lw 1 dt 4 pt 6 title 'the grid itself (build, pairs), equal radii', \
+     ''                 using 1:(strcol(2) eq 'mix' ? $8 : 1/0) with linespoints lw 1 dt 4 pt 4 title 'the grid itself, radii 1:4', \
      ''                 using 1:(strcol(2) eq 'equal' && $4 == $4 ? $4 : 1/0) with linespoints lw 2 pt 9 title 'brute force, equal radii', \
      ''                 using 1:(strcol(2) eq 'mix' && $4 == $4 ? $4 : 1/0) with linespoints lw 2 pt 11 title 'brute force, radii 1:4', \
      5 * x / 100000 with lines dt 2 lc rgb 'gray' title 'linear through the target (5 ms at 100k)', \

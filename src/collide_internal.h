@@ -172,6 +172,8 @@ typedef struct tt__collide {
     uint32_t *pstamp, pstamp_cap, stamp; /* per primitive: dedupe while visiting several cells */
     uint32_t *sstamp, sstamp_cap, sstamp_id; /* per shape slot */
     uint32_t static_rebuilds;
+    double bp_ms;         /* broadphase time of step bp_step (w->stats.steps while it runs), ms */
+    uint64_t bp_step;
     bool any_moved;       /* some shape's moved flag is set */
     /* particles */
     tt__grid grid;

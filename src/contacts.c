@@ -277,6 +277,11 @@ static void begin(tt_world *w, void *self, double h)
     if (pairs) {
         bool ok;
         c->nrows = 0;
+        const double t0 = tt__now_ms();
+        if (c->bp_step != w->stats.steps) { /* the step's first substep */
+            c->bp_step = w->stats.steps;
+            c->bp_ms = 0.0;
+        }
         if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
             ok = tt__brute_pairs(w, c);
             c->grid.epoch = UINT64_MAX;
@@ -285,6 +290,7 @@ static void begin(tt_world *w, void *self, double h)
             c->cells_used = c->grid.ncell;
             grid_built = ok;
         }
+        c->bp_ms += tt__now_ms() - t0;
         if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
         /* batches pay for their planning from the second sweep on */
         c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
@@ -859,6 +865,7 @@ tt_result tt_world_get_collision_stats(const tt_world *w, tt_collision_stats *ou
     out->broadphase_bytes = tt__grid_bytes(&c->grid);
     out->broadphase_bytes_per_particle = c->grid.n ? (double)out->broadphase_bytes / c->grid.n : 0.0;
     out->total_bytes = memory(w, c);
+    out->broadphase_ms = c->bp_step == w->stats.steps - 1 ? c->bp_ms : 0.0; /* 0 when the last step found no pairs */
     return TT_OK;
 }
 

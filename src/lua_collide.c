@@ -344,7 +344,7 @@ static int w_collision_stats(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     tt_collision_stats s;
     tl_check_result(L, w, tt_world_get_collision_stats(w, &s));
-    lua_createtable(L, 0, 8);
+    lua_createtable(L, 0, 9);
     lua_pushinteger(L, s.shapes); lua_setfield(L, -2, "shapes");
     lua_pushinteger(L, s.pair_contacts); lua_setfield(L, -2, "pair_contacts");
     lua_pushinteger(L, s.shape_contacts); lua_setfield(L, -2, "shape_contacts");
@@ -353,6 +353,7 @@ static int w_collision_stats(lua_State *L)
     lua_pushinteger(L, (lua_Integer)s.broadphase_bytes); lua_setfield(L, -2, "broadphase_bytes");
     lua_pushnumber(L, s.broadphase_bytes_per_particle); lua_setfield(L, -2, "broadphase_bytes_per_particle");
     lua_pushinteger(L, (lua_Integer)s.total_bytes); lua_setfield(L, -2, "total_bytes");
+    lua_pushnumber(L, s.broadphase_ms); lua_setfield(L, -2, "broadphase_ms");
     return 1;
 }
 

@@ -123,6 +123,37 @@ TEST(grid_arrays_are_reused_step_after_step)
     tt_world_destroy(w);
 }
 
+/* The grid's own time (build and pair search), for the linear-cost figure:
+ * that of the last step, all substeps, and none when it found no pairs. */
+TEST(broadphase_time_is_the_last_steps)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.substeps = 4;
+    tt_world *w = tt_world_create(&wd);
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.5;
+    for (int i = 0; i < 2000; i++) {
+        pd.position = (tt_vec2){(i % 50) * 1.02, (i / 50) * 1.02};
+        tt_particle_create(w, &pd);
+    }
+    tt_collision_stats st;
+    ENSURE_OK(tt_world_get_collision_stats(w, &st));
+    ENSURE(st.broadphase_ms == 0.0); /* no step yet */
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    tt_stats ws;
+    ENSURE_OK(tt_world_get_stats(w, &ws));
+    ENSURE_OK(tt_world_get_collision_stats(w, &st));
+    ENSURE(st.broadphase_ms > 0.0 && st.broadphase_ms <= ws.stage_ms[TT_STAGE_COLLIDE]);
+    cs.particles = false; /* shapes only: no grid */
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE_OK(tt_world_get_collision_stats(w, &st));
+    ENSURE(st.broadphase_ms == 0.0);
+    tt_world_destroy(w);
+}
+
 TEST(a_world_without_collisions_has_no_collision_state)
 {
     tt_world *w = tt_world_create(NULL);

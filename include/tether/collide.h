@@ -126,6 +126,7 @@ typedef struct tt_collision_stats {
     size_t broadphase_bytes;    ///< particle grid arrays, bytes
     double broadphase_bytes_per_particle; ///< broadphase_bytes / particles in the grid
     size_t total_bytes;         ///< everything the collision feature holds
+    double broadphase_ms;       ///< particle grid build and pair search in the last step (all substeps), ms
 } tt_collision_stats;
 
 /// The defaults documented on each tt_shape_def field.
