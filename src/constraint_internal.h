@@ -102,7 +102,6 @@ typedef struct tt__cgroup {
     uint32_t comp_cap, comps_alive;
 } tt__cgroup;
 
-
 /* Sets w's mode; false (and no change) when this build or processor lacks it. */
 bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
 

@@ -186,7 +186,7 @@ TT_INLINE bool range_scalar(tt_world *w, tt__collide *c, emit *e, const tt__grid
     const uint8_t *gbits = g->bits;
     const double x = sx[k], y = sy[k], r = sr[k];
     const uint32_t a = idx[k];
-    const uint8_t kbits = g->bits[k];
+    const uint8_t kbits = gbits[k];
     for (uint32_t j = j0; j < j1; j++) {
         double dx = x - sx[j], dy = y - sy[j], rs = r + sr[j];
         if (dx * dx + dy * dy >= rs * rs * TT__MARGIN2 || rs == 0.0) continue;
@@ -209,7 +209,7 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
     const uint8_t *gbits = g->bits;
     const double r = sr[k];
     const uint32_t a = idx[k];
-    const uint8_t kbits = g->bits[k];
+    const uint8_t kbits = gbits[k];
     const __m256d x = _mm256_set1_pd(sx[k]), y = _mm256_set1_pd(sy[k]), vr = _mm256_set1_pd(r);
     const __m256d f = _mm256_set1_pd(TT__MARGIN2), zero = _mm256_setzero_pd();
     for (uint32_t j = j0; j < j1; j += 4) {
