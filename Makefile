@@ -31,23 +31,24 @@ PC_LIBS   = $(shell pkg-config --libs $(1) 2>/dev/null)
 LUA_CFLAGS := $(call PC_CFLAGS,lua5.4)
 LUA_LIBS   := $(call PC_LIBS,lua5.4)
 
-# Core engine: every src/*.c that is not a binding, the runner or a back end
-# needing an optional library.
-CORE_SRC := $(filter-out src/lua_%.c src/runner.c src/runner_%.c src/render_%.c,$(wildcard src/*.c))
-LUA_SRC  := $(wildcard src/lua_*.c)
-# Drawing (libtether_render.a): the canvas part is plain C (the Lua module
-# carries it); the GL back ends need OSMesa, SDL2 and libpng.
-CANVAS_SRC := src/render_canvas.c src/render_font.c src/render_debug.c
-RENDER_SRC := $(wildcard src/render_*.c)
-CANVAS_OBJ := $(CANVAS_SRC:src/%.c=$(BUILD)/obj/%.o)
-RENDER_OBJ := $(RENDER_SRC:src/%.c=$(BUILD)/obj/%.o)
+# Sources by part (one folder each under src/, see README "Layout"). The
+# engine is core + constraints + collide; the Lua module adds lua/ and the
+# plain-C canvas of render/; the GL back ends need OSMesa, SDL2 and libpng.
+ENGINE_SRC := $(wildcard src/core/*.c src/constraints/*.c src/collide/*.c)
+LUA_SRC    := $(wildcard src/lua/*.c)
+CANVAS_SRC := src/render/render_canvas.c src/render/render_font.c src/render/render_debug.c
+RENDER_SRC := $(wildcard src/render/*.c)
+RUNNER_SRC := $(wildcard src/runner/*.c)
+obj_of = $(patsubst src/%.c,$(BUILD)/obj/%.o,$(1))
+CORE_OBJ   := $(call obj_of,$(ENGINE_SRC))
+LUA_OBJ    := $(call obj_of,$(LUA_SRC))
+CANVAS_OBJ := $(call obj_of,$(CANVAS_SRC))
+RENDER_OBJ := $(call obj_of,$(RENDER_SRC))
+RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
 RENDER_CFLAGS := $(call PC_CFLAGS,sdl2 libpng)
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS := $(call PC_LIBS,osmesa sdl2 libpng)
-RUNNER_OBJ := $(BUILD)/obj/runner.o $(BUILD)/obj/runner_view.o
-CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
-LUA_OBJ  := $(LUA_SRC:src/%.c=$(BUILD)/obj/%.o)
-TEST_SRC := $(wildcard tests/*.c)
+TEST_SRC := $(wildcard tests/*.c tests/*/*.c)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
 
@@ -86,26 +87,26 @@ deps:
 	fi
 
 # --- build ------------------------------------------------------------------
-$(BUILD)/obj/%.o: src/%.c $(wildcard include/*.h include/tether/*.h src/*.h) | $(BUILD)/obj
+HEADERS := $(wildcard include/*.h include/tether/*.h src/*/*.h)
+$(BUILD)/obj/%.o: src/%.c $(HEADERS)
+	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) -MMD -c $< -o $@
 
-$(BUILD)/obj/lua_%.o: src/lua_%.c | $(BUILD)/obj
+$(BUILD)/obj/lua/%.o: src/lua/%.c
+	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/runner.o: src/runner.c | $(BUILD)/obj
-	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
-
-$(BUILD)/obj/runner_%.o: src/runner_%.c | $(BUILD)/obj
+$(BUILD)/obj/runner/%.o: src/runner/%.c
+	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/render_%.o: src/render_%.c | $(BUILD)/obj
+$(BUILD)/obj/render/%.o: src/render/%.c
+	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/tests/%.o: tests/%.c | $(BUILD)/obj/tests
+$(BUILD)/obj/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Itests -MMD -c $< -o $@
-
-$(BUILD)/obj $(BUILD)/obj/tests:
-	mkdir -p $@
 
 $(LIB_A): $(CORE_OBJ)
 	rm -f $@; ar rcs $@ $^
@@ -129,14 +130,15 @@ $(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
 
 # Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
 BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
-$(BOX2D_OBJ): bench/box2d_scene.cpp | $(BUILD)/obj
+$(BOX2D_OBJ): bench/box2d_scene.cpp
+	@mkdir -p $(@D)
 	$(CXX) -O2 $(SANFLAGS) $(call PC_CFLAGS,box2d) -c $< -o $@
 
 $(BENCH): $(BENCH_SRC) $(RENDER_A) $(LIB_A) $(BOX2D_OBJ)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Ibench -o $@ $(BENCH_SRC) $(BOX2D_OBJ) $(RENDER_A) $(LIB_A) $(LDFLAGS_ALL) \
 	  $(RENDER_LIBS) $(call PC_LIBS,box2d) -lstdc++ -lm
 
--include $(wildcard $(BUILD)/obj/*.d $(BUILD)/obj/tests/*.d)
+-include $(wildcard $(BUILD)/obj/*/*.d $(BUILD)/obj/tests/*/*.d $(BUILD)/obj/tests/*.d)
 
 # --- run --------------------------------------------------------------------
 # `make demo` renders DEMO headless to PNG frames in $(BUILD)/demo/ (100 frames,

@@ -467,7 +467,7 @@ function world:composite_center(h) end
 function world:composite_angle(h) end
 ---@return integer
 function world:composite_count() end
--- Collisions (src/lua_collide.c; docs/collisions.md) --------------------------
+-- Collisions (src/lua/lua_collide.c; docs/collisions.md) --------------------------
 
 ---@alias tether.shape integer
 

@@ -4,7 +4,7 @@
 --       outside a frame: every drawing call raises "nothing to draw on"
 --   build/tether --headless --frames 2 --size 200x150 --out DIR tests/lua/test_render.lua
 --       inside tether.draw(g): camera, fit, conversions, argument errors
--- Pixels are checked by the C tests (tests/test_render.c), which read frames back.
+-- Pixels are checked by the C tests (tests/render/test_render.c), which read frames back.
 package.path = "tests/lua/?.lua;" .. package.path
 local T = require "harness"
 local tether = require "tether"

@@ -2,7 +2,7 @@
  * period, XPBD's iteration-independent stretch, Gauss-Seidel vs Jacobi,
  * contradictory constraints, areas, tearing, and the bookkeeping around them. */
 #include "test.h"
-#include "constraint_internal.h"
+#include "constraints/constraint_internal.h"
 
 #include <stdlib.h>
 #include <string.h>

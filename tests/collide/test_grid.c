@@ -3,7 +3,7 @@
  * coincident centres, layers and exclusions); no per-step malloc after
  * warm-up; a world without collisions has no collision state at all. */
 #include "test.h"
-#include "collide_internal.h"
+#include "collide/collide_internal.h"
 
 #include <stdlib.h>
 

@@ -2,7 +2,7 @@
  * and a chain of rigid links, so the loop's contract is tested apart from
  * the constraint and contact features that use it. */
 #include "test.h"
-#include "internal.h"
+#include "core/internal.h"
 
 #include <stdlib.h>
 

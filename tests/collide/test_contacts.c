@@ -2,7 +2,7 @@
  * μs), a 2000-particle pour that settles, coincident particles, filtering,
  * sensors, events and changing the world while reading them. */
 #include "test.h"
-#include "collide_internal.h"
+#include "collide/collide_internal.h"
 
 #include <fenv.h>
 #include <stdlib.h>

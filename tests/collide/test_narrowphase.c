@@ -2,7 +2,7 @@
  * depth and the nearest valid position, checked against answers worked
  * out by hand; rays against primitives likewise. */
 #include "test.h"
-#include "collide_internal.h"
+#include "collide/collide_internal.h"
 
 #include <string.h>
 

@@ -2,7 +2,7 @@
  * tenth of a radius thick never passes with the bullet flag, and does pass
  * without it (the negative control). */
 #include "test.h"
-#include "collide_internal.h"
+#include "collide/collide_internal.h"
 
 /* Returns the largest x reached; the wall's near face is at x = 0. */
 static double shoot(tt_integrator integ, bool bullet, double e, double *vx_after)

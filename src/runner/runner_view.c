@@ -13,7 +13,7 @@
 #include <SDL.h>
 #include <lauxlib.h>
 
-#include "lua_render.h"
+#include "lua/lua_render.h"
 #include "runner.h"
 #include "tether/render.h"
 

@@ -1,5 +1,5 @@
 /* tether — force-based linear springs with damping. */
-#include "internal.h"
+#include "core/internal.h"
 
 #include <stdlib.h>
 #include <string.h>

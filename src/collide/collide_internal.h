@@ -3,8 +3,8 @@
 #ifndef TETHER_COLLIDE_INTERNAL_H
 #define TETHER_COLLIDE_INTERNAL_H
 
-#include "internal.h"
-#include "simd.h"
+#include "core/internal.h"
+#include "core/simd.h"
 #include "tether/collide.h"
 
 /* Candidate pairs are kept when their gap is under this fraction of the

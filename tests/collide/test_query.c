@@ -2,7 +2,7 @@
  * particle and primitive, on random scenes (particles far outside the grid
  * included), and see teleports made between steps. */
 #include "test.h"
-#include "collide_internal.h"
+#include "collide/collide_internal.h"
 
 #include <stdlib.h>
 #include <string.h>

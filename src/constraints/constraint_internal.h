@@ -3,8 +3,8 @@
 #ifndef TETHER_CONSTRAINT_INTERNAL_H
 #define TETHER_CONSTRAINT_INTERNAL_H
 
-#include "internal.h"
-#include "simd.h"
+#include "core/internal.h"
+#include "core/simd.h"
 #include "tether/composite.h"
 
 /* Distance constraints, the hot loop: dense, swap-removed, 40 bytes each.
