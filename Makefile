@@ -26,10 +26,17 @@ FPFLAGS  := -ffp-contract=off
 CFLAGS_ALL := -std=c11 -D_DEFAULT_SOURCE $(OPT) $(FPFLAGS) $(WARN) -fPIC -fvisibility=hidden -Iinclude -Isrc $(SANFLAGS) $(CFLAGS)
 LDFLAGS_ALL := $(SANFLAGS) $(LDFLAGS)
 
+# The package flags are read when a recipe first needs them, not when this file
+# is parsed: on a fresh machine `make deps` (run first, see the order-only
+# prerequisites below) has only just installed the packages. `lazy` asks
+# pkg-config once and keeps the answer.
 PC_CFLAGS = $(shell pkg-config --cflags $(1) 2>/dev/null)
 PC_LIBS   = $(shell pkg-config --libs $(1) 2>/dev/null)
-LUA_CFLAGS := $(call PC_CFLAGS,lua5.4)
-LUA_LIBS   := $(call PC_LIBS,lua5.4)
+lazy = $(eval $(1) := $(2))$($(1))
+LUA_CFLAGS = $(call lazy,LUA_CFLAGS,$(call PC_CFLAGS,lua5.4))
+LUA_LIBS   = $(call lazy,LUA_LIBS,$(call PC_LIBS,lua5.4))
+BOX2D_CFLAGS = $(call lazy,BOX2D_CFLAGS,$(BOX2D_CFLAGS))
+BOX2D_LIBS   = $(call lazy,BOX2D_LIBS,$(BOX2D_LIBS))
 
 # Sources by part (one folder each under src/, see README "Layout"). The
 # engine is core + constraints + collide; the Lua module adds lua/ and the
@@ -45,9 +52,9 @@ LUA_OBJ    := $(call obj_of,$(LUA_SRC))
 CANVAS_OBJ := $(call obj_of,$(CANVAS_SRC))
 RENDER_OBJ := $(call obj_of,$(RENDER_SRC))
 RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
-RENDER_CFLAGS := $(call PC_CFLAGS,sdl2 libpng)
+RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
-RENDER_LIBS := $(call PC_LIBS,osmesa sdl2 libpng)
+RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
 TEST_SRC := $(wildcard tests/*.c tests/*/*.c)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
@@ -88,23 +95,23 @@ deps:
 
 # --- build ------------------------------------------------------------------
 HEADERS := $(wildcard include/*.h include/tether/*.h src/*/*.h)
-$(BUILD)/obj/%.o: src/%.c $(HEADERS)
+$(BUILD)/obj/%.o: src/%.c $(HEADERS) | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) -MMD -c $< -o $@
 
-$(BUILD)/obj/lua/%.o: src/lua/%.c
+$(BUILD)/obj/lua/%.o: src/lua/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/runner/%.o: src/runner/%.c
+$(BUILD)/obj/runner/%.o: src/runner/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/render/%.o: src/render/%.c
+$(BUILD)/obj/render/%.o: src/render/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
-$(BUILD)/obj/tests/%.o: tests/%.c
+$(BUILD)/obj/tests/%.o: tests/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Itests -MMD -c $< -o $@
 
@@ -130,13 +137,13 @@ $(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
 
 # Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
 BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
-$(BOX2D_OBJ): bench/box2d_scene.cpp
+$(BOX2D_OBJ): bench/box2d_scene.cpp | deps
 	@mkdir -p $(@D)
-	$(CXX) -O2 $(SANFLAGS) $(call PC_CFLAGS,box2d) -c $< -o $@
+	$(CXX) -O2 $(SANFLAGS) $(BOX2D_CFLAGS) -c $< -o $@
 
-$(BENCH): $(BENCH_SRC) $(RENDER_A) $(LIB_A) $(BOX2D_OBJ)
+$(BENCH): $(BENCH_SRC) $(RENDER_A) $(LIB_A) $(BOX2D_OBJ) | deps
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Ibench -o $@ $(BENCH_SRC) $(BOX2D_OBJ) $(RENDER_A) $(LIB_A) $(LDFLAGS_ALL) \
-	  $(RENDER_LIBS) $(call PC_LIBS,box2d) -lstdc++ -lm
+	  $(RENDER_LIBS) $(BOX2D_LIBS) -lstdc++ -lm
 
 -include $(wildcard $(BUILD)/obj/*/*.d $(BUILD)/obj/tests/*/*.d $(BUILD)/obj/tests/*.d)
 
