@@ -45,7 +45,7 @@ local tether = {}
 ---@field integrator? tether.integrator_name default "verlet"
 ---@field damping? number velocity damping, 1/s, in [0, 1e12]: v *= 1 - damping*dt each step; default 0
 ---@field wind? number[] {fx, fy}, N on every particle, each in [-1e12, 1e12]; default {0, 0}
----@field dt_hint? number the step you expect to use, s, in (0, 10]; default 1/60
+---@field dt_hint? number the step you expect to use, s, in [1e-9, 10]; default 1/60
 ---@field capacity? integer particles to reserve up front, 0..16777216; default 0
 ---@field substeps? integer substeps per step, 1..1000; default 1
 ---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
@@ -265,7 +265,7 @@ function world:spring_info(s) end
 function world:set_spring(s, fields) end
 
 ---Advances the world n times by dt seconds.
----@param dt number s, in (0, 10]
+---@param dt number s, in [1e-9, 10]
 ---@param n? integer 1..10000000, default 1
 function world:step(dt, n) end
 

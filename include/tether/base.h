@@ -23,10 +23,13 @@
 #define TT_MAX_VALUE 1e12       ///< largest |coordinate|, |velocity|, |force|, |impulse|, stiffness, …
 #define TT_MIN_MASS 1e-9        ///< smallest particle mass, kg
 #define TT_MAX_MASS 1e9         ///< largest particle mass, kg
+#define TT_MIN_DT 1e-9          ///< smallest step, s (below it 1/dt and velocities lose meaning)
 #define TT_MAX_DT 10.0          ///< largest step, s
+#define TT_MIN_COMPLIANCE 1e-12 ///< smallest non-zero compliance (stiffness TT_MAX_VALUE), m/N; 0 = rigid
 #define TT_MAX_SUBSTEPS 1000    ///< most substeps per step
 #define TT_MAX_ITERATIONS 10000 ///< most relaxation sweeps per substep
-#define TT_DIVERGED 1e15        ///< a particle whose |x| or |v| passes this in a step is stopped (stats.diverged)
+#define TT_DIVERGED 1e15        ///< a particle whose |x| or |v| passes this in a step (integrating, relaxing or
+                                ///< colliding) is stopped where it was at the start of the substep (stats.diverged)
 
 #ifdef __cplusplus
 extern "C" {

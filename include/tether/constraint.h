@@ -109,7 +109,7 @@ typedef struct tt_break_event {
     tt_constraint constraint; ///< the constraint, now removed (its handle is stale)
     tt_particle a, b;         ///< its two particles
     double length;            ///< |xa − xb| when it broke, m
-    double strain;            ///< length / rest − 1 when it broke
+    double strain;            ///< length / rest − 1 when it broke; TT_MAX_VALUE for a zero-length link (unbounded)
 } tt_break_event;
 
 /// The defaults documented on each field.

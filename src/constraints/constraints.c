@@ -335,12 +335,19 @@ tt_collinear_def tt_collinear_def_default(void)
     return d;
 }
 
+/* Compliances under TT_MIN_COMPLIANCE are refused, not rounded to 0: the
+ * energy ½C²/α of a denormal α is Inf. */
+static tt_result check_compliance(const tt_world *w, double alpha, const char *fn)
+{
+    if (alpha == 0.0 || tt__in_range(alpha, TT_MIN_COMPLIANCE, TT_MAX_VALUE)) return TT_OK;
+    return tt__fail(w, TT_EINVAL, "%s: compliance must be 0 (rigid) or in [%g, %g] m/N, got %g", fn, TT_MIN_COMPLIANCE,
+                    TT_MAX_VALUE, alpha);
+}
+
 static tt_result check_soft(const tt_world *w, double k, double alpha, const char *fn)
 {
     if (!tt__in_range(k, 0.0, 1.0)) return tt__fail(w, TT_EINVAL, "%s: stiffness must be in [0, 1], got %g", fn, k);
-    if (!tt__in_range(alpha, 0.0, TT_MAX_VALUE))
-        return tt__fail(w, TT_EINVAL, "%s: compliance must be in [0, %g], got %g", fn, TT_MAX_VALUE, alpha);
-    return TT_OK;
+    return check_compliance(w, alpha, fn);
 }
 
 static tt_result check_distinct(const tt_world *w, const tt_particle *p, int n, const char *fn)
@@ -807,8 +814,7 @@ tt_result tt_constraint_set_compliance(tt_world *w, tt_constraint c, double alph
     tt_result r = con_check(w, c, fn, &cg);
     if (r != TT_OK) return r;
     tt__cgroup *g = (tt__cgroup *)cg;
-    if (!tt__in_range(alpha, 0.0, TT_MAX_VALUE))
-        return tt__fail(w, TT_EINVAL, "%s: compliance must be in [0, %g], got %g", fn, TT_MAX_VALUE, alpha);
+    if ((r = check_compliance(w, alpha, fn)) != TT_OK) return r;
     tt__cslot *s = &g->slots[c.index];
     if (s->kind == TT_CONSTRAINT_BOUNDS) return tt__fail(w, TT_ESTATE, "%s: bounds are always stiff", fn);
     if (s->kind == TT_CONSTRAINT_DISTANCE) {
@@ -1489,7 +1495,7 @@ static void group_end(tt_world *w, void *self, double h)
         double len = dist_of(w, d->a, d->b), rest = x->mode == TT_DISTANCE_MIN ? d->lo : d->hi;
         if (!(len > rest * (1.0 + x->break_strain))) continue;
         tt_break_event e = {handle_of(g, x->slot), particle_of(w, d->a), particle_of(w, d->b), len,
-                            rest > 0.0 ? len / rest - 1.0 : INFINITY};
+                            rest > 0.0 ? len / rest - 1.0 : TT_MAX_VALUE};
         event_push(g, e); /* no memory: the constraint still breaks, the event is lost */
         dist_remove(g, i);
     }

@@ -51,15 +51,16 @@ static uint32_t verlet(tt_world *w, double dt, bool forces)
     uint32_t bad = 0;
     if (!forces && r == 1.0 && f == 1.0) {
         /* The common case, kept as lean as a bare loop: constant dt, gravity only. */
-        const double gdx = gx * dt * dt, gdy = gy * dt * dt;
+        const double gdx = gx * dt * dt, gdy = gy * dt * dt, dmax = TT_DIVERGED * dt;
         for (uint32_t i = 0; i < n; i++) {
             if (inv[i] == 0.0) continue;
             double x = px[i], y = py[i];
-            double nx = x + ((x - qx[i]) + gdx); /* small terms first: g·dt² keeps its bits */
-            double ny = y + ((y - qy[i]) + gdy);
+            double dx = (x - qx[i]) + gdx, dy = (y - qy[i]) + gdy; /* small terms first: g·dt² keeps its bits */
+            double nx = x + dx, ny = y + dy;
             qx[i] = x;
             qy[i] = y;
-            if (TT_UNLIKELY(too_big(nx, ny))) { bad++; continue; }
+            /* |v| = |dx|/dt is checked without the division: the loop stays lean */
+            if (TT_UNLIKELY(too_big(nx, ny) || !(fabs(dx) <= dmax && fabs(dy) <= dmax))) { bad++; continue; }
             px[i] = nx;
             py[i] = ny;
         }
@@ -118,31 +119,54 @@ static uint32_t euler(tt_world *w, double dt, bool forces, bool symplectic)
     return bad;
 }
 
-/* Velocity Verlet, kick-drift-kick: forces at both ends of the step. */
-static uint32_t leapfrog(tt_world *w, double dt, bool forces)
+/* Velocity Verlet, kick-drift-kick: forces at both ends of the step. A
+ * particle the guard stops goes back to where the step began, which the
+ * drift cannot be undone to exactly (x + v·dt − v·dt loses x when v·dt is
+ * huge): with gravity alone each particle is done in one pass, with forces
+ * the start positions are kept aside. */
+static uint32_t leapfrog_constant(tt_world *w, double dt)
 {
     const uint32_t n = w->ppool.count;
     double *px = w->px, *py = w->py, *vx = w->qx, *vy = w->qy;
-    double *ax = NULL, *ay = NULL;
-    if (forces && !accel(w, px, py, vx, vy, &ax, &ay)) return 0;
     const double *inv = w->inv_mass;
     const double gx = w->gravity.x, gy = w->gravity.y;
     const double h = 0.5 * dt, f = damping_factor(w, dt);
-    for (uint32_t i = 0; i < n; i++) {
-        if (inv[i] == 0.0) continue;
-        vx[i] += (forces ? ax[i] : gx) * h;
-        vy[i] += (forces ? ay[i] : gy) * h;
-        px[i] += vx[i] * dt;
-        py[i] += vy[i] * dt;
-    }
-    if (forces) tt__eval_accel(w, px, py, vx, vy, ax, ay);
     uint32_t bad = 0;
     for (uint32_t i = 0; i < n; i++) {
         if (inv[i] == 0.0) continue;
-        double nvx = (vx[i] + (forces ? ax[i] : gx) * h) * f, nvy = (vy[i] + (forces ? ay[i] : gy) * h) * f;
+        double hvx = vx[i] + gx * h, hvy = vy[i] + gy * h;
+        bad += commit(px, py, vx, vy, i, px[i] + hvx * dt, py[i] + hvy * dt, (hvx + gx * h) * f, (hvy + gy * h) * f);
+    }
+    return bad;
+}
+
+static uint32_t leapfrog(tt_world *w, double dt, bool forces)
+{
+    if (!forces) return leapfrog_constant(w, dt);
+    const uint32_t n = w->ppool.count;
+    double *px = w->px, *py = w->py, *vx = w->qx, *vy = w->qy;
+    double *ax, *ay;
+    double *sx = tt__scratch(w, TT_SCRATCH_RK4_FIRST), *sy = tt__scratch(w, TT_SCRATCH_RK4_FIRST + 1);
+    if (!sx || !sy || !accel(w, px, py, vx, vy, &ax, &ay)) return 0;
+    const double *inv = w->inv_mass;
+    const double h = 0.5 * dt, f = damping_factor(w, dt);
+    for (uint32_t i = 0; i < n; i++) {
+        sx[i] = px[i];
+        sy[i] = py[i];
+        if (inv[i] == 0.0) continue;
+        vx[i] += ax[i] * h;
+        vy[i] += ay[i] * h;
+        px[i] += vx[i] * dt;
+        py[i] += vy[i] * dt;
+    }
+    tt__eval_accel(w, px, py, vx, vy, ax, ay);
+    uint32_t bad = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        if (inv[i] == 0.0) continue;
+        double nvx = (vx[i] + ax[i] * h) * f, nvy = (vy[i] + ay[i] * h) * f;
         if (TT_UNLIKELY(too_big(px[i], py[i]) || too_big(nvx, nvy))) {
-            px[i] -= vx[i] * dt; /* back to where the step began */
-            py[i] -= vy[i] * dt;
+            px[i] = sx[i];
+            py[i] = sy[i];
             vx[i] = vy[i] = 0.0;
             bad++;
             continue;

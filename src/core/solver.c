@@ -5,6 +5,8 @@
  * by the corrected positions. */
 #include "internal.h"
 
+#include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -56,6 +58,93 @@ static void jacobi_apply(tt_world *w)
         w->py[i] += w->jy[i] * s;
         w->jx[i] = w->jy[i] = 0.0;
         w->jn[i] = 0;
+    }
+}
+
+/* True when some particle may be past the guard: two particles at a time
+ * in the compiler's generic vectors (GCC and clang, any target), so a world
+ * where nothing diverges pays about one read of its positions and velocity
+ * state per substep. Verlet's velocity is (x − x_old)/h, compared as
+ * |x − x_old| against TT_DIVERGED·h. The test is on bits: for doubles of
+ * the same sign the bit patterns order like the values, and NaN's is above
+ * Inf's, so lim − |v| (as integers) is negative exactly when |v| > lim or v
+ * is NaN; the signs are OR-ed and read once at the end. */
+typedef double tt__v2d __attribute__((vector_size(16)));
+typedef int64_t tt__v2l __attribute__((vector_size(16)));
+
+static inline tt__v2d load2(const double *p)
+{
+    tt__v2d v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+
+static inline tt__v2l excess(tt__v2d v, tt__v2l lim)
+{
+    const tt__v2l abs_mask = {INT64_MAX, INT64_MAX};
+    return lim - ((tt__v2l)v & abs_mask);
+}
+
+static inline int64_t bits_of(double d)
+{
+    int64_t b;
+    memcpy(&b, &d, sizeof b);
+    return b;
+}
+
+static bool any_past_guard(const tt_world *w, double h)
+{
+    const uint32_t n = w->ppool.count;
+    const double *px = w->px, *py = w->py, *qx = w->qx, *qy = w->qy;
+    const bool verlet = w->integrator == TT_VERLET;
+    const double vmax = verlet ? TT_DIVERGED * h : TT_DIVERGED;
+    const tt__v2l L = {bits_of(TT_DIVERGED), bits_of(TT_DIVERGED)}, V = {bits_of(vmax), bits_of(vmax)};
+    tt__v2l acc = {0, 0};
+    uint32_t i = 0;
+    if (verlet) {
+        for (; i + 2 <= n; i += 2) {
+            tt__v2d x = load2(px + i), y = load2(py + i);
+            acc |= excess(x, L) | excess(y, L) | excess(x - load2(qx + i), V) | excess(y - load2(qy + i), V);
+        }
+    } else {
+        for (; i + 2 <= n; i += 2)
+            acc |= excess(load2(px + i), L) | excess(load2(py + i), L) | excess(load2(qx + i), V) |
+                   excess(load2(qy + i), V);
+    }
+    bool any = (acc[0] | acc[1]) < 0;
+    for (; i < n; i++) {
+        double vx = verlet ? px[i] - qx[i] : qx[i], vy = verlet ? py[i] - qy[i] : qy[i];
+        any |= !(fabs(px[i]) <= TT_DIVERGED) | !(fabs(py[i]) <= TT_DIVERGED) | !(fabs(vx) <= vmax) | !(fabs(vy) <= vmax);
+    }
+    return any;
+}
+
+/* The integrators stop a particle that passes TT_DIVERGED; constraints and
+ * contacts can push one past it too (a pin dragged 1e12 m in one substep, a
+ * tiny mass between stiff links), so the same rule holds after the sweeps:
+ * the particle is stopped where the substep began (Verlet: x_old; the
+ * others: where the integrator put it before the sweeps, in bx/by). */
+static void guard(tt_world *w, double h, bool have_start)
+{
+    if (!any_past_guard(w, h)) return;
+    const uint32_t n = w->ppool.count;
+    const bool verlet = w->integrator == TT_VERLET;
+    const double vmax = verlet ? TT_DIVERGED * h : TT_DIVERGED;
+    for (uint32_t i = 0; i < n; i++) {
+        if (w->inv_mass[i] == 0.0) continue;
+        double x = w->px[i], y = w->py[i];
+        double vx = verlet ? x - w->qx[i] : w->qx[i], vy = verlet ? y - w->qy[i] : w->qy[i];
+        if (fabs(x) <= TT_DIVERGED && fabs(y) <= TT_DIVERGED && fabs(vx) <= vmax && fabs(vy) <= vmax) continue;
+        if (verlet) {
+            w->px[i] = w->qx[i];
+            w->py[i] = w->qy[i];
+        } else {
+            /* without the copy (no memory for it) the nearest point inside the limit; NaN becomes 0 */
+            w->px[i] = have_start ? w->bx[i] : fmax(-TT_DIVERGED, fmin(TT_DIVERGED, x == x ? x : 0.0));
+            w->py[i] = have_start ? w->by[i] : fmax(-TT_DIVERGED, fmin(TT_DIVERGED, y == y ? y : 0.0));
+            w->qx[i] = w->qy[i] = 0.0;
+        }
+        w->stats.diverged++;
     }
 }
 
@@ -116,6 +205,7 @@ void tt__solve(tt_world *w, double h)
     }
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->end) w->groups[g].ops->end(w, w->groups[g].self, h);
+    guard(w, h, fix);
     w->stats.stage_ms[TT_STAGE_SOLVE] += tt__now_ms() - t0;
 }
 

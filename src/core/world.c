@@ -85,8 +85,8 @@ tt_world_def tt_world_def_default(void)
 
 static tt_result check_dt(const tt_world *w, double dt, const char *fn)
 {
-    if (!(dt > 0.0 && dt <= TT_MAX_DT))
-        return tt__fail(w, TT_EINVAL, "%s: dt must be in (0, %g] s, got %g", fn, TT_MAX_DT, dt);
+    if (!(dt >= TT_MIN_DT && dt <= TT_MAX_DT))
+        return tt__fail(w, TT_EINVAL, "%s: dt must be in [%g, %g] s, got %g", fn, TT_MIN_DT, TT_MAX_DT, dt);
     return TT_OK;
 }
 

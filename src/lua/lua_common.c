@@ -10,7 +10,7 @@
 const tl_range TL_R_COORD = { -TL_MAX_ABS, TL_MAX_ABS, false };
 const tl_range TL_R_NONNEG = { 0.0, TL_MAX_POS, false };
 const tl_range TL_R_MASS = { TL_MIN_MASS, TL_MAX_MASS, false };
-const tl_range TL_R_DT = { 0.0, TL_MAX_DT, true };
+const tl_range TL_R_DT = { TT_MIN_DT, TL_MAX_DT, false };
 
 /* --- registration ---------------------------------------------------------- */
 

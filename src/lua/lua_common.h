@@ -41,7 +41,7 @@ typedef struct tl_range {
 extern const tl_range TL_R_COORD;  /* [-1e12, 1e12]: positions, velocities, forces, impulses, gravity, wind */
 extern const tl_range TL_R_NONNEG; /* [0, 1e12]: radius, stiffness, damping, rest length */
 extern const tl_range TL_R_MASS;   /* [1e-9, 1e9] */
-extern const tl_range TL_R_DT;     /* (0, 10] */
+extern const tl_range TL_R_DT;     /* [1e-9, 10] */
 
 /* --- registration ---------------------------------------------------------- */
 

@@ -91,7 +91,7 @@ local K = {}
 K.coord = { good = function() return 0.5 end, bad = number_bad(COORD, { 1e300, -1e300, 1.0000001e12, -2e12 }) }
 K.nonneg = { good = function() return 0.5 end, bad = number_bad(NONNEG, { -1, -1e-300, 1e300, 2e12 }) }
 K.mass = { good = function() return 2 end, bad = number_bad("[1e-09, 1e+09]", { 0, -1, 1e-10, 2e9, 1e300 }) }
-K.dt = { good = function() return 1 / 60 end, bad = number_bad("(0, 10]", { 0, -0.0, -1, 10.5, 1e300 }) }
+K.dt = { good = function() return 1 / 60 end, bad = number_bad("[1e-09, 10]", { 0, -0.0, -1, 1e-320, 0.5e-9, 10.5, 1e300 }) }
 K.u16 = { good = function() return 3 end, bad = integer_bad("[0, 65535]", { -1, 65536, 1e300, math.maxinteger }) }
 K.nsteps = { good = function() return 2 end, optional = true,
              bad = integer_bad("[1, 10000000]", { 0, -5, 10000001, 1e300 }) }
@@ -556,6 +556,20 @@ end)
 
 T.test("C-level refusals are raised, not ignored", function()
   expect_fail("set_velocity on a pinned particle", { "set_velocity: " }, W.set_velocity, W, P3, 1, 1)
+end)
+
+T.test("denormal steps and compliances are refused, the world unchanged", function()
+  local w = tether.world { integrator = "leapfrog" }
+  local a = w:particle(0, 0, { pinned = true })
+  local b = w:particle(1.5, 0)
+  w:distance(a, b, { length = 1 })
+  local h = w:hash()
+  T.checkerror_plain("bad argument #2 to 'step' (number in [1e-09, 10] expected, got 9.99", w.step, w, 1e-320)
+  T.checkerror_plain("compliance must be 0 (rigid) or in [1e-12, 1e+12] m/N, got 9.99", w.distance, w, a, b, { compliance = 1e-320 })
+  T.eq(w:hash(), h, "world unchanged")
+  w:step(1e-9)
+  w:step(1 / 60)
+  world_is_finite(w, "after the smallest step")
 end)
 
 T.test("extreme but legal input never produces NaN or Inf", function()

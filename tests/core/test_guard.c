@@ -1,0 +1,206 @@
+/* The divergence guard and the step's range: whatever moves a particle (an
+ * integrator, a constraint, a contact), after every step each live particle
+ * has |x| <= TT_DIVERGED and |v| <= TT_DIVERGED, a particle stopped by the
+ * guard stays where it was, and nothing the API reports is NaN or Inf. */
+#include "test.h"
+#include "tether.h"
+
+#include <float.h>
+#include <math.h>
+
+static const tt_integrator all_integrators[] = {TT_VERLET, TT_EULER, TT_SYMPLECTIC_EULER, TT_LEAPFROG, TT_RK4};
+
+/* Every live particle's position and velocity finite and within the guard. */
+static bool world_bounded(const tt_world *w)
+{
+    tt_particle ps[64];
+    uint32_t n = tt_world_list_particles(w, ps, 64);
+    for (uint32_t i = 0; i < n && i < 64; i++) {
+        tt_vec2 x, v;
+        if (tt_particle_get_position(w, ps[i], &x) != TT_OK || tt_particle_get_velocity(w, ps[i], &v) != TT_OK)
+            return false;
+        if (!(fabs(x.x) <= TT_DIVERGED && fabs(x.y) <= TT_DIVERGED && fabs(v.x) <= TT_DIVERGED &&
+              fabs(v.y) <= TT_DIVERGED))
+            return false;
+    }
+    tt_energy e;
+    if (tt_world_get_energy(w, &e) != TT_OK) return false;
+    return isfinite(e.kinetic) && isfinite(e.gravity) && isfinite(e.spring) && isfinite(e.constraint) &&
+           isfinite(e.total);
+}
+
+TEST(step_refuses_dt_below_the_minimum_and_leaves_the_world_as_it_was)
+{
+    for (int k = 0; k < 5; k++) {
+        tt_world_def d = tt_world_def_default();
+        d.integrator = all_integrators[k];
+        tt_world *w = tt_world_create(&d);
+        tt_particle_def pd = tt_particle_def_default();
+        pd.pinned = true;
+        tt_particle a = tt_particle_create(w, &pd);
+        pd.pinned = false;
+        pd.position = (tt_vec2){1.5, 0};
+        tt_particle b = tt_particle_create(w, &pd);
+        tt_distance_def dd = tt_distance_def_default();
+        dd.a = a;
+        dd.b = b;
+        dd.length = 1;
+        ENSURE(tt_distance_create(w, &dd).gen != 0);
+        uint64_t h0 = tt_world_hash(w);
+        ENSURE(tt_world_step(w, 1e-320) == TT_EINVAL); /* a denormal step: 1/dt is Inf */
+        ENSURE(tt_world_step(w, TT_MIN_DT * 0.5) == TT_EINVAL);
+        ENSURE(tt_world_hash(w) == h0);
+        /* the smallest step works, and so does a normal one after it */
+        ENSURE_OK(tt_world_step(w, TT_MIN_DT));
+        ENSURE(world_bounded(w));
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE(world_bounded(w));
+        tt_vec2 x;
+        tt_particle_get_position(w, b, &x);
+        ENSURE_NEAR(hypot(x.x, x.y), 1.0, 1e-6);
+        tt_world_destroy(w);
+    }
+    tt_world_def d = tt_world_def_default();
+    d.dt_hint = 1e-320;
+    ENSURE(tt_world_create(&d) == NULL);
+}
+
+/* A pin anchor 1e12 m away reached in one substep of 1/60/1000 s is a
+ * velocity of 6e16 m/s made by the solver, not the integrator. */
+TEST(guard_holds_after_the_solve_for_every_integrator)
+{
+    for (int k = 0; k < 5; k++) {
+        tt_world_def d = tt_world_def_default();
+        d.integrator = all_integrators[k];
+        d.substeps = 1000;
+        tt_world *w = tt_world_create(&d);
+        tt_particle_def pd = tt_particle_def_default();
+        tt_particle p = tt_particle_create(w, &pd);
+        tt_pin_def pin = tt_pin_def_default();
+        pin.particle = p;
+        tt_constraint c = tt_pin_create(w, &pin);
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE_OK(tt_pin_set_anchor(w, c, (tt_vec2){TT_MAX_VALUE, 0}));
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        tt_stats st;
+        tt_world_get_stats(w, &st);
+        ENSURE(st.diverged > 0);
+        ENSURE(world_bounded(w));
+        for (int s = 0; s < 10; s++) {
+            ENSURE_OK(tt_world_step(w, 1.0 / 60));
+            ENSURE(world_bounded(w));
+        }
+        tt_world_destroy(w);
+    }
+}
+
+/* The lean Verlet loop (constant dt, gravity only) checked positions only:
+ * a velocity of 2e15 m/s moves 3e13 m a step and went on for steps. */
+TEST(guard_stops_a_verlet_particle_whose_speed_passes_the_limit)
+{
+    tt_world_def d = tt_world_def_default();
+    d.gravity = (tt_vec2){0, 0};
+    tt_world *w = tt_world_create(&d);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.mass = TT_MIN_MASS;
+    tt_particle p = tt_particle_create(w, &pd);
+    for (int s = 0; s < 6; s++) {
+        ENSURE_OK(tt_particle_apply_impulse(w, p, (tt_vec2){2e6, 0})); /* Δv = 2e15 m/s */
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE(world_bounded(w));
+    }
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    ENSURE(x.x == 0.0 && x.y == 0.0); /* stopped where it was every time */
+    tt_world_destroy(w);
+}
+
+TEST(guard_stops_a_leapfrog_particle_where_it_was)
+{
+    tt_world_def d = tt_world_def_default();
+    d.integrator = TT_LEAPFROG;
+    d.gravity = (tt_vec2){0, 0};
+    for (int forces = 0; forces < 2; forces++) {
+        tt_world *w = tt_world_create(&d);
+        tt_particle_def pd = tt_particle_def_default();
+        pd.mass = TT_MIN_MASS;
+        pd.position = (tt_vec2){3, 8};
+        tt_particle p = tt_particle_create(w, &pd);
+        if (forces) ENSURE_OK(tt_particle_apply_force(w, p, (tt_vec2){TT_MAX_VALUE, 0})); /* a = 1e21 m/s² */
+        else ENSURE_OK(tt_world_set_gravity(w, (tt_vec2){TT_MAX_VALUE, 0}));
+        tt_world_set_damping(w, 0);
+        /* gravity alone gains 1e13 m/s a step: the guard trips after about a hundred */
+        tt_vec2 before = {0, 0}, x = {3, 8}, v;
+        tt_stats st = {0};
+        int s;
+        for (s = 0; s < 1000 && st.diverged == 0; s++) {
+            before = x;
+            if (forces) ENSURE_OK(tt_particle_apply_force(w, p, (tt_vec2){TT_MAX_VALUE, 0}));
+            ENSURE_OK(tt_world_step(w, 10.0));
+            tt_world_get_stats(w, &st);
+            tt_particle_get_position(w, p, &x);
+        }
+        ENSURE(st.diverged == 1);
+        tt_particle_get_velocity(w, p, &v);
+        ENSURE(x.x == before.x && x.y == before.y);
+        ENSURE(v.x == 0.0 && v.y == 0.0);
+        tt_world_destroy(w);
+    }
+}
+
+TEST(compliance_below_the_minimum_is_refused_and_energy_stays_finite)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.pinned = true;
+    tt_particle a = tt_particle_create(w, &pd);
+    pd.pinned = false;
+    pd.position = (tt_vec2){2, 0};
+    tt_particle b = tt_particle_create(w, &pd);
+    tt_distance_def dd = tt_distance_def_default();
+    dd.a = a;
+    dd.b = b;
+    dd.length = 1;
+    dd.compliance = 1e-320;
+    ENSURE(tt_distance_create(w, &dd).gen == 0);
+    dd.compliance = TT_MIN_COMPLIANCE * 0.5;
+    ENSURE(tt_distance_create(w, &dd).gen == 0);
+    dd.compliance = TT_MIN_COMPLIANCE;
+    tt_constraint c = tt_distance_create(w, &dd);
+    ENSURE(c.gen != 0);
+    ENSURE(tt_constraint_set_compliance(w, c, 1e-320) == TT_EINVAL);
+    ENSURE(tt_constraint_set_compliance(w, c, 0.0) == TT_OK);
+    ENSURE(tt_constraint_set_compliance(w, c, TT_MIN_COMPLIANCE) == TT_OK);
+    tt_world_set_iterations(w, 1);
+    ENSURE(world_bounded(w)); /* stretched by 1 m at the stiffest compliance: ½·1/1e-12 J */
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(world_bounded(w));
+    tt_world_destroy(w);
+}
+
+/* A zero-length link has no strain (its length over zero): a break event
+ * reports a finite strain, the length over the scale of the smallest
+ * resolved distance. */
+TEST(a_broken_zero_length_link_reports_a_finite_strain)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.pinned = true;
+    tt_particle a = tt_particle_create(w, &pd);
+    tt_particle b = tt_particle_create(w, &pd);
+    tt_distance_def dd = tt_distance_def_default();
+    dd.a = a;
+    dd.b = b;
+    dd.length = 0;
+    dd.break_strain = 1;
+    ENSURE(tt_distance_create(w, &dd).gen != 0);
+    ENSURE_OK(tt_particle_set_position(w, b, (tt_vec2){2, 0}, TT_MOVE_RESET_VELOCITY));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    const tt_break_event *ev;
+    uint32_t n;
+    ENSURE_OK(tt_world_get_break_events(w, &ev, &n));
+    ENSURE(n == 1);
+    ENSURE(isfinite(ev[0].strain) && ev[0].strain > 0);
+    ENSURE(ev[0].length == 2.0);
+    tt_world_destroy(w);
+}
