@@ -5,6 +5,7 @@
 #
 # Parts, in order:
 #   1. $BUILD/test_c                                 the C tests
+#   1b. tests/layout.sh                              file/function sizes, dependency circles
 #   2. $BUILD/tether tests/lua/test_*.lua            the Lua binding tests
 #   3. fountain.lua run twice as two processes       must print the same hash
 #   4. lua5.4 tests/lua/test_world.lua               stock Lua requires $BUILD/tether.so
@@ -92,6 +93,9 @@ done
 if [ -x "$BUILD/test_c" ]; then
     run_counted "c: $BUILD/test_c" "$BUILD/test_c"
 fi
+
+# 1b. The layout rules (file and function sizes, no dependency circles).
+run_check "layout: tests/layout.sh" sh tests/layout.sh "$BUILD"
 
 # 2. Lua binding tests under the runner
 for t in tests/lua/test_*.lua; do
