@@ -113,3 +113,38 @@ TEST(memory_is_reported_and_small)
     ENSURE(m.total >= m.particles);
     tt_world_destroy(w);
 }
+
+/* Integration time excludes the force evaluations inside it: with several
+ * substeps each one subtracted the forces of all the substeps before it,
+ * and the stage went negative (−3.9 ms with RK4 × 16). */
+TEST(stage_times_are_never_negative_with_substeps)
+{
+    tt_world_def d = tt_world_def_default();
+    d.integrator = TT_RK4;
+    d.substeps = 16;
+    tt_world *w = tt_world_create(&d);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle prev = tt_particle_create(w, &pd);
+    for (int i = 1; i < 2000; i++) { /* a chain of springs: forces cost as much as integrating */
+        pd.position = (tt_vec2){i * 0.1, 0};
+        tt_particle p = tt_particle_create(w, &pd);
+        tt_spring_def sd = tt_spring_def_default();
+        sd.a = prev;
+        sd.b = p;
+        tt_spring_create(w, &sd);
+        prev = p;
+    }
+    for (int s = 0; s < 5; s++) {
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        tt_stats st;
+        tt_world_get_stats(w, &st);
+        double sum = 0;
+        for (int k = 0; k < TT_STAGE_COUNT; k++) {
+            ENSURE(st.stage_ms[k] >= 0.0);
+            sum += st.stage_ms[k];
+        }
+        ENSURE(st.stage_ms[TT_STAGE_FORCES] > 0.0);
+        ENSURE(sum <= st.step_ms * 1.01 + 1e-3);
+    }
+    tt_world_destroy(w);
+}
