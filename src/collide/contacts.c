@@ -780,7 +780,7 @@ static void destroy(tt_world *w, void *self)
 }
 
 const tt__group_ops tt__contacts_ops = {
-    .name = "contacts",
+    .name = "contacts", .rank = TT__RANK_CONTACTS,
     .begin_stage = TT_STAGE_COLLIDE,
     .begin = begin,
     .relax = relax,

@@ -21,7 +21,7 @@ static size_t group_memory(const tt_world *w, const void *self);
 static void group_destroy(tt_world *w, void *self);
 
 static const tt__group_ops constraint_ops = {
-    .name = "constraints",
+    .name = "constraints", .rank = TT__RANK_CONSTRAINTS,
     .begin_stage = TT_STAGE_SOLVE,
     .begin = group_begin,
     .relax = group_relax,

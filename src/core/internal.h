@@ -37,8 +37,14 @@ enum { TT_SCRATCH_AX, TT_SCRATCH_AY, TT_SCRATCH_RK4_FIRST, TT_SCRATCH_COUNT = TT
  * Groups are swept in registration order (deterministic). Only relax is
  * required. A group moves particles only through tt__correct, so the same
  * code serves Gauss-Seidel and Jacobi. */
+/* The order groups relax in, whatever order a script first used them in:
+ * constraints, then contacts, so non-penetration has the last word in every
+ * sweep (README "Solver order"). Ties (tests' own groups) keep their order. */
+enum { TT__RANK_TEST = 0, TT__RANK_CONSTRAINTS = 10, TT__RANK_CONTACTS = 20 };
+
 typedef struct tt__group_ops {
     const char *name;
+    int rank;             /* TT__RANK_*: groups run in increasing rank */
     tt_stage begin_stage; /* where begin's time is booked (TT_STAGE_COLLIDE for detection) */
     /* once per substep after integration, before the sweeps (detection, rest data) */
     void (*begin)(tt_world *w, void *self, double h);

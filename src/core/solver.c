@@ -13,8 +13,14 @@
 int tt__group_add(tt_world *w, const tt__group_ops *ops, void *self)
 {
     if (w->group_count == TT_MAX_GROUPS) return -1;
-    w->groups[w->group_count] = (tt__group){ops, self};
-    return w->group_count++;
+    int at = w->group_count;
+    while (at > 0 && w->groups[at - 1].ops->rank > ops->rank) {
+        w->groups[at] = w->groups[at - 1];
+        at--;
+    }
+    w->groups[at] = (tt__group){ops, self};
+    w->group_count++;
+    return at;
 }
 
 void *tt__group_find(const tt_world *w, const tt__group_ops *ops)
