@@ -386,7 +386,7 @@ function world:destroy() end
 ---@field radius? number m; default 0
 ---@field stiffness? number [0, 1]; default 1
 ---@field compliance? number m/N; default 0
----@field collide? boolean default false
+---@field collide? boolean default false: two particles joined by one of its links do not collide with each other (everything else collides as the world's settings say)
 
 ---Distance constraint between two distinct particles.
 ---@param a tether.particle

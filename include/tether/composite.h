@@ -47,7 +47,8 @@ typedef struct tt_cloth_def {
     tt_vec2 origin;         ///< top-left corner, m; default (0, 0)
     double width, height;   ///< m, > 0; default 1, 1
     uint32_t columns, rows; ///< particles per row / column, 2 … 4096; default 16, 16
-    double shear_stiffness; ///< [0, 1]; default 1 (0 = no shear links)
+    double shear_stiffness; ///< [0, 1]; default 1 (0 = no shear links). In 2D a sheared grid is a rigid
+                            ///< truss: at 1 a cloth pinned along an edge holds like a plate; 0…0.2 drapes
     double bend_stiffness;  ///< [0, 1]; default 0.5 (0 = no bend links)
     bool pin_top_corners;   ///< default true
     bool pin_top_row;       ///< every top-row particle pinned; default false
@@ -78,7 +79,9 @@ typedef struct tt_soft_body_def {
 } tt_soft_body_def;
 
 /// A lattice rigid body: a rectangle of columns × rows particles (or, when
-/// `points` is set, a polygon of its vertices) braced so it stays rigid.
+/// `points` is set, a polygon of its vertices) braced so it stays rigid. It
+/// collides through its particles: a radius of at least half the spacing
+/// makes their discs touch, so nothing passes between them.
 typedef struct tt_lattice_def {
     tt_composite_common common;
     tt_vec2 center;          ///< rectangle centre, m; default (0, 0)
