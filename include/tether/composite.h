@@ -48,7 +48,7 @@ typedef struct tt_cloth_def {
     double width, height;   ///< m, > 0; default 1, 1
     uint32_t columns, rows; ///< particles per row / column, 2 … 4096; default 16, 16
     double shear_stiffness; ///< [0, 1]; default 1 (0 = no shear links). In 2D a sheared grid is a rigid
-                            ///< truss: at 1 a cloth pinned along an edge holds like a plate; 0…0.2 drapes
+                            ///< truss: at 1 a cloth pinned along an edge holds like a plate; ≤ 0.1 drapes
     double bend_stiffness;  ///< [0, 1]; default 0.5 (0 = no bend links)
     bool pin_top_corners;   ///< default true
     bool pin_top_row;       ///< every top-row particle pinned; default false
