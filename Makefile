@@ -2,6 +2,8 @@
 # `make test SANITIZE=1` builds everything with ASan+UBSan into build-san/.
 
 PREFIX ?= /usr/local
+FUZZ_SECONDS ?= 60
+FUZZ_SEED ?=
 VERSION := $(shell sed -n 's/^\#define TT_VERSION_STRING "\(.*\)"/\1/p' include/tether/base.h)
 CC     ?= cc
 CXX    ?= c++
@@ -67,7 +69,7 @@ RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 BENCH   := $(BUILD)/bench
 
-.PHONY: all deps demo pictures test test-c test-lua bench install uninstall clean
+.PHONY: all deps demo pictures test test-c test-lua fuzz bench install uninstall clean
 all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER)
 
 # --- dependencies -----------------------------------------------------------
@@ -175,6 +177,12 @@ pictures: all
 
 test: all $(TEST_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh
+
+# `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
+# (tests/fuzz/); on a failure it prints the seed and a replay script and
+# shortens it.
+fuzz: all
+	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 bench: deps $(BENCH) $(RUNNER)
 	@mkdir -p $(BUILD)/bench-out
