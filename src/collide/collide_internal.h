@@ -248,8 +248,8 @@ static inline int32_t tt__cell_coord(double v, double o, double inv)
     double f = (v - o) * inv;
     if (f >= 0.0 && f < 1e9) return (int32_t)f; /* truncation is floor here, and much cheaper */
     f = floor(f);
-    if (f < -1e9) return -1000000000;
     if (f > 1e9) return 1000000000;
+    if (!(f >= -1e9)) return -1000000000; /* NaN too: never converted */
     return (int32_t)f;
 }
 /* Brute force (broadphase_brute.c): the same candidate set, every pair tested. */

@@ -256,8 +256,8 @@ static void begin(tt_world *w, void *self, double h)
             c->vy0[i] = (w->py[i] - w->qy[i]) * inv_h;
         }
     } else {
-        memcpy(c->vx0, w->qx, (size_t)n * sizeof *c->vx0);
-        memcpy(c->vy0, w->qy, (size_t)n * sizeof *c->vy0);
+        tt__copy(c->vx0, w->qx, (size_t)n * sizeof *c->vx0);
+        tt__copy(c->vy0, w->qy, (size_t)n * sizeof *c->vy0);
     }
     if (w->integrator != TT_VERLET) {
         if (!grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return;
@@ -609,8 +609,8 @@ static void end(tt_world *w, void *self, double h)
         }
     }
     if (w->integrator != TT_VERLET && c->sx0 && c->scap >= w->ppool.count) {
-        memcpy(c->sx0, w->px, (size_t)w->ppool.count * sizeof *c->sx0);
-        memcpy(c->sy0, w->py, (size_t)w->ppool.count * sizeof *c->sy0);
+        tt__copy(c->sx0, w->px, (size_t)w->ppool.count * sizeof *c->sx0);
+        tt__copy(c->sy0, w->py, (size_t)w->ppool.count * sizeof *c->sy0);
         c->s_count = w->ppool.count;
         c->s_epoch = w->epoch; /* after_step moves it past the step's own bump */
     }

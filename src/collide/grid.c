@@ -9,11 +9,14 @@
  * Arrays grow with the particle count and are reused: no per-step malloc. */
 #include "collide_internal.h"
 
+#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* Entries after the last sorted one: the vector test reads whole groups of four. */
 #define TT__GRID_PAD 3
+/* Most cells a grid may have, far above the 4 per particle it aims for. */
+#define TT__GRID_MAX_CELLS 1073741824.0
 
 static bool grow_n(tt__grid *g, uint32_t need)
 {
@@ -29,14 +32,22 @@ static bool grow_n(tt__grid *g, uint32_t need)
     return true;
 }
 
+/* Cells across [lo, hi]: bounded while still a double, since a cell size
+ * of 1e-300 asks for 1e302 of them (no int holds that), and at least one,
+ * should a rounding ever invert the span. */
+static int32_t cells_across(double lo, double hi, double inv)
+{
+    const double n = floor((hi - lo) * inv) + 1.0;
+    return n >= 1.0 ? (int32_t)fmin(n, 1e9) : 1;
+}
+
 static void fit(tt__grid *g, double lox, double loy, double hix, double hiy)
 {
     g->ox = lox;
     g->oy = loy;
     g->inv = 1.0 / g->cs;
-    double nx = floor((hix - lox) * g->inv) + 1.0, ny = floor((hiy - loy) * g->inv) + 1.0;
-    g->nx = (int32_t)fmin(nx, 1e9);
-    g->ny = (int32_t)fmin(ny, 1e9);
+    g->nx = cells_across(lox, hix, g->inv);
+    g->ny = cells_across(loy, hiy, g->inv);
 }
 
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
@@ -74,7 +85,9 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     double ex = hix - lox, ey = hiy - loy;
     double cs = fmax(min_cell, 2.0 * rmax * (1.0 + TT__CONTACT_MARGIN));
     if (!(cs > 0.0)) cs = fmax(sqrt(fmax(ex * ey, ex * ex + ey * ey) / m), 1e-6); /* points only: about one per cell */
-    const double limit = 4.0 * m + 1024.0;
+    cs = fmax(cs, DBL_MIN); /* 1 / 4.9e-324 is inf, and inf · 0 a NaN cell */
+    /* The bound keeps nx·ny, and ncell + 1, inside a uint32_t whatever m is. */
+    const double limit = fmin(4.0 * m + 1024.0, TT__GRID_MAX_CELLS);
     g->cs = cs;
     fit(g, lox, loy, hix, hiy);
     if ((double)g->nx * g->ny > limit) { /* a few particles far away: a second pass for the spread */
@@ -84,7 +97,9 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
             double x = px[i], y = py[i];
             sx += x; sy += y; sxx += x * x; syy += y * y;
         }
-        double mx = sx / m, my = sy / m;
+        /* The mean of equal coordinates can round past them, which would
+         * put the whole row outside a grid of no rows: keep it in the box. */
+        double mx = fmin(fmax(sx / m, lox), hix), my = fmin(fmax(sy / m, loy), hiy);
         double dx = 4.0 * sqrt(fmax(sxx / m - mx * mx, 0.0)), dy = 4.0 * sqrt(fmax(syy / m - my * my, 0.0));
         double rlx = fmax(lox, mx - dx), rhx = fmin(hix, mx + dx), rly = fmax(loy, my - dy), rhy = fmin(hiy, my + dy);
         fit(g, rlx, rly, rhx, rhy);

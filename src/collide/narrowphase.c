@@ -101,6 +101,26 @@ bool tt__ray_vs_circle(double ox, double oy, double dx, double dy, double cx, do
     return true;
 }
 
+/* A ray exactly along a segment of no radius: parallel to both faces, and
+ * no end circles, so the general test lets it through. It meets the nearer
+ * end point (at once when it starts between them), the normal facing the
+ * ray, as a capsule's end cap does as its radius goes to 0. */
+static bool ray_along_segment(double ox, double oy, double dx, double dy, double ax, double ay, double bx, double by,
+                              double tmax, double *t, double *nx, double *ny)
+{
+    const double dd = dx * dx + dy * dy;
+    const double ta = ((ax - ox) * dx + (ay - oy) * dy) / dd, tb = ((bx - ox) * dx + (by - oy) * dy) / dd;
+    const double tnear = fmin(ta, tb), tfar = fmax(ta, tb);
+    if (tfar < 0.0) return false; /* behind the start */
+    const double tt = tnear > 0.0 ? tnear : 0.0;
+    if (tt > tmax) return false;
+    const double dl = sqrt(dd);
+    *t = tt;
+    *nx = -dx / dl;
+    *ny = -dy / dl;
+    return true;
+}
+
 /* Ray against a rounded segment a–b of radius r: the two offset faces and the end circles. */
 static bool ray_vs_capsule(double ox, double oy, double dx, double dy, double ax, double ay, double bx, double by,
                            double r, double tmax, double *t, double *nx, double *ny)
@@ -108,6 +128,10 @@ static bool ray_vs_capsule(double ox, double oy, double dx, double dy, double ax
     bool hit = false;
     double best = tmax, tx, nnx, nny;
     double ex = bx - ax, ey = by - ay, l = sqrt(ex * ex + ey * ey);
+    /* exactly on the line: tested on the raw products, since the unit
+     * direction below rounds and would make the faces graze it instead */
+    if (r == 0.0 && l > 0.0 && (dx != 0.0 || dy != 0.0) && dx * ey == dy * ex && (ox - ax) * ey == (oy - ay) * ex)
+        return ray_along_segment(ox, oy, dx, dy, ax, ay, bx, by, tmax, t, nx, ny);
     if (l > 0.0) {
         double ux = ex / l, uy = ey / l;
         /* inside the straight part at the start? */

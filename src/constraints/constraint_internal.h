@@ -88,6 +88,7 @@ typedef struct tt__cgroup {
     uint32_t hot_cap;
     bool plan_ok;
     bool pk_live;      /* pk holds the positions, w->px/py are stale until sweeps_done */
+    bool first_sweep;  /* the substep's first: linked particles on one spot part (group_begin sets it) */
     uint8_t simd;      /* tt__simd_mode */
 
     uint32_t *refs;    /* per particle slot: how many constraint entries name it (0: removal skips the scan) */

@@ -959,6 +959,7 @@ static void group_begin(tt_world *w, void *self, double h)
     if (g->nxpbd)
         for (uint32_t i = 0; i < g->ndist; i++) g->dx[i].lambda = 0.0;
     for (uint32_t i = 0; i < g->ngen; i++) g->gen[i].lambda = 0.0;
+    g->first_sweep = true;
 }
 
 /* Part of a sweep over the distance constraints: links [i, n), err the
@@ -983,7 +984,16 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
         if (c == 0.0) continue;
         double ac = fabs(c);
         if (ac > err) err = ac;
-        if (len == 0.0) continue; /* no direction: the next substep's motion gives one */
+        if (len == 0.0) { /* one spot: no direction */
+            /* Brought together by other constraints during the sweeps, they
+             * get one from those; still together when the substep's sweeps
+             * begin, they may never get one (two particles at rest), so b
+             * parts to +x of a. */
+            if (!g->first_sweep) continue;
+            dx = 1.0;
+            dy = 0.0;
+            len = 1.0;
+        }
         double s;
         if (d->alpha > 0.0) {
             double at = d->alpha * inv_h2, *lam = &g->dx[i].lambda;
@@ -1127,6 +1137,7 @@ typedef struct kern_in {
     const uint32_t *ra, *rb;
     tt__dist_x *x;
     double inv_h2;
+    bool apart; /* the substep's first sweep: links of length 0 part their particles */
 } kern_in;
 
 /* Four links a block, in "pair form": a ymm holds (x, y) of two particles,
@@ -1166,17 +1177,25 @@ TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_
     const uint32_t *ra = in->ra + i, *rb = in->rb + i;
     const __m256d wa02 = o->wa02, wa13 = o->wa13, wb02 = o->wb02, wb13 = o->wb13;
     const __m256d ws = _mm256_add_pd(_mm256_blend_pd(wa02, wa13, 0xA), _mm256_blend_pd(wb02, wb13, 0xA));
-    const __m256d len = o->len;
     /* c = min(len − lo, 0) + max(len − hi, 0) is the scalar's three cases bit
      * for bit: lo <= hi, so one term is +0, and min/max give the 0 for NaN.
      * Rigid (lo = hi): len − lo, NaN for NaN, which the ordered c != 0 below
      * turns off as the scalar's c = 0 would. */
-    const __m256d c = rigid ? _mm256_sub_pd(len, _mm256_loadu_pd(in->lo + i))
-                            : _mm256_add_pd(_mm256_min_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->lo + i)), zero),
-                                            _mm256_max_pd(_mm256_sub_pd(len, _mm256_loadu_pd(in->hi + i)), zero));
-    /* as the scalar loop skips: ws == 0, c == 0 (no error); len == 0 (error, no move) */
+    const __m256d c = rigid ? _mm256_sub_pd(o->len, _mm256_loadu_pd(in->lo + i))
+                            : _mm256_add_pd(_mm256_min_pd(_mm256_sub_pd(o->len, _mm256_loadu_pd(in->lo + i)), zero),
+                                            _mm256_max_pd(_mm256_sub_pd(o->len, _mm256_loadu_pd(in->hi + i)), zero));
+    /* as the scalar loop skips: ws == 0, c == 0 (no error) */
     const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(c, zero, _CMP_NEQ_OQ));
     err = _mm256_max_pd(err, _mm256_and_pd(_mm256_andnot_pd(sign, c), act)); /* |c| of an active lane: >= 0, not NaN */
+    __m256d len = o->len, d02 = o->d02, d13 = o->d13; /* the divisor and direction below */
+    const __m256d one = _mm256_and_pd(act, _mm256_cmp_pd(len, zero, _CMP_EQ_OQ));
+    if (TT_UNLIKELY(in->apart && _mm256_movemask_pd(one))) { /* the scalar's direction for two particles on one spot */
+        const __m256d unit = _mm256_setr_pd(1.0, 0.0, 1.0, 0.0);
+        len = _mm256_blendv_pd(len, _mm256_set1_pd(1.0), one);
+        d02 = _mm256_blendv_pd(d02, unit, _mm256_unpacklo_pd(one, one));
+        d13 = _mm256_blendv_pd(d13, unit, _mm256_unpackhi_pd(one, one));
+    }
+    /* length 0 left (not the first sweep): error, no move */
     const __m256d upd = _mm256_and_pd(act, _mm256_cmp_pd(len, zero, _CMP_NEQ_UQ));
     __m256d s = _mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(in->k + i), c), _mm256_mul_pd(ws, len));
     if (xpbd) {
@@ -1197,7 +1216,7 @@ TT_AVX2 TT_INLINE __m256d stage2_run(const stage1 *o, const kern_in *in, uint32_
         }
     }
     /* back to pairs: (s·dx, s·dy) as the scalar's cx, cy; x + w·cx, as it adds */
-    const __m256d c02 = _mm256_mul_pd(_mm256_unpacklo_pd(s, s), o->d02), c13 = _mm256_mul_pd(_mm256_unpackhi_pd(s, s), o->d13);
+    const __m256d c02 = _mm256_mul_pd(_mm256_unpacklo_pd(s, s), d02), c13 = _mm256_mul_pd(_mm256_unpackhi_pd(s, s), d13);
     __m256d na02 = _mm256_add_pd(o->pa02, _mm256_mul_pd(wa02, c02)), na13 = _mm256_add_pd(o->pa13, _mm256_mul_pd(wa13, c13));
     __m256d nb02 = _mm256_sub_pd(o->pb02, _mm256_mul_pd(wb02, c02)), nb13 = _mm256_sub_pd(o->pb13, _mm256_mul_pd(wb13, c13));
     if (_mm256_movemask_pd(upd) != 15) { /* a lane that must not move keeps its old value (old + 0 could turn −0 into +0) */
@@ -1272,7 +1291,7 @@ TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const 
         i += ns;
         if (!nb) continue;
         const kern_in in = {pk, g->h_lo + i, g->h_hi + i, g->h_k + i, g->h_alpha + i, g->h_ra + i, g->h_rb + i,
-                            g->dx + i, 1.0 / (h * h)};
+                            g->dx + i, 1.0 / (h * h), g->first_sweep};
         double e = runs[2 * xpbd + (g->plan[k + 1] >= PLAN_RIGID)](&in, nb);
         if (e > err) err = e; /* a max: the order it is taken in does not matter */
         i += 4 * nb;
@@ -1421,6 +1440,7 @@ static double group_relax(tt_world *w, void *self, double h)
     tt__cgroup *g = self;
     bool jacobi = w->jn && w->order == TT_JACOBI;
     double err = jacobi ? sweep_distance_jacobi(w, g, h) : sweep_distance_gs(w, g, h);
+    g->first_sweep = false;
     for (uint32_t i = 0; i < g->ngen; i++) {
         tt__gcon *c = &g->gen[i];
         double e = 0.0;

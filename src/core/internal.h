@@ -6,6 +6,7 @@
 #include "pool.h"
 
 #include <math.h>
+#include <string.h>
 
 #if defined(__GNUC__)
 #define TT_UNLIKELY(x) __builtin_expect(!!(x), 0)
@@ -128,6 +129,17 @@ tt_result tt__fail(const tt_world *w, tt_result code, const char *fmt, ...) TT_P
 static inline bool tt__finite(double x) { return x - x == 0.0; }
 static inline bool tt__in_range(double x, double lo, double hi) { return x >= lo && x <= hi; }
 static inline bool tt__vec_ok(tt_vec2 v) { return fabs(v.x) <= TT_MAX_VALUE && fabs(v.y) <= TT_MAX_VALUE; }
+/* memcpy and memset through a NULL pointer are undefined even for 0 bytes,
+ * and a world that never had particles has NULL arrays: every copy or
+ * clear whose length is a particle count goes through these. */
+static inline void tt__copy(void *dst, const void *src, size_t bytes)
+{
+    if (bytes) memcpy(dst, src, bytes);
+}
+static inline void tt__zero(void *dst, size_t bytes)
+{
+    if (bytes) memset(dst, 0, bytes);
+}
 double tt__now_ms(void);
 uint64_t tt__fnv(uint64_t h, const void *data, size_t n); /* FNV-1a step, for group hashes */
 

@@ -48,9 +48,9 @@ static bool jacobi_arrays(tt_world *w)
             return false;
         w->jcap = w->pcap;
     }
-    memset(w->jx, 0, n * sizeof(double));
-    memset(w->jy, 0, n * sizeof(double));
-    memset(w->jn, 0, n * sizeof(uint32_t));
+    tt__zero(w->jx, n * sizeof(double));
+    tt__zero(w->jy, n * sizeof(double));
+    tt__zero(w->jn, n * sizeof(uint32_t));
     return true;
 }
 
@@ -175,8 +175,8 @@ void tt__solve(tt_world *w, double h)
             fix = false;
     }
     if (fix) {
-        memcpy(w->bx, w->px, n * sizeof(double));
-        memcpy(w->by, w->py, n * sizeof(double));
+        tt__copy(w->bx, w->px, n * sizeof(double));
+        tt__copy(w->by, w->py, n * sizeof(double));
     }
     bool jacobi = w->order == TT_JACOBI && jacobi_arrays(w);
     if (!jacobi && w->jn) { /* tt__correct reads jn to pick the mode */

@@ -164,8 +164,8 @@ tt_result tt_world_step(tt_world *w, double dt)
     tt__solver_after_step(w); /* events, gathered outside every loop */
 
     if (w->forces_pending) {
-        memset(w->fx, 0, (size_t)w->ppool.count * sizeof *w->fx);
-        memset(w->fy, 0, (size_t)w->ppool.count * sizeof *w->fy);
+        tt__zero(w->fx, (size_t)w->ppool.count * sizeof *w->fx);
+        tt__zero(w->fy, (size_t)w->ppool.count * sizeof *w->fy);
         w->forces_pending = false;
     }
     w->stats.steps++;

@@ -1,7 +1,9 @@
 /* The particle broadphase: grid and brute force give the same pair set on
  * random scenes (varied radii, far outside the grid, on cell edges,
  * coincident centres, layers and exclusions); no per-step malloc after
- * warm-up; a world without collisions has no collision state at all. */
+ * warm-up; a world without collisions has no collision state at all; the
+ * grid keeps at least one row and column, and cell counts an int holds, for
+ * particles on one row and for absurd cell sizes. */
 #include "test.h"
 #include "collide/collide_internal.h"
 
@@ -196,4 +198,106 @@ TEST(far_away_particles_still_collide)
     tt_particle_get_position(w, b, &xb);
     ENSURE_NEAR(xb.x - xa.x, 1.0, 1e-6);
     tt_world_destroy(w);
+}
+
+/* The grid's shape after a build: at least one row and column, the cell
+ * count their product, and every sorted particle's cell inside it. */
+static bool grid_sane(const tt__grid *g)
+{
+    if (g->n == 0) return g->ncell == 0;
+    if (g->nx < 1 || g->ny < 1 || g->ncell != (uint32_t)g->nx * (uint32_t)g->ny) return false;
+    if (g->start[g->ncell] != g->n) return false;
+    for (uint32_t c = 0; c < g->ncell; c++)
+        if (g->start[c] > g->start[c + 1]) return false;
+    return true;
+}
+
+/* Issue 14, finding 1: every particle on one row, far apart, so the grid
+ * narrows itself to mean ± 4σ; the mean of the equal y rounds above them
+ * and the row count came out 0 (a heap overflow in the counting sort). */
+TEST(balls_resting_far_apart_on_a_long_floor_keep_a_grid_row)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    sd.a = (tt_vec2){-10, -1};
+    sd.b = (tt_vec2){1010, 0};
+    tt_shape_create(w, &sd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.05;
+    for (int i = 0; i < 100; i++) {
+        pd.position = (tt_vec2){i * 10.0, 0.05};
+        tt_particle_create(w, &pd);
+    }
+    tt__collide *c = tt__collide_peek(w);
+    ENSURE(tt__grid_build(w, &c->grid, 0.0));
+    ENSURE(grid_sane(&c->grid));
+    for (int s = 0; s < 120; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(grid_sane(&c->grid));
+    double xy[200];
+    ENSURE(tt_world_read_positions(w, xy, 100) == 100);
+    for (int i = 0; i < 100; i++) {
+        ENSURE_NEAR(xy[2 * i], i * 10.0, 1e-9);
+        ENSURE_NEAR(xy[2 * i + 1], 0.05, 1e-3);
+    }
+    tt_world_destroy(w);
+}
+
+/* Point particles on one row with a cell size (given) far below their spacing. */
+static tt_world *points_in_a_row(double cell_size, double y)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_world_set_gravity(w, (tt_vec2){0, 0});
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.cell_size = cell_size;
+    tt_world_set_collision(w, &cs);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.0;
+    for (int i = 0; i < 100; i++) {
+        pd.position = (tt_vec2){i * 1.0, y};
+        tt_particle_create(w, &pd);
+    }
+    return w;
+}
+
+TEST(points_with_a_tiny_cell_size_keep_a_sane_grid)
+{
+    const double ys[] = {0.0, 0.05, 0.1, 0.3, -7.7, 1e6 + 0.1};
+    for (unsigned k = 0; k < sizeof ys / sizeof ys[0]; k++) {
+        tt_world *w = points_in_a_row(1e-3, ys[k]);
+        tt__collide *c = tt__collide_peek(w);
+        ENSURE(tt__grid_build(w, &c->grid, 1e-3));
+        ENSURE(grid_sane(&c->grid));
+        ENSURE(c->grid.ncell <= 4 * c->grid.n + 1024);
+        for (int s = 0; s < 10; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE(grid_sane(&c->grid));
+        tt_world_destroy(w);
+    }
+}
+
+/* cell_size 1e-300: the cell counts are ±1e283 and more before they
+ * become integers (negative when the mean rounds above the row, as at y =
+ * 0.3 and −7.7, where the mean ± 4σ box is inverted by one rounding). */
+TEST(an_absurdly_small_cell_size_does_not_overflow_the_cell_counts)
+{
+    const double sizes[] = {1e-300, 4.9e-324, 1e-12};
+    const double ys[] = {0.3, 0.05, -7.7};
+    for (unsigned k = 0; k < 9; k++) {
+        tt_world *w = points_in_a_row(sizes[k % 3], ys[k / 3]);
+        tt__collide *c = tt__collide_peek(w);
+        ENSURE(tt__grid_build(w, &c->grid, sizes[k % 3]));
+        ENSURE(grid_sane(&c->grid));
+        ENSURE(c->grid.ncell <= 4 * c->grid.n + 1024);
+        for (int s = 0; s < 10; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE(grid_sane(&c->grid));
+        tt_ray_hit hit;
+        ENSURE_OK(tt_world_raycast(w, (tt_vec2){-1, ys[k / 3]}, (tt_vec2){200, ys[k / 3]}, 0xFFFF, &hit));
+        uint32_t np = 0;
+        ENSURE_OK(tt_world_query_aabb(w, (tt_vec2){-1, ys[k / 3] - 1}, (tt_vec2){200, ys[k / 3] + 1}, 0xFFFF, NULL, 0, &np,
+                                      NULL, 0, NULL));
+        ENSURE(np == 100);
+        tt_world_destroy(w);
+    }
 }

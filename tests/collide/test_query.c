@@ -1,6 +1,7 @@
 /* Queries through the broadphase agree with brute force over every
  * particle and primitive, on random scenes (particles far outside the grid
- * included), and see teleports made between steps. */
+ * included), and see teleports made between steps; a ray exactly along a
+ * segment hits its nearer end. */
 #include "test.h"
 #include "collide/collide_internal.h"
 
@@ -174,4 +175,73 @@ TEST(queries_see_particles_moved_and_made_between_steps)
     ENSURE_OK(tt_world_query_point(w, (tt_vec2){2.2, 0.1}, 0xFFFF, got, 4, &np, NULL, 0, &ns));
     ENSURE(np == 1 && got[0].index == b.index && ns == 0);
     tt_world_destroy(w);
+}
+
+/* One shape in an otherwise empty world, the first hit of from → to. */
+static tt_ray_hit ray_at(const tt_shape_def *sd, tt_vec2 from, tt_vec2 to)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_world_set_collision(w, &cs);
+    tt_shape_create(w, sd);
+    tt_ray_hit hit;
+    memset(&hit, 0, sizeof hit);
+    if (tt_world_raycast(w, from, to, 0xFFFF, &hit) != TT_OK) hit.fraction = -1;
+    tt_world_destroy(w);
+    return hit;
+}
+
+/* Issue 14, finding 10: a ray exactly along a segment is parallel to both
+ * of its faces, and a segment has no end circles, so it went through.
+ * It hits the nearer end point, the normal facing the ray. */
+TEST(a_ray_along_a_segment_hits_its_nearer_end)
+{
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_SEGMENT;
+    const struct { tt_vec2 a, b, from, to, point; double fraction; } cases[] = {
+        {{-1, 0}, {1, 0}, {-5, 0}, {5, 0}, {-1, 0}, 0.4},          /* along +x: end a */
+        {{-1, 0}, {1, 0}, {5, 0}, {-5, 0}, {1, 0}, 0.4},           /* along −x: end b */
+        {{2, -3}, {2, 7}, {2, 10}, {2, -10}, {2, 7}, 0.15},         /* vertical, downwards */
+        {{0, 0}, {3, 4}, {-3, -4}, {9, 12}, {0, 0}, 0.25},         /* diagonal, exactly collinear */
+        {{-1, 0.25}, {1, 0.25}, {-2, 0.25}, {2, 0.25}, {-1, 0.25}, 0.25},
+    };
+    for (unsigned k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        sd.a = cases[k].a;
+        sd.b = cases[k].b;
+        tt_ray_hit hit = ray_at(&sd, cases[k].from, cases[k].to);
+        if (!hit.hit) {
+            tt_test_fail(__FILE__, __LINE__, "case %u: the ray along the segment missed it", k);
+            continue;
+        }
+        ENSURE_NEAR(hit.fraction, cases[k].fraction, 1e-15);
+        ENSURE_NEAR(hit.point.x, cases[k].point.x, 1e-12);
+        ENSURE_NEAR(hit.point.y, cases[k].point.y, 1e-12);
+        double dx = cases[k].to.x - cases[k].from.x, dy = cases[k].to.y - cases[k].from.y, l = hypot(dx, dy);
+        ENSURE_NEAR(hit.normal.x, -dx / l, 1e-12);
+        ENSURE_NEAR(hit.normal.y, -dy / l, 1e-12);
+    }
+    /* on the line but short of the segment, or pointing away from it: no hit */
+    sd.a = (tt_vec2){-1, 0};
+    sd.b = (tt_vec2){1, 0};
+    ENSURE(!ray_at(&sd, (tt_vec2){-5, 0}, (tt_vec2){-1.5, 0}).hit);
+    ENSURE(!ray_at(&sd, (tt_vec2){-5, 0}, (tt_vec2){-9, 0}).hit);
+    ENSURE(ray_at(&sd, (tt_vec2){-5, 0}, (tt_vec2){-1, 0}).hit); /* just reaching it */
+    /* starting on the segment: at once */
+    tt_ray_hit hit = ray_at(&sd, (tt_vec2){0.5, 0}, (tt_vec2){5, 0});
+    ENSURE(hit.hit && hit.fraction == 0.0);
+    /* a chain's segments and a box's edges too */
+    tt_vec2 pts[3] = {{0, 0}, {4, 0}, {4, 4}};
+    sd.type = TT_SHAPE_CHAIN;
+    sd.points = pts;
+    sd.count = 3;
+    hit = ray_at(&sd, (tt_vec2){10, 0}, (tt_vec2){-10, 0});
+    ENSURE(hit.hit);
+    ENSURE_NEAR(hit.point.x, 4, 1e-12);
+    sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    sd.a = (tt_vec2){0, 0};
+    sd.b = (tt_vec2){2, 1};
+    hit = ray_at(&sd, (tt_vec2){-3, 1}, (tt_vec2){5, 1});
+    ENSURE(hit.hit);
+    ENSURE_NEAR(hit.point.x, 0, 1e-12);
 }

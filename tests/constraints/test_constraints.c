@@ -1,6 +1,7 @@
 /* Position constraints against known answers: rest lengths, the pendulum's
  * period, XPBD's iteration-independent stretch, Gauss-Seidel vs Jacobi,
- * contradictory constraints, areas, tearing, and the bookkeeping around them. */
+ * contradictory constraints, areas, tearing, particles linked on one spot,
+ * and the bookkeeping around them. */
 #include "test.h"
 #include "constraints/constraint_internal.h"
 
@@ -738,11 +739,13 @@ TEST(removing_particles_keeps_constraint_references_exact)
  * blocks: a cloth with a pinned top row (links between two pinned particles:
  * no mass to move), runs of four or more extra links that are max-only (slack
  * ones: c = 0), min-only, compliant (XPBD) or soft, and pairs of particles on
- * one spot linked at 0.3 m (length 0: error, no move; without its mask a lane
- * there turns NaN), and pinned pairs far from their length (no error counted). Along the way the script changes lengths, stiffness and
- * compliance, destroys links and a particle, and tears the cloth, so the plan
- * and its copies are rebuilt and updated. with_pin adds pins (other
- * constraint kinds in the group: the rows go back to the world every sweep).
+ * one spot linked at 0.3 m (length 0: no direction, so the lanes take the
+ * scalar's fixed one; without it a lane there turns NaN), and pinned pairs
+ * far from their length (no error counted). Along the way the script changes
+ * lengths, stiffness and compliance, destroys links and a particle, and
+ * tears the cloth, so the plan and its copies are rebuilt and updated.
+ * with_pin adds pins (other constraint kinds in the group: the rows go back
+ * to the world every sweep).
  * Returns the world hash folded with every step's largest error; *vec: how
  * many links the last plan solved in vector blocks; *bad: calls that failed. */
 static uint64_t simd_scene(tt__simd_mode mode, bool with_pin, uint32_t *vec, uint32_t *torn, int *bad)
@@ -857,6 +860,90 @@ TEST(simd_sweep_is_bit_identical_to_the_scalar_loop)
             ENSURE(tv == torn);
             if (modes[m] != TT__SIMD_AUTO) /* (auto is the scalar loop where there is no vector path) */
                 ENSURE(vec > 1000); /* the comparison is not vacuous: most links went through the vector path */
+        }
+    }
+}
+
+/* n pairs of particles, each pair on one spot (pair k at (3k, 1)), joined
+ * by distance constraints of length 1 made as def says; a of each pair in
+ * ps[2k], b in ps[2k + 1]. */
+static tt_world *coincident_pairs(tt_integrator integ, tt_solver_order order, tt__simd_mode mode, int n,
+                                  const tt_distance_def *def, tt_particle *ps)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.integrator = integ;
+    wd.order = order;
+    tt_world *w = tt_world_create(&wd);
+    if (!tt__constraints_set_simd(w, mode)) {
+        tt_world_destroy(w);
+        return NULL;
+    }
+    for (int k = 0; k < n; k++) {
+        ps[2 * k] = add(w, 3.0 * k, 1, 1, false);
+        ps[2 * k + 1] = add(w, 3.0 * k, 1, 1 + k % 3, false);
+        tt_distance_def d = *def;
+        d.a = ps[2 * k];
+        d.b = ps[2 * k + 1];
+        d.length = 1;
+        tt_distance_create(w, &d);
+    }
+    return w;
+}
+
+/* Issue 14, finding 10: two particles on one spot have no direction between
+ * them, and the sweep skipped the link, so a length-1 link between them
+ * never separated them (the error stayed 1 for ever). Still together when
+ * a substep's sweeps begin, they now part along +x (b to the right of a),
+ * with every integrator, Gauss-Seidel and Jacobi, rigid, strut and XPBD. */
+TEST(coincident_particles_joined_by_a_link_separate)
+{
+    tt_distance_def modes[3] = {tt_distance_def_default(), tt_distance_def_default(), tt_distance_def_default()};
+    modes[1].mode = TT_DISTANCE_MIN; /* a strut pushes them apart too */
+    modes[2].compliance = 1e-7;      /* XPBD: as far as its compliance lets it */
+    tt_particle ps[2];
+    for (int i = 0; i < TT_INTEGRATOR_COUNT; i++)
+        for (int order = 0; order < 2; order++)
+            for (int m = 0; m < 3; m++) {
+                const tt_solver_order o = order ? TT_JACOBI : TT_GAUSS_SEIDEL;
+                tt_world *w = coincident_pairs((tt_integrator)i, o, TT__SIMD_AUTO, 1, &modes[m], ps);
+                ENSURE(w);
+                ENSURE_OK(tt_world_step(w, 1.0 / 60));
+                const double d1 = dist(w, ps[0], ps[1]);
+                for (int s = 0; s < 30; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+                tt_vec2 a = pos(w, ps[0]), b = pos(w, ps[1]);
+                /* the strut's push leaves them moving apart, and it never pulls back */
+                const double d = m == 1 ? fmin(dist(w, ps[0], ps[1]), 1.0) : dist(w, ps[0], ps[1]);
+                if (!(fabs(d1 - 1.0) < 1e-2 && fabs(d - 1.0) < 1e-3 && b.x > a.x && a.y == b.y))
+                    tt_test_fail(__FILE__, __LINE__, "%s, %s, link %d: a (%g, %g), b (%g, %g)",
+                                 tt_integrator_name((tt_integrator)i), order ? "Jacobi" : "Gauss-Seidel", m, a.x, a.y, b.x, b.y);
+                tt_world_destroy(w);
+            }
+}
+
+/* The same in blocks of vector lanes: every mode moves each pair exactly as the scalar loop does. */
+TEST(coincident_pairs_separate_the_same_in_vector_lanes)
+{
+    enum { N = 24 };
+    tt_particle ps[2 * N];
+    for (int x = 0; x < 2; x++) {
+        tt_distance_def d = tt_distance_def_default();
+        d.compliance = x ? 1e-6 : 0.0;
+        uint64_t ref = 0;
+        const tt__simd_mode modes[] = {TT__SIMD_SCALAR, TT__SIMD_AVX2, TT__SIMD_AVX512};
+        for (int m = 0; m < 3; m++) {
+            tt_world *w = coincident_pairs(TT_VERLET, TT_GAUSS_SEIDEL, modes[m], N, &d, ps);
+            if (!w) continue; /* not in this build or on this processor */
+            ENSURE_OK(tt_world_step(w, 1.0 / 60));
+            for (int k = 0; k < N; k++) ENSURE_NEAR(dist(w, ps[2 * k], ps[2 * k + 1]), 1.0, x ? 1e-2 : 1e-12);
+            const tt__cgroup *g = tt__cgroup_peek(w);
+            uint32_t vec = 0;
+            for (uint32_t k = 0; g->plan_ok && k < g->nplan; k += 2) vec += 4 * (g->plan[k + 1] & 0x7fffffffu);
+            ENSURE(m == 0 || vec >= N / 2); /* not vacuous: the vector blocks had such pairs */
+            for (int s = 0; s < 10; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+            const uint64_t h = tt_world_hash(w);
+            if (m == 0) ref = h;
+            ENSURE(h == ref);
+            tt_world_destroy(w);
         }
     }
 }

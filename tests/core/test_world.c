@@ -1,4 +1,4 @@
-/* The world: stats, energy, memory, determinism. */
+/* The world: stats, energy, memory, determinism; empty worlds step with every feature. */
 #include "test.h"
 #include "tether.h"
 
@@ -147,4 +147,116 @@ TEST(stage_times_are_never_negative_with_substeps)
         ENSURE(sum <= st.step_ms * 1.01 + 1e-3);
     }
     tt_world_destroy(w);
+}
+
+/* --- empty worlds ----------------------------------------------------------- */
+
+enum {
+    EMPTY_FORCES = 1 << 0,  /* wind and damping */
+    EMPTY_BOUNDS = 1 << 1,  /* a bounds constraint over every particle (none) */
+    EMPTY_OUTSIDE = 1 << 2, /* and one keeping them out of a box */
+    EMPTY_PAIRS = 1 << 3,   /* particle collisions, grid broadphase */
+    EMPTY_BRUTE = 1 << 4,   /* particle collisions, brute force */
+    EMPTY_SHAPES = 1 << 5,  /* a floor and a circle, with contact events */
+    EMPTY_JACOBI = 1 << 6,
+    EMPTY_SUBSTEPS = 1 << 7, /* four substeps of one sweep each */
+    EMPTY_HOLE = 1 << 8,    /* a particle made and destroyed first: slots, none alive */
+    EMPTY_ALL = (1 << 9) - 1
+};
+
+static void empty_world_features(tt_world *w, unsigned f)
+{
+    if (f & EMPTY_FORCES) {
+        tt_world_set_wind(w, (tt_vec2){0.5, 0});
+        tt_world_set_damping(w, 0.2);
+    }
+    if (f & (EMPTY_BOUNDS | EMPTY_OUTSIDE)) {
+        tt_bounds_def bd = tt_bounds_def_default();
+        if (f & EMPTY_BOUNDS) tt_bounds_create(w, &bd);
+        bd.outside = true;
+        bd.min = (tt_vec2){-1, -1};
+        bd.max = (tt_vec2){1, 1};
+        if (f & EMPTY_OUTSIDE) tt_bounds_create(w, &bd);
+    }
+    if (f & (EMPTY_PAIRS | EMPTY_BRUTE | EMPTY_SHAPES)) {
+        tt_collision_settings cs = tt_collision_settings_default();
+        cs.particles = (f & (EMPTY_PAIRS | EMPTY_BRUTE)) != 0;
+        cs.broadphase = f & EMPTY_BRUTE ? TT_BROADPHASE_BRUTE : TT_BROADPHASE_GRID;
+        cs.events = TT_EVENT_BEGIN | TT_EVENT_PERSIST | TT_EVENT_END;
+        tt_world_set_collision(w, &cs);
+    }
+    if (f & EMPTY_SHAPES) {
+        tt_shape_def sd = tt_shape_def_default();
+        sd.type = TT_SHAPE_AABB;
+        sd.a = (tt_vec2){-10, -1};
+        sd.b = (tt_vec2){10, 0};
+        tt_shape_create(w, &sd);
+        sd.type = TT_SHAPE_CIRCLE;
+        sd.a = (tt_vec2){0, 3};
+        sd.radius = 1;
+        tt_shape_create(w, &sd);
+    }
+    if (f & EMPTY_JACOBI) tt_world_set_solver_order(w, TT_JACOBI);
+    if (f & EMPTY_SUBSTEPS) {
+        tt_world_set_substeps(w, 4);
+        tt_world_set_iterations(w, 1);
+    }
+    if (f & EMPTY_HOLE) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = 0.1;
+        tt_particle_destroy(w, tt_particle_create(w, &pd));
+    }
+}
+
+/* Steps and reads an empty world: false when any call fails or it gained particles. */
+static bool empty_world_works(tt_integrator integ, unsigned f)
+{
+    tt_world_def d = tt_world_def_default();
+    d.integrator = integ;
+    tt_world *w = tt_world_create(&d);
+    if (!w) return false;
+    empty_world_features(w, f);
+    bool ok = true;
+    for (int s = 0; s < 3; s++) ok = ok && tt_world_step(w, 1.0 / 60) == TT_OK;
+    tt_stats st;
+    tt_energy en;
+    tt_memory mem;
+    ok = ok && tt_world_get_stats(w, &st) == TT_OK && st.particles == 0 && st.steps == 3;
+    ok = ok && tt_world_get_energy(w, &en) == TT_OK && en.total == 0.0;
+    ok = ok && tt_world_get_memory(w, &mem) == TT_OK;
+    ok = ok && tt_world_explode(w, (tt_vec2){0, 0}, 5, 1) == TT_OK;
+    ok = ok && tt_world_particle_count(w) == 0 && tt_world_read_positions(w, NULL, 0) == 0;
+    if (f & (EMPTY_PAIRS | EMPTY_BRUTE | EMPTY_SHAPES)) {
+        tt_ray_hit hit;
+        uint32_t np = 1, ns = 0, ne = 1;
+        ok = ok && tt_world_raycast(w, (tt_vec2){-5, 5}, (tt_vec2){5, -5}, 0xFFFF, &hit) == TT_OK;
+        ok = ok && hit.hit == ((f & EMPTY_SHAPES) != 0);
+        ok = ok && tt_world_query_point(w, (tt_vec2){0, 3}, 0xFFFF, NULL, 0, &np, NULL, 0, &ns) == TT_OK && np == 0;
+        ok = ok && tt_world_query_aabb(w, (tt_vec2){-9, -9}, (tt_vec2){9, 9}, 0xFFFF, NULL, 0, &np, NULL, 0, &ns) == TT_OK;
+        ok = ok && np == 0 && ns == ((f & EMPTY_SHAPES) ? 2u : 0u);
+        tt_world_get_contact_events(w, &ne);
+        ok = ok && ne == 0;
+        tt_collision_stats cst;
+        ok = ok && tt_world_get_collision_stats(w, &cst) == TT_OK && cst.pair_contacts == 0 && cst.shape_contacts == 0;
+    }
+    tt_world_hash(w);
+    tt_world_destroy(w);
+    return ok;
+}
+
+/* Issue 14, finding 4: an empty world, stepped with any integrator and any
+ * feature, copied and cleared zero bytes through NULL arrays (memcpy with
+ * NULL is undefined even for 0 bytes; the sanitizer build stops on it).
+ * Every single feature, and all of them together, with every integrator. */
+TEST(empty_worlds_step_with_every_integrator_and_feature)
+{
+    for (int i = 0; i < TT_INTEGRATOR_COUNT; i++) {
+        const tt_integrator integ = (tt_integrator)i;
+        const unsigned sets[] = {0, EMPTY_ALL, EMPTY_ALL & ~EMPTY_HOLE};
+        for (unsigned k = 0; k < 3; k++)
+            if (!empty_world_works(integ, sets[k]))
+                tt_test_fail(__FILE__, __LINE__, "%s, features %#x", tt_integrator_name(integ), sets[k]);
+        for (unsigned f = 1; f <= EMPTY_ALL; f <<= 1)
+            if (!empty_world_works(integ, f)) tt_test_fail(__FILE__, __LINE__, "%s, feature %#x", tt_integrator_name(integ), f);
+    }
 }
