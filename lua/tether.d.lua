@@ -365,7 +365,9 @@ function world:set_positions(handles, xy, mode) end
 function world:each() end
 
 ---Frees the world now. Idempotent; afterwards every other method raises
----"attempt to use a destroyed world".
+---"attempt to use a destroyed world". Called from Lua code that runs in the
+---middle of a method on this world (an option table's __index, a finalizer,
+---a __close), the world is freed when that method returns.
 function world:destroy() end
 
 -- Constraints and composites (lua_constraints.c) ---------------------------

@@ -562,9 +562,11 @@ static const luaL_Reg gfx_funcs[] = {
     { "color", g_color },         { "clear", g_clear },   { "circle", g_circle },   { "line", g_line },
     { "polygon", g_polygon },     { "text", g_text },     { "line_width", g_line_width },
     { "layer", g_layer },         { "camera", g_camera }, { "fit", g_fit },         { "size", g_size },
-    { "to_world", g_to_world },   { "to_screen", g_to_screen }, { "hud", g_hud },
+    { "to_world", g_to_world },   { "to_screen", g_to_screen },
     { "new_image", g_new_image }, { "image", g_image },   { NULL, NULL }
 };
+/* the ones whose argument 1 is a world, pinned while they run (lua_common.h) */
+static const luaL_Reg gfx_world_funcs[] = { { "hud", g_hud }, { NULL, NULL } };
 
 static const luaL_Reg world_draw[] = { { "draw", w_draw }, { NULL, NULL } };
 
@@ -591,6 +593,7 @@ void tl_render_register(lua_State *L)
 
     lua_createtable(L, 0, (int)(sizeof gfx_funcs / sizeof gfx_funcs[0]));
     tl_setfuncs(L, gfx_funcs, "tether.gfx.");
+    tl_setfuncs_pinned(L, gfx_world_funcs, "tether.gfx.");
     lua_setfield(L, -2, "gfx");
     tl_world_add_methods(L, world_draw);
 }

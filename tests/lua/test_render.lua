@@ -151,6 +151,29 @@ local function inside_frame()
       T.checkerror_plain("bad argument #1 to 'tether.gfx.line_width'", gg.line_width, 0)
       T.checkerror("tether.world expected", gg.hud, {})
     end)
+
+    T.test("Lua code that destroys the world in the middle of draw or hud", function()
+      -- world:draw: an option table whose __index destroys the world
+      local w2 = tether.world()
+      w2:particle(0, 0)
+      local calls = 0
+      local opts = setmetatable({}, { __index = function() calls = calls + 1; w2:destroy() end })
+      T.noerror(w2.draw, w2, opts)
+      T.ok(calls > 0, "the __index ran")
+      T.checkerror_plain("attempt to use a destroyed world", w2.count, w2)
+      -- g.hud: turning the number 7 into text allocates, which lets the
+      -- collector run a finalizer that destroys the world
+      local w3 = tether.world()
+      local fired = false
+      collectgarbage("incremental", 1, 1000) -- pause 1 %: every allocation check collects
+      collectgarbage("collect")
+      setmetatable({}, { __gc = function() fired = true; w3:destroy() end })
+      local ok, err = pcall(gg.hud, w3, 7)
+      collectgarbage("incremental", 200, 100)
+      T.ok(ok, tostring(err))
+      T.ok(fired, "the finalizer ran inside hud")
+      T.checkerror_plain("attempt to use a destroyed world", w3.count, w3)
+    end)
   end
 
   function tether.update(dt) w:step(dt) end
