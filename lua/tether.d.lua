@@ -711,7 +711,9 @@ function tether.gfx.to_world(px, py) end
 ---@param text? string
 function tether.gfx.hud(w, text) end
 
----An RGBA image, drawn as a texture with g.image.
+---An RGBA image, drawn as a texture with g.image. Freed by the collector or
+---at the end of a `<close>` scope; one drawn in the frame being made is freed
+---once that frame has been rendered.
 ---@class tether.image
 local image = {}
 ---@return integer width, integer height

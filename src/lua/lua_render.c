@@ -15,7 +15,7 @@
 #define STATE_KEY "tether.render"        /* registry: the tl_render userdata */
 #define DRAWN_KEY "tether.render.drawn"  /* registry: worlds drawn this frame, 1…n */
 #define DRAG_KEY "tether.render.drag"    /* registry: the world being dragged */
-#define IMAGES_KEY "tether.render.images" /* registry: images drawn this frame (kept alive until rendered) */
+#define IMAGES_KEY "tether.render.images" /* registry: image → true for those drawn this frame (kept until rendered) */
 #define WORLDS_KEY "tether.render.worlds" /* registry: every world made, 1…n, weak values */
 
 typedef struct drawn {
@@ -352,23 +352,54 @@ static int w_draw(lua_State *L)
 
 /* --- images ------------------------------------------------------------------ */
 
+/* A closed image drawn in the frame being made keeps its pixels until the
+ * frame is rendered (tl_render_done): the canvas points at them. */
 typedef struct li_image {
-    tt_image *img; /* NULL once collected */
+    tt_image *img; /* NULL once freed */
+    bool closed;   /* by __close: no more use from Lua, whether freed yet or not */
 } li_image;
 
 static tt_image *check_image(lua_State *L, int arg)
 {
     li_image *u = luaL_testudata(L, arg, TL_IMAGE_CLASS);
     if (u == NULL) tl_typeerror(L, arg, TL_IMAGE_CLASS);
-    if (u->img == NULL) tl_argerror(L, arg, "attempt to use a closed image");
+    if (u->closed) tl_argerror(L, arg, "attempt to use a closed image");
     return u->img;
 }
 
+/* Is the image at idx drawn in the frame being made (or made and not yet rendered)? */
+static bool in_frame(lua_State *L, int idx)
+{
+    bool listed = false;
+    idx = lua_absindex(L, idx);
+    if (lua_getfield(L, LUA_REGISTRYINDEX, IMAGES_KEY) == LUA_TTABLE) {
+        lua_pushvalue(L, idx);
+        listed = lua_rawget(L, -2) != LUA_TNIL;
+        lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    return listed;
+}
+
+/* __close: frees the pixels now, or once the frame that draws them is rendered. */
+static int img_close(lua_State *L)
+{
+    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    u->closed = true;
+    if (!in_frame(L, 1)) {
+        tt_image_destroy(u->img);
+        u->img = NULL;
+    }
+    return 0;
+}
+
+/* __gc: an image the frame still draws is reachable (IMAGES_KEY), so never collected before it is rendered. */
 static int img_gc(lua_State *L)
 {
     li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
     tt_image_destroy(u->img);
     u->img = NULL;
+    u->closed = true;
     return 0;
 }
 
@@ -376,6 +407,10 @@ static int img_tostring(lua_State *L)
 {
     li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
     int w, h;
+    if (u->closed) {
+        lua_pushfstring(L, TL_IMAGE_CLASS " (closed): %p", (void *)u);
+        return 1;
+    }
     tt_image_size(u->img, &w, &h);
     lua_pushfstring(L, TL_IMAGE_CLASS " (%dx%d): %p", w, h, (void *)u);
     return 1;
@@ -385,6 +420,7 @@ void tl_push_image(lua_State *L, tt_image *img)
 {
     li_image *u = lua_newuserdatauv(L, sizeof *u, 0); /* harmless until img is stored */
     u->img = NULL;
+    u->closed = false;
     luaL_setmetatable(L, TL_IMAGE_CLASS);
     u->img = img;
 }
@@ -395,6 +431,7 @@ static int g_new_image(lua_State *L)
     int w = (int)tl_checkinteger(L, 1, 1, 8192), h = (int)tl_checkinteger(L, 2, 1, 8192);
     li_image *u = lua_newuserdatauv(L, sizeof *u, 0);
     u->img = NULL;
+    u->closed = false;
     luaL_setmetatable(L, TL_IMAGE_CLASS);
     u->img = tt_image_create(w, h);
     if (!u->img) tl_error(L, "out of memory for a %dx%d image", w, h);
@@ -462,11 +499,13 @@ static int g_image(lua_State *L)
     double x2 = tl_checknumber(L, 4, &TL_R_COORD), y2 = tl_checknumber(L, 5, &TL_R_COORD);
     tt_vec2 lo = { x1 < x2 ? x1 : x2, y1 < y2 ? y1 : y2 }, hi = { x1 < x2 ? x2 : x1, y1 < y2 ? y2 : y1 };
     check_canvas_result(L, c, tt_canvas_image(c, img, lo, hi));
-    /* the canvas points at img until the frame is drawn: keep it from the collector */
+    /* the canvas points at img until the frame is drawn: keep it from the
+     * collector, and tell __close to leave the pixels to tl_render_done */
     lua_getfield(L, LUA_REGISTRYINDEX, IMAGES_KEY);
     if (lua_istable(L, -1)) {
         lua_pushvalue(L, 1);
-        lua_rawseti(L, -2, (lua_Integer)lua_rawlen(L, -2) + 1);
+        lua_pushboolean(L, 1);
+        lua_rawset(L, -3);
     }
     lua_pop(L, 1);
     return 0;
@@ -475,7 +514,7 @@ static int g_image(lua_State *L)
 static const luaL_Reg image_methods[] = {
     { "size", img_size }, { "set_pixel", img_set_pixel }, { "pixel", img_pixel }, { "fill", img_fill }, { NULL, NULL }
 };
-static const luaL_Reg image_meta[] = { { "__gc", img_gc }, { "__close", img_gc }, { "__tostring", img_tostring }, { NULL, NULL } };
+static const luaL_Reg image_meta[] = { { "__gc", img_gc }, { "__close", img_close }, { "__tostring", img_tostring }, { NULL, NULL } };
 
 /* --- every world, for scripts without tether.draw ----------------------------- */
 
@@ -618,6 +657,19 @@ void tl_render_end(lua_State *L)
 
 void tl_render_done(lua_State *L)
 {
+    /* the frame is on screen: the images closed while it was made can go */
+    if (lua_getfield(L, LUA_REGISTRYINDEX, IMAGES_KEY) == LUA_TTABLE) {
+        lua_pushnil(L);
+        while (lua_next(L, -2) != 0) {
+            li_image *u = lua_touserdata(L, -2);
+            lua_pop(L, 1);
+            if (u != NULL && u->closed) {
+                tt_image_destroy(u->img);
+                u->img = NULL;
+            }
+        }
+    }
+    lua_pop(L, 1);
     lua_pushnil(L);
     lua_setfield(L, LUA_REGISTRYINDEX, IMAGES_KEY);
 }

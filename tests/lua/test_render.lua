@@ -63,6 +63,12 @@ local function inside_frame()
         T.eq(none, nil, "missing file: nil")
         T.ok(type(why) == "string" and why:find("no/such/file.png", 1, true), "message names the file: " .. tostring(why))
       end)
+      T.test("an image closed right after it was drawn is in the frame", function()
+        local img = gg.load_image(tether.runner.out .. "/frame_00000.png")
+        if not T.ok(img, "frame 1 loaded") then return end
+        local r, g2, b, a = img:pixel(189, 139) -- inside the square drawn with the closed image
+        T.eq(r, 1, "red"); T.eq(g2 + b, 0, "red only"); T.eq(a, 1, "opaque")
+      end)
       return
     end
     T.test("gfx is the argument of tether.draw", function() T.eq(gg, g, "g") end)
@@ -134,6 +140,24 @@ local function inside_frame()
       local closed = gg.new_image(1, 1)
       getmetatable(closed).__close(closed)
       T.checkerror_plain("attempt to use a closed image", closed.size, closed)
+    end)
+
+    T.test("an image closed after it was drawn lives until the frame is rendered", function()
+      local drawn
+      do
+        local img <close> = gg.new_image(8, 8)
+        img:fill(1, 0, 0)
+        gg.color(1, 1, 1) -- no tint
+        gg.layer("screen")
+        gg.image(img, 182, 132, 196, 146) -- the bottom-right corner: checked in frame 2
+        gg.layer("world")
+        drawn = img
+      end -- closed here, before the frame is rendered
+      collectgarbage()
+      T.checkerror_plain("attempt to use a closed image", drawn.size, drawn)
+      T.checkerror_plain("attempt to use a closed image", gg.image, drawn, 0, 0, 1, 1)
+      T.ok(tostring(drawn):find("(closed)", 1, true), "tostring: " .. tostring(drawn))
+      getmetatable(drawn).__close(drawn) -- closing again is harmless
     end)
 
     T.test("bad arguments name the function and the argument", function()
