@@ -123,11 +123,12 @@ static int w_circle(lua_State *L)
     return make_shape(L, w, &d);
 }
 
-/* Reads {x1, y1, x2, y2, …} at arg into a userdata buffer left on the stack. */
+/* Reads {x1, y1, x2, y2, …} at arg into a userdata buffer left on the stack.
+ * Raw, like every list the binding reads (no __len, no __index). */
 static tt_vec2 *check_points(lua_State *L, int arg, uint32_t lo, uint32_t hi, uint32_t *count)
 {
     if (lua_type(L, arg) != LUA_TTABLE) tl_typeerror(L, arg, "table of coordinates {x1, y1, x2, y2, ...}");
-    lua_Integer n = luaL_len(L, arg);
+    lua_Integer n = (lua_Integer)lua_rawlen(L, arg);
     if (n % 2 != 0) tl_argerror(L, arg, "an even number of coordinates expected, got %d", (int)n);
     if (n / 2 < lo || n / 2 > hi) tl_argerror(L, arg, "between %d and %d points expected, got %d", (int)lo, (int)hi, (int)(n / 2));
     tt_vec2 *p = lua_newuserdatauv(L, (size_t)(n / 2) * sizeof *p + 1, 0);
@@ -293,7 +294,7 @@ static int w_set_collision(lua_State *L)
         if (lua_type(L, -1) != LUA_TTABLE)
             tl_error(L, "bad option 'events' (array of 'begin', 'persist', 'end' expected, got %s)", luaL_typename(L, -1));
         uint32_t bits = 0;
-        lua_Integer n = luaL_len(L, -1);
+        lua_Integer n = (lua_Integer)lua_rawlen(L, -1);
         for (lua_Integer k = 1; k <= n; k++) {
             lua_rawgeti(L, -1, k);
             const char *name = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;

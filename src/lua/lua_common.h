@@ -74,6 +74,11 @@ lua_Integer tl_checkinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer h
 lua_Integer tl_optinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer hi, lua_Integer def);
 /* A boolean (true or false; no truthiness). */
 bool tl_checkboolean(lua_State *L, int arg);
+/* A string, or a number turned into one (text to show, a path): what
+ * luaL_checkstring accepts, with a message that names the function. */
+const char *tl_checkstring(lua_State *L, int arg);
+/* As tl_checkstring, or def when the argument is none or nil. */
+const char *tl_optstring(lua_State *L, int arg, const char *def);
 /* A string from list (NULL-terminated); def (may be NULL) when none or nil.
  * what names the thing in the error:
  * "invalid mode 'x', expected one of: 'keep', 'reset'". Returns the index. */

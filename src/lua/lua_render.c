@@ -143,7 +143,7 @@ static int g_line(lua_State *L)
 static int g_polygon(lua_State *L)
 {
     tt_canvas *c = canvas(L);
-    luaL_checktype(L, 1, LUA_TTABLE);
+    if (lua_type(L, 1) != LUA_TTABLE) tl_typeerror(L, 1, "table of coordinates {x1, y1, x2, y2, ...}");
     int mode = tl_checkoption(L, 2, "mode", "fill", modes);
     lua_Integer len = (lua_Integer)lua_rawlen(L, 1);
     if (len < 6 || len % 2 || len > 2000000)
@@ -166,7 +166,7 @@ static int g_text(lua_State *L)
 {
     tt_canvas *c = canvas(L);
     double x = tl_checknumber(L, 1, &TL_R_COORD), y = tl_checknumber(L, 2, &TL_R_COORD);
-    const char *s = luaL_checkstring(L, 3);
+    const char *s = tl_checkstring(L, 3);
     int scale = (int)tl_optinteger(L, 4, 1, 64, 1);
     check_canvas_result(L, c, tt_canvas_text(c, (tt_vec2){ x, y }, s, scale));
     return 0;
@@ -276,7 +276,7 @@ static int g_hud(lua_State *L)
 {
     tt_canvas *c = canvas(L);
     tt_world *w = tl_check_world(L, 1);
-    const char *extra = luaL_optstring(L, 2, NULL);
+    const char *extra = tl_optstring(L, 2, NULL);
     tt_stats st;
     tt_world_get_stats(w, &st);
     char buf[512];
@@ -359,10 +359,17 @@ typedef struct li_image {
     bool closed;   /* by __close: no more use from Lua, whether freed yet or not */
 } li_image;
 
-static tt_image *check_image(lua_State *L, int arg)
+/* The image userdata at arg, closed or not. */
+static li_image *check_image_ud(lua_State *L, int arg)
 {
     li_image *u = luaL_testudata(L, arg, TL_IMAGE_CLASS);
     if (u == NULL) tl_typeerror(L, arg, TL_IMAGE_CLASS);
+    return u;
+}
+
+static tt_image *check_image(lua_State *L, int arg)
+{
+    li_image *u = check_image_ud(L, arg);
     if (u->closed) tl_argerror(L, arg, "attempt to use a closed image");
     return u->img;
 }
@@ -384,7 +391,7 @@ static bool in_frame(lua_State *L, int idx)
 /* __close: frees the pixels now, or once the frame that draws them is rendered. */
 static int img_close(lua_State *L)
 {
-    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    li_image *u = check_image_ud(L, 1);
     u->closed = true;
     if (!in_frame(L, 1)) {
         tt_image_destroy(u->img);
@@ -396,7 +403,7 @@ static int img_close(lua_State *L)
 /* __gc: an image the frame still draws is reachable (IMAGES_KEY), so never collected before it is rendered. */
 static int img_gc(lua_State *L)
 {
-    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    li_image *u = check_image_ud(L, 1);
     tt_image_destroy(u->img);
     u->img = NULL;
     u->closed = true;
@@ -405,7 +412,7 @@ static int img_gc(lua_State *L)
 
 static int img_tostring(lua_State *L)
 {
-    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    li_image *u = check_image_ud(L, 1);
     int w, h;
     if (u->closed) {
         lua_pushfstring(L, TL_IMAGE_CLASS " (closed): %p", (void *)u);

@@ -27,6 +27,15 @@ local function outside_frame()
     T.checkerror_plain("draw: nothing to draw on", w.draw, w)
   end)
 
+  T.test("load_image and the image metamethods name themselves in errors", function()
+    T.checkerror_plain("bad argument #1 to 'tether.gfx.load_image' (string expected, got table)", g.load_image, {})
+    T.checkerror_plain("bad argument #1 to 'tether.gfx.load_image' (string expected, got no value)", g.load_image)
+    local mt = getmetatable(g.new_image(1, 1))
+    T.checkerror_plain("bad argument #1 to '__tostring' (tether.image expected, got number)", mt.__tostring, 42)
+    T.checkerror_plain("bad argument #1 to '__close' (tether.image expected, got number)", mt.__close, 42)
+    T.checkerror_plain("bad argument #1 to '__gc' (tether.image expected, got table)", mt.__gc, {})
+  end)
+
   T.test("world:draw checks its world and options before it needs a canvas", function()
     local w = tether.world()
     T.checkerror_plain("unknown option 'partcles'", w.draw, w, { partcles = true })
@@ -174,6 +183,14 @@ local function inside_frame()
       T.checkerror_plain("bad option 'color'", w.draw, w, { color = { 1, 2, 3 } })
       T.checkerror_plain("bad argument #1 to 'tether.gfx.line_width'", gg.line_width, 0)
       T.checkerror("tether.world expected", gg.hud, {})
+      T.checkerror_plain("bad argument #1 to 'tether.gfx.polygon' (table of coordinates {x1, y1, x2, y2, ...} expected, got number)",
+        gg.polygon, 42)
+      T.checkerror_plain("bad argument #1 to 'tether.gfx.polygon' (table of coordinates {x1, y1, x2, y2, ...} expected, got no value)",
+        gg.polygon)
+      T.checkerror_plain("bad argument #3 to 'tether.gfx.text' (string expected, got table)", gg.text, 0, 0, {})
+      T.checkerror_plain("bad argument #3 to 'tether.gfx.text' (string expected, got no value)", gg.text, 0, 0)
+      T.noerror(gg.text, 0, 0, 42) -- a number is text
+      T.checkerror_plain("bad argument #2 to 'tether.gfx.hud' (string or nil expected, got table)", gg.hud, w, {})
     end)
 
     T.test("Lua code that destroys the world in the middle of draw or hud", function()
