@@ -365,7 +365,9 @@ function world:set_positions(handles, xy, mode) end
 function world:each() end
 
 ---Frees the world now. Idempotent; afterwards every other method raises
----"attempt to use a destroyed world".
+---"attempt to use a destroyed world". Called from Lua code that runs in the
+---middle of a method on this world (an option table's __index, a finalizer,
+---a __close), the world is freed when that method returns.
 function world:destroy() end
 
 -- Constraints and composites (lua_constraints.c) ---------------------------
@@ -709,7 +711,9 @@ function tether.gfx.to_world(px, py) end
 ---@param text? string
 function tether.gfx.hud(w, text) end
 
----An RGBA image, drawn as a texture with g.image.
+---An RGBA image, drawn as a texture with g.image. Freed by the collector or
+---at the end of a `<close>` scope; one drawn in the frame being made is freed
+---once that frame has been rendered.
 ---@class tether.image
 local image = {}
 ---@return integer width, integer height

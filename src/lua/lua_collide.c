@@ -123,11 +123,12 @@ static int w_circle(lua_State *L)
     return make_shape(L, w, &d);
 }
 
-/* Reads {x1, y1, x2, y2, …} at arg into a userdata buffer left on the stack. */
+/* Reads {x1, y1, x2, y2, …} at arg into a userdata buffer left on the stack.
+ * Raw, like every list the binding reads (no __len, no __index). */
 static tt_vec2 *check_points(lua_State *L, int arg, uint32_t lo, uint32_t hi, uint32_t *count)
 {
     if (lua_type(L, arg) != LUA_TTABLE) tl_typeerror(L, arg, "table of coordinates {x1, y1, x2, y2, ...}");
-    lua_Integer n = luaL_len(L, arg);
+    lua_Integer n = (lua_Integer)lua_rawlen(L, arg);
     if (n % 2 != 0) tl_argerror(L, arg, "an even number of coordinates expected, got %d", (int)n);
     if (n / 2 < lo || n / 2 > hi) tl_argerror(L, arg, "between %d and %d points expected, got %d", (int)lo, (int)hi, (int)(n / 2));
     tt_vec2 *p = lua_newuserdatauv(L, (size_t)(n / 2) * sizeof *p + 1, 0);
@@ -293,7 +294,7 @@ static int w_set_collision(lua_State *L)
         if (lua_type(L, -1) != LUA_TTABLE)
             tl_error(L, "bad option 'events' (array of 'begin', 'persist', 'end' expected, got %s)", luaL_typename(L, -1));
         uint32_t bits = 0;
-        lua_Integer n = luaL_len(L, -1);
+        lua_Integer n = (lua_Integer)lua_rawlen(L, -1);
         for (lua_Integer k = 1; k <= n; k++) {
             lua_rawgeti(L, -1, k);
             const char *name = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
@@ -445,8 +446,11 @@ static int area(lua_State *L, tt_world *w, bool point, tt_vec2 lo, tt_vec2 hi, u
 {
     uint32_t np = 0, ns = 0, pcap = 64, scap = 16;
     for (int round = 0; round < 2; round++) {
-        tt_particle *ps = lua_newuserdatauv(L, (size_t)pcap * sizeof *ps + 1, 0);
-        tt_shape *ss = lua_newuserdatauv(L, (size_t)scap * sizeof *ss + 1, 0);
+        /* one buffer: the shapes after the particles, at a multiple of 16 bytes */
+        size_t at = ((size_t)pcap * sizeof(tt_particle) + 15) & ~(size_t)15;
+        char *buf = tl_scratch(L, at + (size_t)scap * sizeof(tt_shape) + 1);
+        tt_particle *ps = (tt_particle *)buf;
+        tt_shape *ss = (tt_shape *)(buf + at);
         tt_result r = point ? tt_world_query_point(w, lo, mask, ps, pcap, &np, ss, scap, &ns)
                             : tt_world_query_aabb(w, lo, hi, mask, ps, pcap, &np, ss, scap, &ns);
         tl_check_result(L, w, r);
@@ -463,7 +467,6 @@ static int area(lua_State *L, tt_world *w, bool point, tt_vec2 lo, tt_vec2 hi, u
             }
             return 2;
         }
-        lua_pop(L, 2);
         pcap = np;
         scap = ns;
     }
@@ -498,7 +501,10 @@ static int w_contacts(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     uint32_t n;
-    const tt_contact_event *ev = tt_world_get_contact_events(w, &n);
+    const tt_contact_event *live = tt_world_get_contact_events(w, &n);
+    /* the world's own array changes if Lua code steps the world while the tables are made */
+    tt_contact_event *ev = tl_scratch(L, (size_t)n * sizeof *ev + 1);
+    if (n > 0) memcpy(ev, live, (size_t)n * sizeof *ev);
     lua_createtable(L, (int)n, 0);
     for (uint32_t k = 0; k < n; k++) {
         const tt_contact_event *e = &ev[k];

@@ -207,6 +207,24 @@ bool tl_checkboolean(lua_State *L, int arg)
     return lua_toboolean(L, arg) != 0;
 }
 
+const char *tl_checkstring(lua_State *L, int arg)
+{
+    int t = lua_type(L, arg);
+    if (t != LUA_TSTRING && t != LUA_TNUMBER)
+        tl_typeerror(L, arg, "string");
+    return lua_tostring(L, arg);
+}
+
+const char *tl_optstring(lua_State *L, int arg, const char *def)
+{
+    int t = lua_type(L, arg);
+    if (t == LUA_TNONE || t == LUA_TNIL)
+        return def;
+    if (t != LUA_TSTRING && t != LUA_TNUMBER)
+        tl_typeerror(L, arg, "string or nil");
+    return lua_tostring(L, arg);
+}
+
 /* Pushes "'a', 'b', 'c'". */
 static void push_choices(lua_State *L, const char *const list[])
 {
@@ -257,6 +275,30 @@ bool tl_opttable(lua_State *L, int arg)
 
 /* --- option tables --------------------------------------------------------- */
 
+/* Pushes how an unknown option key is named in the message: as tostring
+ * writes it, but never through the key's own __tostring, whose error or
+ * odd answer would hide the message. Converts a copy: lua_tostring on the
+ * key itself would change a number key in place and confuse lua_next. */
+static void push_key(lua_State *L, int idx)
+{
+    idx = lua_absindex(L, idx);
+    switch (lua_type(L, idx)) {
+    case LUA_TSTRING:
+    case LUA_TNUMBER:
+        lua_pushvalue(L, idx);
+        lua_tostring(L, -1);
+        break;
+    case LUA_TBOOLEAN:
+        lua_pushstring(L, lua_toboolean(L, idx) ? "true" : "false");
+        break;
+    default: {
+        const char *type = tl_pushtypename(L, idx);
+        lua_pushfstring(L, "%s: %p", type, lua_topointer(L, idx));
+        lua_remove(L, -2);
+    }
+    }
+}
+
 bool tl_checkopts(lua_State *L, int arg, const char *const keys[])
 {
     if (!tl_opttable(L, arg))
@@ -271,12 +313,7 @@ bool tl_checkopts(lua_State *L, int arg, const char *const keys[])
                 known = strcmp(keys[i], k) == 0;
         }
         if (!known) {
-            /* Never lua_tostring the key itself: that would change a number
-             * key in place and confuse lua_next. */
-            if (lua_type(L, -1) == LUA_TSTRING)
-                lua_pushvalue(L, -1);
-            else
-                luaL_tolstring(L, -1, NULL);
+            push_key(L, -1);
             push_choices(L, keys);
             tl_error(L, "unknown option '%s' (expected one of: %s)", lua_tostring(L, -2), lua_tostring(L, -1));
         }

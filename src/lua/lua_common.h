@@ -74,6 +74,11 @@ lua_Integer tl_checkinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer h
 lua_Integer tl_optinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer hi, lua_Integer def);
 /* A boolean (true or false; no truthiness). */
 bool tl_checkboolean(lua_State *L, int arg);
+/* A string, or a number turned into one (text to show, a path): what
+ * luaL_checkstring accepts, with a message that names the function. */
+const char *tl_checkstring(lua_State *L, int arg);
+/* As tl_checkstring, or def when the argument is none or nil. */
+const char *tl_optstring(lua_State *L, int arg, const char *def);
 /* A string from list (NULL-terminated); def (may be NULL) when none or nil.
  * what names the thing in the error:
  * "invalid mode 'x', expected one of: 'keep', 'reset'". Returns the index. */
@@ -122,8 +127,24 @@ int tl_world_new(lua_State *L);
 /* Pushes the list of integrator names, {"euler", ...}. */
 void tl_push_integrators(lua_State *L);
 /* Adds methods to the world class (a feature's binding calls this from
- * luaopen_tether through its own tl_<feature>_register). */
+ * luaopen_tether through its own tl_<feature>_register). They are pinned,
+ * as by tl_setfuncs_pinned. */
 void tl_world_add_methods(lua_State *L, const luaL_Reg *methods);
+/* As tl_setfuncs, for functions whose argument 1 is a world (every method,
+ * and any other function taking a world first): each runs with that world
+ * pinned. Lua code that runs in the middle of the call (an __index of an
+ * option table, a __close, a finalizer run by one of the call's own
+ * allocations) may destroy the world: it is then marked destroyed at once
+ * and freed when the outermost call on it returns, so the world pointer a
+ * function holds stays valid until it returns. Such Lua code may also step
+ * or grow the world: a function copies what it reads from the world (into
+ * tl_scratch) before it makes any Lua value. */
+void tl_setfuncs_pinned(lua_State *L, const luaL_Reg *l, const char *prefix);
+/* A buffer of at least `bytes` bytes for the running pinned call on the
+ * world at argument 1, reused from call to call: never a Lua allocation
+ * (no collector, no finalizer), and a call nested in it gets another one.
+ * Valid until the call returns or asks for scratch again. */
+void *tl_scratch(lua_State *L, size_t bytes);
 /* The world at arg (raises "attempt to use a destroyed world", or a type error). */
 tt_world *tl_check_world(lua_State *L, int arg);
 /* A live particle of w at arg (raises "stale particle handle"). */

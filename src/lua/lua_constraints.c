@@ -261,7 +261,7 @@ static int c_constraint_particles(lua_State *L)
     tt_constraint c = check_constraint(L, w, 2);
     uint32_t n;
     tl_check_result(L, w, tt_constraint_get_particles(w, c, NULL, 0, &n));
-    tt_particle *ps = lua_newuserdatauv(L, (size_t)n * sizeof *ps + 1, 0);
+    tt_particle *ps = tl_scratch(L, (size_t)n * sizeof *ps + 1);
     tl_check_result(L, w, tt_constraint_get_particles(w, c, ps, n, &n));
     lua_createtable(L, (int)n, 0);
     for (uint32_t i = 0; i < n; i++) {
@@ -353,7 +353,7 @@ static int c_constraint_lines(lua_State *L)
     lua_settop(L, 2);
     bool reuse = tl_opttable(L, 2);
     uint32_t n = tt_world_read_constraint_lines(w, NULL, 0);
-    double *xy = lua_newuserdatauv(L, (size_t)n * 4 * sizeof *xy + 1, 0);
+    double *xy = tl_scratch(L, (size_t)n * 4 * sizeof *xy + 1);
     n = tt_world_read_constraint_lines(w, xy, n);
     if (reuse) lua_pushvalue(L, 2);
     else lua_createtable(L, (int)(4 * n), 0);
@@ -376,9 +376,12 @@ static int c_constraint_lines(lua_State *L)
 static int c_break_events(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    const tt_break_event *ev;
+    const tt_break_event *live;
     uint32_t n;
-    tl_check_result(L, w, tt_world_get_break_events(w, &ev, &n));
+    tl_check_result(L, w, tt_world_get_break_events(w, &live, &n));
+    /* the world's own array changes if Lua code steps the world while the tables are made */
+    tt_break_event *ev = tl_scratch(L, (size_t)n * sizeof *ev + 1);
+    if (n > 0) memcpy(ev, live, (size_t)n * sizeof *ev);
     lua_createtable(L, (int)n, 0);
     for (uint32_t i = 0; i < n; i++) {
         lua_createtable(L, 0, 5);
@@ -555,7 +558,7 @@ static int c_composite_particles(lua_State *L)
     tt_composite c = check_composite(L, w, 2);
     uint32_t n;
     tt_composite_get_particles(w, c, NULL, 0, &n);
-    tt_particle *ps = lua_newuserdatauv(L, (size_t)n * sizeof *ps + 1, 0);
+    tt_particle *ps = tl_scratch(L, (size_t)n * sizeof *ps + 1);
     tt_composite_get_particles(w, c, ps, n, &n);
     lua_createtable(L, (int)n, 0);
     for (uint32_t i = 0; i < n; i++) {
@@ -572,7 +575,7 @@ static int c_composite_constraints(lua_State *L)
     tt_composite c = check_composite(L, w, 2);
     uint32_t n;
     tt_composite_get_constraints(w, c, NULL, 0, &n);
-    tt_constraint *cs = lua_newuserdatauv(L, (size_t)n * sizeof *cs + 1, 0);
+    tt_constraint *cs = tl_scratch(L, (size_t)n * sizeof *cs + 1);
     tt_composite_get_constraints(w, c, cs, n, &n);
     lua_createtable(L, (int)n, 0);
     for (uint32_t i = 0; i < n; i++) {

@@ -15,7 +15,7 @@
 #define STATE_KEY "tether.render"        /* registry: the tl_render userdata */
 #define DRAWN_KEY "tether.render.drawn"  /* registry: worlds drawn this frame, 1…n */
 #define DRAG_KEY "tether.render.drag"    /* registry: the world being dragged */
-#define IMAGES_KEY "tether.render.images" /* registry: images drawn this frame (kept alive until rendered) */
+#define IMAGES_KEY "tether.render.images" /* registry: image → true for those drawn this frame (kept until rendered) */
 #define WORLDS_KEY "tether.render.worlds" /* registry: every world made, 1…n, weak values */
 
 typedef struct drawn {
@@ -143,7 +143,7 @@ static int g_line(lua_State *L)
 static int g_polygon(lua_State *L)
 {
     tt_canvas *c = canvas(L);
-    luaL_checktype(L, 1, LUA_TTABLE);
+    if (lua_type(L, 1) != LUA_TTABLE) tl_typeerror(L, 1, "table of coordinates {x1, y1, x2, y2, ...}");
     int mode = tl_checkoption(L, 2, "mode", "fill", modes);
     lua_Integer len = (lua_Integer)lua_rawlen(L, 1);
     if (len < 6 || len % 2 || len > 2000000)
@@ -166,7 +166,7 @@ static int g_text(lua_State *L)
 {
     tt_canvas *c = canvas(L);
     double x = tl_checknumber(L, 1, &TL_R_COORD), y = tl_checknumber(L, 2, &TL_R_COORD);
-    const char *s = luaL_checkstring(L, 3);
+    const char *s = tl_checkstring(L, 3);
     int scale = (int)tl_optinteger(L, 4, 1, 64, 1);
     check_canvas_result(L, c, tt_canvas_text(c, (tt_vec2){ x, y }, s, scale));
     return 0;
@@ -276,7 +276,7 @@ static int g_hud(lua_State *L)
 {
     tt_canvas *c = canvas(L);
     tt_world *w = tl_check_world(L, 1);
-    const char *extra = luaL_optstring(L, 2, NULL);
+    const char *extra = tl_optstring(L, 2, NULL);
     tt_stats st;
     tt_world_get_stats(w, &st);
     char buf[512];
@@ -352,30 +352,72 @@ static int w_draw(lua_State *L)
 
 /* --- images ------------------------------------------------------------------ */
 
+/* A closed image drawn in the frame being made keeps its pixels until the
+ * frame is rendered (tl_render_done): the canvas points at them. */
 typedef struct li_image {
-    tt_image *img; /* NULL once collected */
+    tt_image *img; /* NULL once freed */
+    bool closed;   /* by __close: no more use from Lua, whether freed yet or not */
 } li_image;
 
-static tt_image *check_image(lua_State *L, int arg)
+/* The image userdata at arg, closed or not. */
+static li_image *check_image_ud(lua_State *L, int arg)
 {
     li_image *u = luaL_testudata(L, arg, TL_IMAGE_CLASS);
     if (u == NULL) tl_typeerror(L, arg, TL_IMAGE_CLASS);
-    if (u->img == NULL) tl_argerror(L, arg, "attempt to use a closed image");
+    return u;
+}
+
+static tt_image *check_image(lua_State *L, int arg)
+{
+    li_image *u = check_image_ud(L, arg);
+    if (u->closed) tl_argerror(L, arg, "attempt to use a closed image");
     return u->img;
 }
 
+/* Is the image at idx drawn in the frame being made (or made and not yet rendered)? */
+static bool in_frame(lua_State *L, int idx)
+{
+    bool listed = false;
+    idx = lua_absindex(L, idx);
+    if (lua_getfield(L, LUA_REGISTRYINDEX, IMAGES_KEY) == LUA_TTABLE) {
+        lua_pushvalue(L, idx);
+        listed = lua_rawget(L, -2) != LUA_TNIL;
+        lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    return listed;
+}
+
+/* __close: frees the pixels now, or once the frame that draws them is rendered. */
+static int img_close(lua_State *L)
+{
+    li_image *u = check_image_ud(L, 1);
+    u->closed = true;
+    if (!in_frame(L, 1)) {
+        tt_image_destroy(u->img);
+        u->img = NULL;
+    }
+    return 0;
+}
+
+/* __gc: an image the frame still draws is reachable (IMAGES_KEY), so never collected before it is rendered. */
 static int img_gc(lua_State *L)
 {
-    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    li_image *u = check_image_ud(L, 1);
     tt_image_destroy(u->img);
     u->img = NULL;
+    u->closed = true;
     return 0;
 }
 
 static int img_tostring(lua_State *L)
 {
-    li_image *u = luaL_checkudata(L, 1, TL_IMAGE_CLASS);
+    li_image *u = check_image_ud(L, 1);
     int w, h;
+    if (u->closed) {
+        lua_pushfstring(L, TL_IMAGE_CLASS " (closed): %p", (void *)u);
+        return 1;
+    }
     tt_image_size(u->img, &w, &h);
     lua_pushfstring(L, TL_IMAGE_CLASS " (%dx%d): %p", w, h, (void *)u);
     return 1;
@@ -385,6 +427,7 @@ void tl_push_image(lua_State *L, tt_image *img)
 {
     li_image *u = lua_newuserdatauv(L, sizeof *u, 0); /* harmless until img is stored */
     u->img = NULL;
+    u->closed = false;
     luaL_setmetatable(L, TL_IMAGE_CLASS);
     u->img = img;
 }
@@ -395,6 +438,7 @@ static int g_new_image(lua_State *L)
     int w = (int)tl_checkinteger(L, 1, 1, 8192), h = (int)tl_checkinteger(L, 2, 1, 8192);
     li_image *u = lua_newuserdatauv(L, sizeof *u, 0);
     u->img = NULL;
+    u->closed = false;
     luaL_setmetatable(L, TL_IMAGE_CLASS);
     u->img = tt_image_create(w, h);
     if (!u->img) tl_error(L, "out of memory for a %dx%d image", w, h);
@@ -462,11 +506,13 @@ static int g_image(lua_State *L)
     double x2 = tl_checknumber(L, 4, &TL_R_COORD), y2 = tl_checknumber(L, 5, &TL_R_COORD);
     tt_vec2 lo = { x1 < x2 ? x1 : x2, y1 < y2 ? y1 : y2 }, hi = { x1 < x2 ? x2 : x1, y1 < y2 ? y2 : y1 };
     check_canvas_result(L, c, tt_canvas_image(c, img, lo, hi));
-    /* the canvas points at img until the frame is drawn: keep it from the collector */
+    /* the canvas points at img until the frame is drawn: keep it from the
+     * collector, and tell __close to leave the pixels to tl_render_done */
     lua_getfield(L, LUA_REGISTRYINDEX, IMAGES_KEY);
     if (lua_istable(L, -1)) {
         lua_pushvalue(L, 1);
-        lua_rawseti(L, -2, (lua_Integer)lua_rawlen(L, -2) + 1);
+        lua_pushboolean(L, 1);
+        lua_rawset(L, -3);
     }
     lua_pop(L, 1);
     return 0;
@@ -475,7 +521,7 @@ static int g_image(lua_State *L)
 static const luaL_Reg image_methods[] = {
     { "size", img_size }, { "set_pixel", img_set_pixel }, { "pixel", img_pixel }, { "fill", img_fill }, { NULL, NULL }
 };
-static const luaL_Reg image_meta[] = { { "__gc", img_gc }, { "__close", img_gc }, { "__tostring", img_tostring }, { NULL, NULL } };
+static const luaL_Reg image_meta[] = { { "__gc", img_gc }, { "__close", img_close }, { "__tostring", img_tostring }, { NULL, NULL } };
 
 /* --- every world, for scripts without tether.draw ----------------------------- */
 
@@ -562,9 +608,11 @@ static const luaL_Reg gfx_funcs[] = {
     { "color", g_color },         { "clear", g_clear },   { "circle", g_circle },   { "line", g_line },
     { "polygon", g_polygon },     { "text", g_text },     { "line_width", g_line_width },
     { "layer", g_layer },         { "camera", g_camera }, { "fit", g_fit },         { "size", g_size },
-    { "to_world", g_to_world },   { "to_screen", g_to_screen }, { "hud", g_hud },
+    { "to_world", g_to_world },   { "to_screen", g_to_screen },
     { "new_image", g_new_image }, { "image", g_image },   { NULL, NULL }
 };
+/* the ones whose argument 1 is a world, pinned while they run (lua_common.h) */
+static const luaL_Reg gfx_world_funcs[] = { { "hud", g_hud }, { NULL, NULL } };
 
 static const luaL_Reg world_draw[] = { { "draw", w_draw }, { NULL, NULL } };
 
@@ -591,6 +639,7 @@ void tl_render_register(lua_State *L)
 
     lua_createtable(L, 0, (int)(sizeof gfx_funcs / sizeof gfx_funcs[0]));
     tl_setfuncs(L, gfx_funcs, "tether.gfx.");
+    tl_setfuncs_pinned(L, gfx_world_funcs, "tether.gfx.");
     lua_setfield(L, -2, "gfx");
     tl_world_add_methods(L, world_draw);
 }
@@ -615,6 +664,19 @@ void tl_render_end(lua_State *L)
 
 void tl_render_done(lua_State *L)
 {
+    /* the frame is on screen: the images closed while it was made can go */
+    if (lua_getfield(L, LUA_REGISTRYINDEX, IMAGES_KEY) == LUA_TTABLE) {
+        lua_pushnil(L);
+        while (lua_next(L, -2) != 0) {
+            li_image *u = lua_touserdata(L, -2);
+            lua_pop(L, 1);
+            if (u != NULL && u->closed) {
+                tt_image_destroy(u->img);
+                u->img = NULL;
+            }
+        }
+    }
+    lua_pop(L, 1);
     lua_pushnil(L);
     lua_setfield(L, LUA_REGISTRYINDEX, IMAGES_KEY);
 }

@@ -14,7 +14,7 @@ void tl_render_register(lua_State *L);
 
 /* Drawing calls go to c until tl_render_end (c is cleared by the caller).
  * Images drawn stay referenced until tl_render_done, to be called once the
- * back end has drawn the canvas. */
+ * back end has drawn the canvas: it frees those closed in the meantime. */
 void tl_render_begin(lua_State *L, tt_canvas *c);
 void tl_render_end(lua_State *L);
 void tl_render_done(lua_State *L);

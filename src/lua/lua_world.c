@@ -4,7 +4,16 @@
  * it calls the C core, so nothing the core would refuse ever reaches it; if
  * the core refuses anyway, its message is raised as "method: message".
  * Handles are Lua integers (tt_particle_to_u64 / tt_spring_to_u64). The
- * world userdata's user value 1 is a table handle → Lua value (w:user). */
+ * world userdata's user value 1 is a table handle → Lua value (w:user).
+ *
+ * Lua code can run in the middle of a method: an __index of an option
+ * table, a __close, a finalizer that one of the method's own allocations
+ * lets the collector run. Whatever it does, it must not free what the
+ * method is using, so every method runs with its world pinned (pinned_call):
+ * a pinned world that is destroyed is marked destroyed at once (every later
+ * use raises) and freed when the outermost call on it returns. What a
+ * method reads from the world it copies into C memory (scratch) before it
+ * makes any Lua value, since that Lua code may also step or grow the world. */
 #include "lua_common.h"
 
 #include <inttypes.h>
@@ -12,13 +21,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A reusable buffer of the bulk accessors, so that reading positions every
+ * frame allocates nothing. */
+typedef struct lw_buffer {
+    void *p;
+    size_t cap;
+} lw_buffer;
+
 /* The userdata. Made with w = NULL (harmless) before the world exists;
- * w = NULL again after destroy. scratch is a reusable buffer for the bulk
- * accessors, so reading positions every frame allocates nothing. */
+ * w = NULL again once freed. scratch[d] belongs to the call at depth d + 1
+ * (a call nested in another on the same world must not clobber the outer
+ * one's buffer while it is still reading it). */
 typedef struct lw_world {
     tt_world *w;
-    void *scratch;
-    size_t scratch_cap;
+    bool dead;         /* destroyed: no new call may use it; freed when pins is 0 */
+    unsigned pins;     /* calls running on this world, nested ones included */
+    lw_buffer *scratch;
+    unsigned nscratch;
 } lw_world;
 
 /* Same order as tt_integrator. */
@@ -35,7 +54,7 @@ tt_world *tl_check_world(lua_State *L, int arg)
     lw_world *u = luaL_testudata(L, arg, TL_WORLD_CLASS);
     if (u == NULL)
         tl_typeerror(L, arg, TL_WORLD_CLASS);
-    if (u->w == NULL)
+    if (u->dead)
         tl_argerror(L, arg, "attempt to use a destroyed world");
     return u->w;
 }
@@ -43,7 +62,7 @@ tt_world *tl_check_world(lua_State *L, int arg)
 tt_world *tl_toworld(lua_State *L, int idx)
 {
     lw_world *u = luaL_testudata(L, idx, TL_WORLD_CLASS);
-    return u ? u->w : NULL;
+    return u && !u->dead ? u->w : NULL;
 }
 
 /* The handle checker: a live particle (or spring) of w at arg. */
@@ -87,19 +106,28 @@ static void push_spring(lua_State *L, tt_spring s)
     lua_pushinteger(L, (lua_Integer)tt_spring_to_u64(s));
 }
 
-/* A buffer of at least `bytes` bytes owned by the world userdata at 1. */
-static void *scratch(lua_State *L, size_t bytes)
+void *tl_scratch(lua_State *L, size_t bytes)
 {
     lw_world *u = lua_touserdata(L, 1);
-    if (bytes > u->scratch_cap) {
+    unsigned d = u->pins > 0 ? u->pins - 1 : 0;
+    if (d >= u->nscratch) {
+        lw_buffer *v = realloc(u->scratch, (d + 1) * sizeof *v);
+        if (v == NULL)
+            tl_error(L, "not enough memory");
+        memset(v + u->nscratch, 0, (d + 1 - u->nscratch) * sizeof *v);
+        u->scratch = v;
+        u->nscratch = d + 1;
+    }
+    lw_buffer *b = &u->scratch[d];
+    if (bytes > b->cap) {
         size_t cap = bytes < 4096 ? 4096 : bytes;
-        void *p = realloc(u->scratch, cap);
+        void *p = realloc(b->p, cap);
         if (p == NULL)
             tl_error(L, "not enough memory (%I bytes)", (LUAI_UACINT)bytes);
-        u->scratch = p;
-        u->scratch_cap = cap;
+        b->p = p;
+        b->cap = cap;
     }
-    return u->scratch;
+    return b->p;
 }
 
 /* Pushes the world's handle → user value table. */
@@ -147,9 +175,7 @@ int tl_world_new(lua_State *L)
     /* Harmless first: a userdata with no world, its metatable and its user
      * table; only then the world. An error in between leaves nothing. */
     u = lua_newuserdatauv(L, sizeof *u, 1);
-    u->w = NULL;
-    u->scratch = NULL;
-    u->scratch_cap = 0;
+    memset(u, 0, sizeof *u);
     luaL_setmetatable(L, TL_WORLD_CLASS);
     lua_newtable(L);
     lua_setiuservalue(L, -2, 1);
@@ -160,28 +186,39 @@ int tl_world_new(lua_State *L)
     return 1;
 }
 
-/* Frees what the userdata at idx holds; safe to repeat. */
+/* Frees what the userdata at idx holds, now; safe to repeat. */
 static void release(lua_State *L, int idx)
 {
     lw_world *u = lua_touserdata(L, idx);
+    u->dead = true;
     tt_world_destroy(u->w);
     u->w = NULL;
+    for (unsigned i = 0; i < u->nscratch; i++)
+        free(u->scratch[i].p);
     free(u->scratch);
     u->scratch = NULL;
-    u->scratch_cap = 0;
+    u->nscratch = 0;
     lua_pushnil(L);
     lua_setiuservalue(L, idx, 1);
 }
 
-/* w:destroy() — idempotent. */
+/* w:destroy() and __close — idempotent. Inside a call on this world (from an
+ * __index, a finalizer, …) the world is freed when that call returns: the
+ * call finishes on it, and every use after this one raises. */
 static int w_destroy(lua_State *L)
 {
-    if (luaL_testudata(L, 1, TL_WORLD_CLASS) == NULL)
+    lw_world *u = luaL_testudata(L, 1, TL_WORLD_CLASS);
+    if (u == NULL)
         tl_typeerror(L, 1, TL_WORLD_CLASS);
-    release(L, 1);
+    u->dead = true;
+    if (u->pins == 0)
+        release(L, 1);
     return 0;
 }
 
+/* The collector frees it whatever the pins say: an unreachable world is in
+ * no running call, and lua_close (os.exit(…, true) from inside a call)
+ * never returns to the calls still pinning it. */
 static int w_gc(lua_State *L)
 {
     if (luaL_testudata(L, 1, TL_WORLD_CLASS) != NULL)
@@ -189,12 +226,46 @@ static int w_gc(lua_State *L)
     return 0;
 }
 
+/* Every function whose argument 1 is a world runs through here, with that
+ * world pinned for the whole call. The call is protected so that the pin
+ * is dropped however it ends; an error is raised again unchanged.
+ * Upvalues: 1 the name, 2 the function (a closure with the same name). */
+static int pinned_call(lua_State *L)
+{
+    lw_world *u = luaL_testudata(L, 1, TL_WORLD_CLASS);
+    int status;
+    if (u == NULL || u->w == NULL) /* nothing to pin: the function raises its own error */
+        return lua_tocfunction(L, lua_upvalueindex(2))(L);
+    u->pins++;
+    lua_pushvalue(L, 1); /* the world stays on this frame, below the call */
+    lua_insert(L, 1);
+    lua_pushvalue(L, lua_upvalueindex(2));
+    lua_insert(L, 2);
+    status = lua_pcall(L, lua_gettop(L) - 2, LUA_MULTRET, 0);
+    if (--u->pins == 0 && u->dead)
+        release(L, 1);
+    if (status != LUA_OK)
+        return lua_error(L);
+    return lua_gettop(L) - 1;
+}
+
+void tl_setfuncs_pinned(lua_State *L, const luaL_Reg *l, const char *prefix)
+{
+    for (; l->name != NULL; l++) {
+        lua_pushfstring(L, "%s%s", prefix, l->name);
+        lua_pushvalue(L, -1);
+        lua_pushcclosure(L, l->func, 1);
+        lua_pushcclosure(L, pinned_call, 2);
+        lua_setfield(L, -2, l->name);
+    }
+}
+
 static int w_tostring(lua_State *L)
 {
     lw_world *u = luaL_testudata(L, 1, TL_WORLD_CLASS);
     if (u == NULL)
         return tl_typeerror(L, 1, TL_WORLD_CLASS);
-    if (u->w == NULL)
+    if (u->dead)
         lua_pushfstring(L, TL_WORLD_CLASS ": %p (destroyed)", (void *)u);
     else
         lua_pushfstring(L, TL_WORLD_CLASS ": %p (%I particles)", (void *)u,
@@ -799,7 +870,7 @@ static int w_particles(lua_State *L)
     tt_particle *ids;
     int t;
     lua_settop(L, 2);
-    ids = scratch(L, (size_t)n * sizeof *ids + 1);
+    ids = tl_scratch(L, (size_t)n * sizeof *ids + 1);
     m = tt_world_list_particles(w, ids, n);
     if (m > n) m = n;
     result_table(L, 2, m);
@@ -821,7 +892,7 @@ static int w_positions(lua_State *L)
     double *xy;
     int t;
     lua_settop(L, 2);
-    xy = scratch(L, (size_t)n * 2 * sizeof *xy + 1);
+    xy = tl_scratch(L, (size_t)n * 2 * sizeof *xy + 1);
     m = tt_world_read_positions(w, xy, n);
     if (m > n) m = n;
     result_table(L, 2, (size_t)m * 2);
@@ -858,7 +929,7 @@ static int w_set_positions(lua_State *L)
     if (nxy != 2 * n)
         tl_argerror(L, 3, "%I numbers expected (2 per handle), got %I", (LUAI_UACINT)(2 * n), (LUAI_UACINT)nxy);
 
-    xy = scratch(L, n * (2 * sizeof *xy + sizeof *ids) + 1);
+    xy = tl_scratch(L, n * (2 * sizeof *xy + sizeof *ids) + 1);
     ids = (tt_particle *)(xy + 2 * n);
     for (size_t i = 0; i < n; i++) {
         uint64_t h = 0;
@@ -890,7 +961,7 @@ static int each_next(lua_State *L)
     const tt_particle *ids = lua_touserdata(L, lua_upvalueindex(3));
     lua_Integer n = lua_tointeger(L, lua_upvalueindex(4));
     lua_Integer i = lua_tointeger(L, lua_upvalueindex(5));
-    if (u->w == NULL)
+    if (u->dead)
         return tl_error(L, "attempt to use a destroyed world");
     for (; i < n; i++) {
         tt_vec2 v;
@@ -914,13 +985,15 @@ static int w_each(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     uint32_t n = tt_world_particle_count(w), m;
-    tt_particle *ids;
+    tt_particle *ids, *snapshot;
     lua_settop(L, 1);
-    lua_pushliteral(L, "each");
-    lua_pushvalue(L, 1);
-    ids = lua_newuserdatauv(L, (size_t)n * sizeof *ids + 1, 0);
+    ids = tl_scratch(L, (size_t)n * sizeof *ids + 1);
     m = tt_world_list_particles(w, ids, n);
     if (m > n) m = n;
+    lua_pushliteral(L, "each");
+    lua_pushvalue(L, 1);
+    snapshot = lua_newuserdatauv(L, (size_t)m * sizeof *snapshot + 1, 0);
+    memcpy(snapshot, ids, (size_t)m * sizeof *snapshot);
     lua_pushinteger(L, (lua_Integer)m);
     lua_pushinteger(L, 0);
     lua_pushcclosure(L, each_next, 5);
@@ -989,7 +1062,7 @@ static const luaL_Reg world_methods[] = {
 
 static const luaL_Reg world_meta[] = {
     { "__gc", w_gc },
-    { "__close", w_gc },
+    { "__close", w_destroy },
     { "__tostring", w_tostring },
     { NULL, NULL }
 };
@@ -999,7 +1072,7 @@ void tl_world_register(lua_State *L)
     if (luaL_newmetatable(L, TL_WORLD_CLASS)) { /* sets __name */
         tl_setfuncs(L, world_meta, "");
         lua_createtable(L, 0, (int)(sizeof world_methods / sizeof world_methods[0]));
-        tl_setfuncs(L, world_methods, "");
+        tl_setfuncs_pinned(L, world_methods, "");
         lua_setfield(L, -2, "__index");
     }
     lua_pop(L, 1);
@@ -1010,7 +1083,7 @@ void tl_world_add_methods(lua_State *L, const luaL_Reg *methods)
     tl_world_register(L);
     luaL_getmetatable(L, TL_WORLD_CLASS);
     lua_getfield(L, -1, "__index");
-    tl_setfuncs(L, methods, "");
+    tl_setfuncs_pinned(L, methods, "");
     lua_pop(L, 2);
 }
 

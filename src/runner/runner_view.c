@@ -187,7 +187,7 @@ done:
 /* tether.gfx.load_image(path) → image, or nil and a message (runner only: it needs libpng) */
 static int l_load_image(lua_State *L)
 {
-    const char *path = luaL_checkstring(L, 1);
+    const char *path = tl_checkstring(L, 1);
     char err[512];
     tt_image *img = tt_image_load_png(path, err, sizeof err);
     if (!img) {

@@ -510,6 +510,27 @@ T.test("a destroyed world refuses every method but destroy", function()
   T.ok(tostring(D):find("destroyed", 1, true), "tostring of a destroyed world")
 end)
 
+T.test("lists and option keys are read raw: no metamethod makes an error that names nothing", function()
+  local len25 = { __len = function() return 2.5 end } -- a length that is not an integer
+  T.checkerror_plain("bad argument #2 to 'polygon' (between 3 and 64 points expected, got 0)",
+    W.polygon, W, setmetatable({}, len25))
+  T.checkerror_plain("bad argument #2 to 'chain' (between 2 and 1000000 points expected, got 0)",
+    W.chain, W, setmetatable({}, len25))
+  -- what is in the table counts, not what __len says
+  local sh = T.noerror(W.polygon, W, setmetatable({ 0, 0, 1, 0, 0, 1 }, len25))
+  if sh then W:remove_shape(sh) end
+  local C = tether.world()
+  T.noerror(C.set_collision, C, { events = setmetatable({ "begin" }, len25) })
+  T.eq(table.concat(C:collision().events, ","), "begin", "events")
+  -- an unknown key is named without calling its __tostring (which may fail or return a number)
+  local key = setmetatable({}, { __tostring = function() return 42 end })
+  T.checkerror_plain("tether.world: unknown option 'table: ", tether.world, { [key] = 1 })
+  T.checkerror_plain("particle: unknown option 'table: ", W.particle, W, 0, 0, { [key] = 1 })
+  local named = setmetatable({}, { __name = "my.key", __tostring = function() error("called") end })
+  T.checkerror_plain("tether.world: unknown option 'my.key: ", tether.world, { [named] = 1 })
+  T.eq(W:count(), N_FIXTURES, "fixtures only")
+end)
+
 T.test("tether.world refuses bad options", function()
   for _, t in ipairs(WRONG_TYPES) do
     if t[1] ~= NIL and t[2] ~= "table" then

@@ -27,6 +27,15 @@ local function outside_frame()
     T.checkerror_plain("draw: nothing to draw on", w.draw, w)
   end)
 
+  T.test("load_image and the image metamethods name themselves in errors", function()
+    T.checkerror_plain("bad argument #1 to 'tether.gfx.load_image' (string expected, got table)", g.load_image, {})
+    T.checkerror_plain("bad argument #1 to 'tether.gfx.load_image' (string expected, got no value)", g.load_image)
+    local mt = getmetatable(g.new_image(1, 1))
+    T.checkerror_plain("bad argument #1 to '__tostring' (tether.image expected, got number)", mt.__tostring, 42)
+    T.checkerror_plain("bad argument #1 to '__close' (tether.image expected, got number)", mt.__close, 42)
+    T.checkerror_plain("bad argument #1 to '__gc' (tether.image expected, got table)", mt.__gc, {})
+  end)
+
   T.test("world:draw checks its world and options before it needs a canvas", function()
     local w = tether.world()
     T.checkerror_plain("unknown option 'partcles'", w.draw, w, { partcles = true })
@@ -62,6 +71,12 @@ local function inside_frame()
         local none, why = gg.load_image("no/such/file.png")
         T.eq(none, nil, "missing file: nil")
         T.ok(type(why) == "string" and why:find("no/such/file.png", 1, true), "message names the file: " .. tostring(why))
+      end)
+      T.test("an image closed right after it was drawn is in the frame", function()
+        local img = gg.load_image(tether.runner.out .. "/frame_00000.png")
+        if not T.ok(img, "frame 1 loaded") then return end
+        local r, g2, b, a = img:pixel(189, 139) -- inside the square drawn with the closed image
+        T.eq(r, 1, "red"); T.eq(g2 + b, 0, "red only"); T.eq(a, 1, "opaque")
       end)
       return
     end
@@ -136,6 +151,24 @@ local function inside_frame()
       T.checkerror_plain("attempt to use a closed image", closed.size, closed)
     end)
 
+    T.test("an image closed after it was drawn lives until the frame is rendered", function()
+      local drawn
+      do
+        local img <close> = gg.new_image(8, 8)
+        img:fill(1, 0, 0)
+        gg.color(1, 1, 1) -- no tint
+        gg.layer("screen")
+        gg.image(img, 182, 132, 196, 146) -- the bottom-right corner: checked in frame 2
+        gg.layer("world")
+        drawn = img
+      end -- closed here, before the frame is rendered
+      collectgarbage()
+      T.checkerror_plain("attempt to use a closed image", drawn.size, drawn)
+      T.checkerror_plain("attempt to use a closed image", gg.image, drawn, 0, 0, 1, 1)
+      T.ok(tostring(drawn):find("(closed)", 1, true), "tostring: " .. tostring(drawn))
+      getmetatable(drawn).__close(drawn) -- closing again is harmless
+    end)
+
     T.test("bad arguments name the function and the argument", function()
       T.checkerror_plain("bad argument #1 to 'tether.gfx.circle'", gg.circle, 0 / 0, 0, 1)
       T.checkerror_plain("bad argument #3 to 'tether.gfx.circle'", gg.circle, 0, 0, -1)
@@ -150,6 +183,37 @@ local function inside_frame()
       T.checkerror_plain("bad option 'color'", w.draw, w, { color = { 1, 2, 3 } })
       T.checkerror_plain("bad argument #1 to 'tether.gfx.line_width'", gg.line_width, 0)
       T.checkerror("tether.world expected", gg.hud, {})
+      T.checkerror_plain("bad argument #1 to 'tether.gfx.polygon' (table of coordinates {x1, y1, x2, y2, ...} expected, got number)",
+        gg.polygon, 42)
+      T.checkerror_plain("bad argument #1 to 'tether.gfx.polygon' (table of coordinates {x1, y1, x2, y2, ...} expected, got no value)",
+        gg.polygon)
+      T.checkerror_plain("bad argument #3 to 'tether.gfx.text' (string expected, got table)", gg.text, 0, 0, {})
+      T.checkerror_plain("bad argument #3 to 'tether.gfx.text' (string expected, got no value)", gg.text, 0, 0)
+      T.noerror(gg.text, 0, 0, 42) -- a number is text
+      T.checkerror_plain("bad argument #2 to 'tether.gfx.hud' (string or nil expected, got table)", gg.hud, w, {})
+    end)
+
+    T.test("Lua code that destroys the world in the middle of draw or hud", function()
+      -- world:draw: an option table whose __index destroys the world
+      local w2 = tether.world()
+      w2:particle(0, 0)
+      local calls = 0
+      local opts = setmetatable({}, { __index = function() calls = calls + 1; w2:destroy() end })
+      T.noerror(w2.draw, w2, opts)
+      T.ok(calls > 0, "the __index ran")
+      T.checkerror_plain("attempt to use a destroyed world", w2.count, w2)
+      -- g.hud: turning the number 7 into text allocates, which lets the
+      -- collector run a finalizer that destroys the world
+      local w3 = tether.world()
+      local fired = false
+      collectgarbage("incremental", 1, 1000) -- pause 1 %: every allocation check collects
+      collectgarbage("collect")
+      setmetatable({}, { __gc = function() fired = true; w3:destroy() end })
+      local ok, err = pcall(gg.hud, w3, 7)
+      collectgarbage("incremental", 200, 100)
+      T.ok(ok, tostring(err))
+      T.ok(fired, "the finalizer ran inside hud")
+      T.checkerror_plain("attempt to use a destroyed world", w3.count, w3)
     end)
   end
 
