@@ -109,9 +109,6 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
     tt_shape none = {0, 0};
     if (!w) { tt__fail(NULL, TT_EINVAL, "tt_shape_create: world is NULL"); return none; }
     if (check_def(w, def) != TT_OK) return none;
-    tt__collide *c = tt__collide_get(w, true, "tt_shape_create");
-    if (!c) return none;
-    if (c->shapes_alive >= TT_MAX_SHAPES) { tt__fail(w, TT_ENOMEM, "tt_shape_create: the world has %u shapes, the most allowed", TT_MAX_SHAPES); return none; }
     tt_vec2 *pts = NULL;
     uint32_t npts = (def->type == TT_SHAPE_CHAIN || def->type == TT_SHAPE_POLYGON) ? def->count : 0;
     if (npts) {
@@ -119,11 +116,23 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
         if (!pts) { tt__fail(w, TT_ENOMEM, "tt_shape_create: out of memory"); return none; }
         memcpy(pts, def->points, (size_t)npts * sizeof *pts);
     }
-    bool grew;
-    uint32_t i = tt_pool_alloc(&c->spool, TT_MAX_SHAPES, &grew);
-    if (i == UINT32_MAX || !tt__grow((void **)&c->shapes, &c->shcap, c->spool.count, sizeof *c->shapes)) {
-        if (i != UINT32_MAX) tt_pool_free(&c->spool, i);
+    /* a collision group registered here goes again if the shape cannot be
+     * made: a failed call leaves the world as it was */
+    const bool had = tt__collide_peek(w) != NULL;
+    tt__collide *c = tt__collide_get(w, true, "tt_shape_create");
+    if (!c) { free(pts); return none; }
+    if (c->shapes_alive >= TT_MAX_SHAPES) {
         free(pts);
+        tt__fail(w, TT_ENOMEM, "tt_shape_create: the world has %u shapes, the most allowed", TT_MAX_SHAPES);
+        return none;
+    }
+    bool grew;
+    uint32_t need = c->spool.free_count ? c->spool.count : c->spool.count + 1;
+    uint32_t i = tt__grow((void **)&c->shapes, &c->shcap, need, sizeof *c->shapes)
+                     ? tt_pool_alloc(&c->spool, TT_MAX_SHAPES, &grew) : UINT32_MAX;
+    if (i == UINT32_MAX) {
+        free(pts);
+        if (!had) tt__group_remove(w, &tt__contacts_ops);
         tt__fail(w, TT_ENOMEM, "tt_shape_create: out of memory");
         return none;
     }
