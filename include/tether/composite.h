@@ -85,7 +85,8 @@ typedef struct tt_lattice_def {
     double width, height;    ///< rectangle size, m, > 0; default 1, 1
     double angle;            ///< rectangle rotation, rad; default 0
     uint32_t columns, rows;  ///< rectangle particles per row / column, 2 … 1024; default 2, 2
-    const tt_vec2 *points;   ///< polygon vertices, m (world positions); default NULL = rectangle
+    const tt_vec2 *points;   ///< polygon vertices, m (world positions), as a polygon shape's: no point
+                             ///< repeated, no three consecutive on a line (it may be concave); default NULL = rectangle
     uint32_t point_count;    ///< 3 … 64 when points is set; default 0
 } tt_lattice_def;
 

@@ -55,6 +55,21 @@ static tt_result material_check(const tt_world *w, double e, double fs, double f
 
 static double cross3(tt_vec2 o, tt_vec2 a, tt_vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
+uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex)
+{
+    double sign = 0.0;
+    for (uint32_t k = 0; k < n; k++) {
+        double cr = cross3(pts[k], pts[(k + 1) % n], pts[(k + 2) % n]);
+        if (cr == 0.0 || (convex && sign != 0.0 && (cr > 0.0) != (sign > 0.0))) return (k + 1) % n;
+        sign = cr;
+    }
+    /* a convex outline cannot come back to a point; any other can, beyond its neighbours */
+    for (uint32_t j = 0; !convex && j < n; j++)
+        for (uint32_t i = 0; i < j; i++)
+            if (pts[i].x == pts[j].x && pts[i].y == pts[j].y) return j;
+    return n;
+}
+
 static tt_result check_def(const tt_world *w, const tt_shape_def *d)
 {
     const char *fn = "tt_shape_create";
@@ -88,15 +103,9 @@ static tt_result check_def(const tt_world *w, const tt_shape_def *d)
             return tt__fail(w, TT_EINVAL, "%s: %s needs points and count in [%u, %u], got %u", fn, type_names[d->type], lo, hi, d->count);
         for (uint32_t k = 0; k < d->count; k++)
             if (!tt__vec_ok(d->points[k])) return tt__fail(w, TT_EINVAL, "%s: point %u must be finite, |x| <= %g", fn, k, TT_MAX_VALUE);
-        if (poly) { /* convex, no three points on a line, one winding */
-            double sign = 0.0;
-            for (uint32_t k = 0; k < d->count; k++) {
-                double cr = cross3(d->points[k], d->points[(k + 1) % d->count], d->points[(k + 2) % d->count]);
-                if (cr == 0.0 || (sign != 0.0 && (cr > 0.0) != (sign > 0.0)))
-                    return tt__fail(w, TT_EINVAL, "%s: polygon must be convex with no repeated or collinear points (at point %u)", fn, (k + 1) % d->count);
-                sign = cr;
-            }
-        }
+        uint32_t bad = poly ? tt__polygon_fault(d->points, d->count, true) : d->count;
+        if (bad < d->count)
+            return tt__fail(w, TT_EINVAL, "%s: polygon must be convex with no repeated or collinear points (at point %u)", fn, bad);
         break;
     }
     default: break;

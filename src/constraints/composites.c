@@ -493,6 +493,11 @@ tt_composite tt_lattice_create(tt_world *w, const tt_lattice_def *d)
         if (n < 3 || n > 64) { tt__fail(w, TT_EINVAL, "%s: point_count must be in [3, 64], got %u", fn, n); return NONE; }
         for (uint32_t i = 0; i < n; i++)
             if (!tt__vec_ok(d->points[i])) { tt__fail(w, TT_EINVAL, "%s: points[%u] must be finite", fn, i); return NONE; }
+        uint32_t bad = tt__polygon_fault(d->points, n, false);
+        if (bad < n) {
+            tt__fail(w, TT_EINVAL, "%s: points must make a polygon with no repeated or collinear points (at point %u)", fn, bad);
+            return NONE;
+        }
         if (!begin(&b, w, &d->common, n, fn)) return NONE;
         for (uint32_t i = 0; i < n; i++) place(&b, d->points[i].x, d->points[i].y, false);
         if (!spawn(&b)) return NONE;

@@ -195,6 +195,12 @@ bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
 /* Whether any constraint keeps its particles from colliding (else the test above is always false). */
 bool tt__constraint_pairs_any(const tt_world *w);
 
+/* Geometry shared by the polygon shape and the lattice composite
+ * (collide/shapes.c): the vertex at which pts[0..n) (n >= 3) stops being a
+ * polygon's outline (a point repeated, three consecutive points on a line,
+ * with `convex` a turn against the winding), or n when none does. */
+uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex);
+
 /* Forces and integration (integrate.c / forces.c). */
 bool tt__has_forces(const tt_world *w);
 void tt__eval_accel(tt_world *w, const double *x, const double *y, const double *vx, const double *vy,

@@ -446,6 +446,57 @@ TEST(a_composite_past_the_largest_coordinate_leaves_the_world_as_it_was)
     tt_world_destroy(w);
 }
 
+/* Lattice polygons a polygon shape would refuse too. */
+static bool lattice_of(tt_world *w, const tt_vec2 *pts, uint32_t n)
+{
+    tt_lattice_def d = tt_lattice_def_default();
+    d.points = pts;
+    d.point_count = n;
+    return tt_lattice_create(w, &d).gen == 0;
+}
+
+static bool lattice_on_a_line(tt_world *w)
+{
+    const tt_vec2 pts[3] = {{0, 0}, {1, 0}, {2, 0}};
+    return lattice_of(w, pts, 3);
+}
+
+static bool lattice_with_a_point_twice(tt_world *w)
+{
+    const tt_vec2 pts[4] = {{0, 0}, {1, 0}, {1, 0}, {0, 1}};
+    return lattice_of(w, pts, 4);
+}
+
+static bool lattice_meeting_itself(tt_world *w)
+{
+    const tt_vec2 pts[6] = {{0, 0}, {2, -1}, {2, 1}, {0, 0}, {-2, 1}, {-2, -1}}; /* two triangles touching at a tip */
+    return lattice_of(w, pts, 6);
+}
+
+TEST(a_lattice_refuses_collinear_or_repeated_points_as_a_polygon_shape_does)
+{
+    const named_call calls[] = {CALL(lattice_on_a_line), CALL(lattice_with_a_point_twice), CALL(lattice_meeting_itself)};
+    for (int k = 0; k < 2; k++)
+        for (size_t i = 0; i < sizeof calls / sizeof calls[0]; i++)
+            ENSURE_CLEAN(calls[i].name, fails_cleanly(calls[i].fn, k, 1u << 24));
+    tt_world *w = tt_world_create(NULL);
+    ENSURE(lattice_on_a_line(w));
+    ENSURE(strcmp(tt_last_error(w), "tt_lattice_create: points must make a polygon with no repeated or collinear points (at point 1)") == 0);
+    ENSURE(lattice_meeting_itself(w));
+    ENSURE(strstr(tt_last_error(w), "(at point 3)") != NULL);
+    const tt_vec2 line[3] = {{0, 0}, {1, 0}, {2, 0}};
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_POLYGON;
+    sd.points = line;
+    sd.count = 3;
+    ENSURE(tt_shape_create(w, &sd).gen == 0);
+    ENSURE(strstr(tt_last_error(w), "no repeated or collinear points (at point 1)") != NULL);
+    const tt_vec2 notch[5] = {{0, 0}, {2, 0}, {2, 2}, {1, 1}, {0, 2}}; /* concave: every pair is braced, so it stays rigid */
+    ENSURE(!lattice_of(w, notch, 5));
+    ENSURE(tt_world_composite_count(w) == 1 && tt_world_constraint_count(w) == 10);
+    tt_world_destroy(w);
+}
+
 /* Valid calls, for a world full half way and for memory running out. */
 static bool make_cloth(tt_world *w)
 {

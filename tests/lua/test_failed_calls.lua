@@ -82,6 +82,22 @@ T.test("a ragdoll, soft body, lattice or rope past it raises and changes nothing
   fails_cleanly("rope", function(w) w:rope { start = { -152580229995.33337, 0 }, finish = { EDGE, 0 }, segments = 9 } end)
 end)
 
+T.test("a lattice refuses collinear or repeated points, as a polygon shape does", function()
+  local err = fails_cleanly("lattice on a line", function(w) w:lattice { points = { 0, 0, 1, 0, 2, 0 } } end)
+  T.eq(err and err:match("lattice: .*"), "lattice: points must make a polygon with no repeated or collinear points (at point 1)",
+    "message")
+  err = fails_cleanly("lattice with a point twice", function(w) w:lattice { points = { 0, 0, 1, 0, 1, 0, 0, 1 } } end)
+  T.ok(err and err:find("no repeated or collinear points (at point 1)", 1, true), tostring(err))
+  -- the same point again, neither neighbour of the first: two triangles touching
+  err = fails_cleanly("lattice meeting itself", function(w)
+    w:lattice { points = { 0, 0, 2, -1, 2, 1, 0, 0, -2, 1, -2, -1 } }
+  end)
+  T.ok(err and err:find("(at point 3)", 1, true), tostring(err))
+  local w = tether.world {}
+  T.noerror(w.lattice, w, { points = { 0, 0, 2, 0, 2, 2, 1, 1, 0, 2 } }) -- concave is fine: every pair is braced
+  T.checkerror("polygon must be convex with no repeated or collinear points (at point 1)", w.polygon, w, { 0, 0, 1, 0, 2, 0 })
+end)
+
 T.test("shapes that raise change nothing", function()
   fails_cleanly("polygon", function(w) w:polygon { 0, 0, 1, 0, 2, 0 } end)
   fails_cleanly("polygon, bad option", function(w) w:polygon({ 0, 0, 1, 0, 0, 1 }, { friction = -1 }) end)
