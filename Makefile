@@ -136,8 +136,11 @@ $(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
 $(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) $(RENDER_LIBS) -lm
 
+# The C tests route the engine's allocations through tests/alloc_fail.c, so a
+# test can make memory run out at any chosen allocation.
+TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc
 $(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
-	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(RENDER_LIBS) -lm
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(TEST_WRAP) $(RENDER_LIBS) -lm
 
 # Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
 BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o

@@ -452,7 +452,7 @@ function world:ragdoll(opts) end
 ---opts: center, size, segments, pressure, area_stiffness, area_compliance + composite options.
 ---@return tether.composite
 function world:soft_body(opts) end
----opts: center, width, height, angle, columns, rows or points {x1, y1, …} + composite options.
+---opts: center, width, height, angle, columns, rows or points {x1, y1, …} (no point repeated, no three consecutive on a line) + composite options.
 ---@return tether.composite
 function world:lattice(opts) end
 ---@param h tether.composite

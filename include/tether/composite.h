@@ -88,7 +88,8 @@ typedef struct tt_lattice_def {
     double width, height;    ///< rectangle size, m, > 0; default 1, 1
     double angle;            ///< rectangle rotation, rad; default 0
     uint32_t columns, rows;  ///< rectangle particles per row / column, 2 … 1024; default 2, 2
-    const tt_vec2 *points;   ///< polygon vertices, m (world positions); default NULL = rectangle
+    const tt_vec2 *points;   ///< polygon vertices, m (world positions), as a polygon shape's: no point
+                             ///< repeated, no three consecutive on a line (it may be concave); default NULL = rectangle
     uint32_t point_count;    ///< 3 … 64 when points is set; default 0
 } tt_lattice_def;
 
@@ -98,8 +99,11 @@ TT_API tt_ragdoll_def tt_ragdoll_def_default(void);
 TT_API tt_soft_body_def tt_soft_body_def_default(void);
 TT_API tt_lattice_def tt_lattice_def_default(void);
 
-/// Each makes its particles and constraints; the null handle on bad input or
-/// no memory (nothing is left behind; tt_last_error says why).
+/// Each makes its particles and constraints; the null handle on bad input
+/// (a particle past TT_MAX_VALUE included), a world too full, or no memory,
+/// and then the world is exactly as it was: nothing is left behind and the
+/// next handles are those it would have handed out had the call never been
+/// made (tt_last_error says why).
 TT_API tt_composite tt_rope_create(tt_world *w, const tt_rope_def *def);
 TT_API tt_composite tt_cloth_create(tt_world *w, const tt_cloth_def *def);
 TT_API tt_composite tt_ragdoll_create(tt_world *w, const tt_ragdoll_def *def);

@@ -55,6 +55,21 @@ static tt_result material_check(const tt_world *w, double e, double fs, double f
 
 static double cross3(tt_vec2 o, tt_vec2 a, tt_vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
+uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex)
+{
+    double sign = 0.0;
+    for (uint32_t k = 0; k < n; k++) {
+        double cr = cross3(pts[k], pts[(k + 1) % n], pts[(k + 2) % n]);
+        if (cr == 0.0 || (convex && sign != 0.0 && (cr > 0.0) != (sign > 0.0))) return (k + 1) % n;
+        sign = cr;
+    }
+    /* a convex outline cannot come back to a point; any other can, beyond its neighbours */
+    for (uint32_t j = 0; !convex && j < n; j++)
+        for (uint32_t i = 0; i < j; i++)
+            if (pts[i].x == pts[j].x && pts[i].y == pts[j].y) return j;
+    return n;
+}
+
 static tt_result check_def(const tt_world *w, const tt_shape_def *d)
 {
     const char *fn = "tt_shape_create";
@@ -88,15 +103,9 @@ static tt_result check_def(const tt_world *w, const tt_shape_def *d)
             return tt__fail(w, TT_EINVAL, "%s: %s needs points and count in [%u, %u], got %u", fn, type_names[d->type], lo, hi, d->count);
         for (uint32_t k = 0; k < d->count; k++)
             if (!tt__vec_ok(d->points[k])) return tt__fail(w, TT_EINVAL, "%s: point %u must be finite, |x| <= %g", fn, k, TT_MAX_VALUE);
-        if (poly) { /* convex, no three points on a line, one winding */
-            double sign = 0.0;
-            for (uint32_t k = 0; k < d->count; k++) {
-                double cr = cross3(d->points[k], d->points[(k + 1) % d->count], d->points[(k + 2) % d->count]);
-                if (cr == 0.0 || (sign != 0.0 && (cr > 0.0) != (sign > 0.0)))
-                    return tt__fail(w, TT_EINVAL, "%s: polygon must be convex with no repeated or collinear points (at point %u)", fn, (k + 1) % d->count);
-                sign = cr;
-            }
-        }
+        uint32_t bad = poly ? tt__polygon_fault(d->points, d->count, true) : d->count;
+        if (bad < d->count)
+            return tt__fail(w, TT_EINVAL, "%s: polygon must be convex with no repeated or collinear points (at point %u)", fn, bad);
         break;
     }
     default: break;
@@ -109,9 +118,6 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
     tt_shape none = {0, 0};
     if (!w) { tt__fail(NULL, TT_EINVAL, "tt_shape_create: world is NULL"); return none; }
     if (check_def(w, def) != TT_OK) return none;
-    tt__collide *c = tt__collide_get(w, true, "tt_shape_create");
-    if (!c) return none;
-    if (c->shapes_alive >= TT_MAX_SHAPES) { tt__fail(w, TT_ENOMEM, "tt_shape_create: the world has %u shapes, the most allowed", TT_MAX_SHAPES); return none; }
     tt_vec2 *pts = NULL;
     uint32_t npts = (def->type == TT_SHAPE_CHAIN || def->type == TT_SHAPE_POLYGON) ? def->count : 0;
     if (npts) {
@@ -119,11 +125,23 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
         if (!pts) { tt__fail(w, TT_ENOMEM, "tt_shape_create: out of memory"); return none; }
         memcpy(pts, def->points, (size_t)npts * sizeof *pts);
     }
-    bool grew;
-    uint32_t i = tt_pool_alloc(&c->spool, TT_MAX_SHAPES, &grew);
-    if (i == UINT32_MAX || !tt__grow((void **)&c->shapes, &c->shcap, c->spool.count, sizeof *c->shapes)) {
-        if (i != UINT32_MAX) tt_pool_free(&c->spool, i);
+    /* a collision group registered here goes again if the shape cannot be
+     * made: a failed call leaves the world as it was */
+    const bool had = tt__collide_peek(w) != NULL;
+    tt__collide *c = tt__collide_get(w, true, "tt_shape_create");
+    if (!c) { free(pts); return none; }
+    if (c->shapes_alive >= TT_MAX_SHAPES) {
         free(pts);
+        tt__fail(w, TT_ENOMEM, "tt_shape_create: the world has %u shapes, the most allowed", TT_MAX_SHAPES);
+        return none;
+    }
+    bool grew;
+    uint32_t need = c->spool.free_count ? c->spool.count : c->spool.count + 1;
+    uint32_t i = tt__grow((void **)&c->shapes, &c->shcap, need, sizeof *c->shapes)
+                     ? tt_pool_alloc(&c->spool, TT_MAX_SHAPES, &grew) : UINT32_MAX;
+    if (i == UINT32_MAX) {
+        free(pts);
+        if (!had) tt__group_remove(w, &tt__contacts_ops);
         tt__fail(w, TT_ENOMEM, "tt_shape_create: out of memory");
         return none;
     }

@@ -12,12 +12,27 @@ static const double TT_PI = 3.14159265358979323846;
 
 /* ---- building ------------------------------------------------------------ */
 
+/* A builder places every particle first and checks them all (and that they
+ * fit) before it makes the first, so bad input changes nothing. Running out
+ * of memory half way is undone whole: what was made is removed and the pools
+ * are put back, so the next handles are those of a world that never saw the
+ * call. */
+typedef struct spot {
+    tt_vec2 at;
+    bool pinned;
+} spot;
+
 typedef struct builder {
     tt_world *w;
     const char *fn;
     tt__composite c;
-    tt_particle_def pd;
     tt_composite_common k;
+    spot *spots;            /* where each particle goes, in order */
+    uint32_t nspots;
+    /* the world before its first change, for undo */
+    tt_pool_mark pmark, cmark;
+    uint32_t fresh_count;
+    bool had_group;         /* the constraint group was there before */
     bool failed;
 } builder;
 
@@ -34,63 +49,141 @@ static tt_result check_common(tt_world *w, const tt_composite_common *k, const c
     return TT_OK;
 }
 
+static void release(builder *b)
+{
+    free(b->spots);
+    free(b->c.parts);
+    free(b->c.cons);
+    free(b->c.rest);
+}
+
+/* The builder's own memory; the world is not touched yet. */
 static bool begin(builder *b, tt_world *w, const tt_composite_common *k, uint32_t particles, const char *fn)
 {
     memset(b, 0, sizeof *b);
     b->w = w;
     b->fn = fn;
     b->k = *k;
-    b->pd = tt_particle_def_default();
-    b->pd.mass = k->mass;
-    b->pd.radius = k->radius;
+    b->spots = malloc((size_t)particles * sizeof *b->spots);
     b->c.parts = malloc((size_t)particles * sizeof *b->c.parts);
-    if (!b->c.parts) {
+    b->c.rest = malloc((size_t)particles * 2 * sizeof(double));
+    if (!b->spots || !b->c.parts || !b->c.rest) {
+        release(b);
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
         return false;
     }
     return true;
 }
 
-static uint32_t add_particle(builder *b, double x, double y, bool pinned)
+static void place(builder *b, double x, double y, bool pinned)
 {
-    if (b->failed) return 0;
-    b->pd.position = (tt_vec2){x, y};
-    b->pd.pinned = pinned;
-    tt_particle p = tt_particle_create(b->w, &b->pd);
-    if (p.gen == 0) {
-        b->failed = true;
-        return 0;
+    b->spots[b->nspots++] = (spot){{x, y}, pinned};
+}
+
+/* Undoes everything made since spawn began changing the world. */
+static void undo(builder *b)
+{
+    tt_world *w = b->w;
+    for (uint32_t i = 0; i < b->c.nc; i++)
+        if (tt_constraint_is_valid(w, b->c.cons[i])) tt_constraint_destroy(w, b->c.cons[i]);
+    for (uint32_t i = 0; i < b->c.np; i++) tt_particle_destroy(w, b->c.parts[i]);
+    /* removal bumped generations and reordered free lists: put both back */
+    tt__cgroup *g = tt__cgroup_get(w, false);
+    if (g) {
+        for (uint32_t i = 0; i < b->c.nc; i++) tt_pool_unalloc(&g->pool, b->cmark, i, b->c.cons[i].index, b->c.cons[i].gen);
+        tt_pool_rewind(&g->pool, b->cmark);
     }
-    b->c.parts[b->c.np] = p;
-    return b->c.np++;
+    for (uint32_t i = 0; i < b->c.np; i++) tt_pool_unalloc(&w->ppool, b->pmark, i, b->c.parts[i].index, b->c.parts[i].gen);
+    tt_pool_rewind(&w->ppool, b->pmark);
+    w->fresh_count = b->fresh_count;
+    tt__cgroup_unmake(w, b->had_group);
+    release(b);
+}
+
+/* Room for the composite's record, made before anything else so it cannot fail last. */
+static bool reserve_record(tt__cgroup *g)
+{
+    uint32_t need = g->cpool.free_count ? g->cpool.count : g->cpool.count + 1;
+    if (need <= g->comp_cap) return true;
+    uint32_t cap = g->comp_cap ? g->comp_cap * 2 : 16;
+    tt__composite *q = realloc(g->comps, (size_t)cap * sizeof *q);
+    if (!q) return false;
+    g->comps = q;
+    g->comp_cap = cap;
+    return true;
+}
+
+/* Checks every placed particle, then makes them all; false (and nothing left
+ * behind) when one is out of range, they do not fit, or memory runs out. */
+static bool spawn(builder *b)
+{
+    tt_world *w = b->w;
+    for (uint32_t i = 0; i < b->nspots; i++)
+        if (!tt__vec_ok(b->spots[i].at)) {
+            tt__fail(w, TT_EINVAL, "%s: particle %u would be at (%.17g, %.17g), past the largest coordinate %g", b->fn, i,
+                     b->spots[i].at.x, b->spots[i].at.y, TT_MAX_VALUE);
+            release(b);
+            return false;
+        }
+    if (b->nspots > tt__particle_room(w)) {
+        tt__fail(w, TT_ENOMEM, "%s: the world is full (max_particles %u)", b->fn, w->max_particles);
+        release(b);
+        return false;
+    }
+    b->pmark = tt_pool_mark_now(&w->ppool);
+    b->fresh_count = w->fresh_count;
+    b->had_group = tt__cgroup_peek(w) != NULL;
+    tt__cgroup *g = tt__cgroup_get(w, true); /* made here, it starts empty: a mark like any other */
+    if (g) b->cmark = tt_pool_mark_now(&g->pool);
+    if (!g || !reserve_record(g)) {
+        tt__fail(w, TT_ENOMEM, "%s: out of memory", b->fn);
+        undo(b);
+        return false;
+    }
+    tt_particle_def pd = tt_particle_def_default();
+    pd.mass = b->k.mass;
+    pd.radius = b->k.radius;
+    for (uint32_t i = 0; i < b->nspots; i++) {
+        pd.position = b->spots[i].at;
+        pd.pinned = b->spots[i].pinned;
+        tt_particle p = tt_particle_create(w, &pd);
+        if (p.gen == 0) { /* out of memory: tt_particle_create said so */
+            undo(b);
+            return false;
+        }
+        b->c.parts[b->c.np++] = p;
+    }
+    return true;
+}
+
+/* Room for one more constraint handle, made before the constraint so every
+ * constraint made is on the list undo walks. */
+static bool con_room(builder *b)
+{
+    if (b->failed) return false;
+    if (b->c.nc < b->c.ccap) return true;
+    uint32_t cap = b->c.ccap ? b->c.ccap * 2 : 32;
+    tt_constraint *q = realloc(b->c.cons, (size_t)cap * sizeof *q);
+    if (!q) {
+        tt__fail(b->w, TT_ENOMEM, "%s: out of memory", b->fn);
+        b->failed = true;
+        return false;
+    }
+    b->c.cons = q;
+    b->c.ccap = cap;
+    return true;
 }
 
 static void add_constraint(builder *b, tt_constraint h)
 {
-    if (b->failed) return;
-    if (h.gen == 0) {
-        b->failed = true;
-        return;
-    }
-    if (b->c.nc == b->c.ccap) {
-        uint32_t cap = b->c.ccap ? b->c.ccap * 2 : 32;
-        tt_constraint *q = realloc(b->c.cons, (size_t)cap * sizeof *q);
-        if (!q) {
-            tt_constraint_destroy(b->w, h);
-            tt__fail(b->w, TT_ENOMEM, "%s: out of memory", b->fn);
-            b->failed = true;
-            return;
-        }
-        b->c.cons = q;
-        b->c.ccap = cap;
-    }
-    b->c.cons[b->c.nc++] = h;
+    if (h.gen == 0) b->failed = true; /* out of memory: the create call said so */
+    else b->c.cons[b->c.nc++] = h;
 }
 
 /* A distance link between builder particles i and j. */
 static void link(builder *b, uint32_t i, uint32_t j, double stiffness, tt_distance_mode mode, double break_strain)
 {
-    if (b->failed) return;
+    if (!con_room(b)) return;
     tt_distance_def d = tt_distance_def_default();
     d.a = b->c.parts[i];
     d.b = b->c.parts[j];
@@ -104,7 +197,7 @@ static void link(builder *b, uint32_t i, uint32_t j, double stiffness, tt_distan
 
 static void limit(builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, double hi)
 {
-    if (b->failed) return;
+    if (!con_room(b)) return;
     tt_angle_def d = tt_angle_def_default();
     d.a = b->c.parts[i];
     d.b = b->c.parts[j];
@@ -116,45 +209,16 @@ static void limit(builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, dou
     add_constraint(b, tt_angle_create(b->w, &d));
 }
 
-static void undo(builder *b)
-{
-    for (uint32_t i = 0; i < b->c.nc; i++)
-        if (tt_constraint_is_valid(b->w, b->c.cons[i])) tt_constraint_destroy(b->w, b->c.cons[i]);
-    for (uint32_t i = 0; i < b->c.np; i++) tt_particle_destroy(b->w, b->c.parts[i]);
-    free(b->c.parts);
-    free(b->c.cons);
-    free(b->c.rest);
-}
-
 /* Stores the composite (or undoes everything when a step failed). */
 static tt_composite finish(builder *b)
 {
     tt_world *w = b->w;
-    if (b->failed) {
-        char msg[sizeof w->error];
-        memcpy(msg, w->error, sizeof msg); /* keep the first failure's words */
-        undo(b);
-        memcpy(w->error, msg, sizeof msg);
-        return NONE;
-    }
-    tt__cgroup *g = tt__cgroup_get(w, true);
-    b->c.rest = malloc((size_t)b->c.np * 2 * sizeof(double) + 1);
+    tt__cgroup *g = tt__cgroup_get(w, false);
     bool grew;
-    uint32_t s = g && b->c.rest ? tt_pool_alloc(&g->cpool, UINT32_MAX - 1, &grew) : UINT32_MAX;
-    if (s != UINT32_MAX && s >= g->comp_cap) {
-        uint32_t cap = g->comp_cap ? g->comp_cap * 2 : 16;
-        tt__composite *q = realloc(g->comps, (size_t)cap * sizeof *q);
-        if (!q) {
-            tt_pool_free(&g->cpool, s);
-            s = UINT32_MAX;
-        } else {
-            g->comps = q;
-            g->comp_cap = cap;
-        }
-    }
+    uint32_t s = b->failed ? UINT32_MAX : tt_pool_alloc(&g->cpool, UINT32_MAX - 1, &grew);
     if (s == UINT32_MAX) {
+        if (!b->failed) tt__fail(w, TT_ENOMEM, "%s: out of memory", b->fn);
         undo(b);
-        tt__fail(w, TT_ENOMEM, "%s: out of memory", b->fn);
         return NONE;
     }
     /* rest shape: offsets from the centre of mass as made */
@@ -172,6 +236,7 @@ static tt_composite finish(builder *b)
         b->c.rest[2 * i] = w->px[p] - cx;
         b->c.rest[2 * i + 1] = w->py[p] - cy;
     }
+    free(b->spots);
     b->c.alive = true;
     g->comps[s] = b->c;
     g->comps_alive++;
@@ -284,9 +349,10 @@ tt_composite tt_rope_create(tt_world *w, const tt_rope_def *d)
     if (!begin(&b, w, &d->common, d->segments + 1, fn)) return NONE;
     for (uint32_t i = 0; i <= d->segments; i++) {
         double t = (double)i / d->segments;
-        add_particle(&b, d->start.x + (d->end.x - d->start.x) * t, d->start.y + (d->end.y - d->start.y) * t,
-                     (i == 0 && d->pin_start) || (i == d->segments && d->pin_end));
+        place(&b, d->start.x + (d->end.x - d->start.x) * t, d->start.y + (d->end.y - d->start.y) * t,
+              (i == 0 && d->pin_start) || (i == d->segments && d->pin_end));
     }
+    if (!spawn(&b)) return NONE;
     for (uint32_t i = 0; i < d->segments; i++)
         link(&b, i, i + 1, d->common.stiffness, d->slack ? TT_DISTANCE_MAX : TT_DISTANCE_RIGID, d->break_strain);
     return finish(&b);
@@ -312,8 +378,9 @@ tt_composite tt_cloth_create(tt_world *w, const tt_cloth_def *d)
     for (uint32_t r = 0; r < R; r++)
         for (uint32_t c = 0; c < C; c++) {
             bool pin = r == 0 && (d->pin_top_row || (d->pin_top_corners && (c == 0 || c == C - 1)));
-            add_particle(&b, d->origin.x + c * sx, d->origin.y - r * sy, pin);
+            place(&b, d->origin.x + c * sx, d->origin.y - r * sy, pin);
         }
+    if (!spawn(&b)) return NONE;
 #define P(r, c) ((r) * C + (c))
     const double ks = d->common.stiffness, bs = d->break_strain;
     /* Links are made in passes whose members share no particle (red-black
@@ -367,7 +434,8 @@ tt_composite tt_ragdoll_create(tt_world *w, const tt_ragdoll_def *d)
     const double s = d->height / 1.65;
     builder b;
     if (!begin(&b, w, &d->common, 11, fn)) return NONE;
-    for (int i = 0; i < 11; i++) add_particle(&b, d->position.x + body[i][0] * s, d->position.y + body[i][1] * s, false);
+    for (int i = 0; i < 11; i++) place(&b, d->position.x + body[i][0] * s, d->position.y + body[i][1] * s, false);
+    if (!spawn(&b)) return NONE;
     for (size_t i = 0; i < sizeof bones / sizeof bones[0]; i++) {
         /* the elbow-to-elbow and knee-to-knee struts only push: they keep limbs apart */
         bool strut = i >= 11;
@@ -399,10 +467,11 @@ tt_composite tt_soft_body_create(tt_world *w, const tt_soft_body_def *d)
     if (!begin(&b, w, &d->common, n, fn)) return NONE;
     for (uint32_t i = 0; i < n; i++) {
         double a = 2 * TT_PI * i / n;
-        add_particle(&b, d->center.x + d->radius * cos(a), d->center.y + d->radius * sin(a), false);
+        place(&b, d->center.x + d->radius * cos(a), d->center.y + d->radius * sin(a), false);
     }
+    if (!spawn(&b)) return NONE;
     for (uint32_t i = 0; i < n; i++) link(&b, i, (i + 1) % n, d->common.stiffness, TT_DISTANCE_RIGID, 0.0);
-    if (!b.failed) {
+    if (con_room(&b)) {
         tt_area_def ad = tt_area_def_default();
         ad.particles = b.c.parts;
         ad.count = n;
@@ -424,8 +493,14 @@ tt_composite tt_lattice_create(tt_world *w, const tt_lattice_def *d)
         if (n < 3 || n > 64) { tt__fail(w, TT_EINVAL, "%s: point_count must be in [3, 64], got %u", fn, n); return NONE; }
         for (uint32_t i = 0; i < n; i++)
             if (!tt__vec_ok(d->points[i])) { tt__fail(w, TT_EINVAL, "%s: points[%u] must be finite", fn, i); return NONE; }
+        uint32_t bad = tt__polygon_fault(d->points, n, false);
+        if (bad < n) {
+            tt__fail(w, TT_EINVAL, "%s: points must make a polygon with no repeated or collinear points (at point %u)", fn, bad);
+            return NONE;
+        }
         if (!begin(&b, w, &d->common, n, fn)) return NONE;
-        for (uint32_t i = 0; i < n; i++) add_particle(&b, d->points[i].x, d->points[i].y, false);
+        for (uint32_t i = 0; i < n; i++) place(&b, d->points[i].x, d->points[i].y, false);
+        if (!spawn(&b)) return NONE;
         for (uint32_t i = 0; i < n; i++) /* every pair: rigid for any polygon */
             for (uint32_t j = i + 1; j < n; j++) link(&b, i, j, d->common.stiffness, TT_DISTANCE_RIGID, 0.0);
         return finish(&b);
@@ -443,8 +518,9 @@ tt_composite tt_lattice_create(tt_world *w, const tt_lattice_def *d)
     for (uint32_t r = 0; r < R; r++)
         for (uint32_t c = 0; c < C; c++) {
             double lx = -0.5 * d->width + d->width * c / (C - 1), ly = -0.5 * d->height + d->height * r / (R - 1);
-            add_particle(&b, d->center.x + ca * lx - sa * ly, d->center.y + sa * lx + ca * ly, false);
+            place(&b, d->center.x + ca * lx - sa * ly, d->center.y + sa * lx + ca * ly, false);
         }
+    if (!spawn(&b)) return NONE;
 #define P(r, c) ((r) * C + (c))
     const double k = d->common.stiffness;
     for (uint32_t r = 0; r < R; r++)

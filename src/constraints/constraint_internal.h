@@ -109,6 +109,9 @@ bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
 /* The group of w, made and registered on first use when create is true (NULL on no memory). */
 tt__cgroup *tt__cgroup_get(tt_world *w, bool create);
 const tt__cgroup *tt__cgroup_peek(const tt_world *w);
+/* Takes the group back when the failing call that made it was its first use
+ * (had: whether it was there before the call). */
+void tt__cgroup_unmake(tt_world *w, bool had);
 void tt__composites_free(tt__cgroup *g);
 size_t tt__composites_memory(const tt__cgroup *g);
 uint64_t tt__composites_hash(const tt__cgroup *g, uint64_t h);

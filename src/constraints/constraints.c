@@ -53,6 +53,11 @@ tt__cgroup *tt__cgroup_get(tt_world *w, bool create)
     return g;
 }
 
+void tt__cgroup_unmake(tt_world *w, bool had)
+{
+    if (!had) tt__group_remove(w, &constraint_ops);
+}
+
 static bool grow(void **p, size_t elem, uint32_t *cap, uint32_t need)
 {
     if (need <= *cap) return true;
@@ -170,13 +175,12 @@ bool tt__constraint_pairs_any(const tt_world *w)
 
 static bool slot_new(tt__cgroup *g, uint8_t kind, uint32_t dense, uint32_t *out)
 {
+    /* room first: freeing a slot taken in vain would age its generation */
+    uint32_t need = g->pool.free_count ? g->pool.count : g->pool.count + 1;
+    if (!grow((void **)&g->slots, sizeof *g->slots, &g->slot_cap, need)) return false;
     bool grew;
     uint32_t s = tt_pool_alloc(&g->pool, UINT32_MAX - 1, &grew);
     if (s == UINT32_MAX) return false;
-    if (!grow((void **)&g->slots, sizeof *g->slots, &g->slot_cap, g->pool.count)) {
-        tt_pool_free(&g->pool, s);
-        return false;
-    }
     g->slots[s] = (tt__cslot){kind, dense};
     g->alive++;
     *out = s;
@@ -425,6 +429,7 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
         tt__fail(w, TT_EINVAL, "%s: break_strain must be in [0, %g] (0 = never), got %g", fn, TT_MAX_VALUE, d->break_strain);
         return NONE;
     }
+    const bool had = tt__cgroup_peek(w) != NULL; /* a group made here goes again if this fails */
     tt__cgroup *g = tt__cgroup_get(w, true);
     if (!g || !refs_reserve(w, g) || !grow((void **)&g->dist, sizeof *g->dist, &g->dist_cap, g->ndist + 1) ||
         !grow((void **)&g->dx, sizeof *g->dx, &g->dx_cap, g->ndist + 1))
@@ -452,6 +457,7 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     if (d->compliance > 0) g->nxpbd++;
     return handle_of(g, slot);
 nomem:
+    tt__cgroup_unmake(w, had);
     tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
     return NONE;
 }
@@ -459,10 +465,12 @@ nomem:
 /* A generic constraint's record, reserved; NULL on no memory. */
 static tt__gcon *gen_new(tt_world *w, uint8_t kind, tt_constraint *h, const char *fn)
 {
+    const bool had = tt__cgroup_peek(w) != NULL;
     tt__cgroup *g = tt__cgroup_get(w, true);
     uint32_t slot;
     if (!g || !refs_reserve(w, g) || !grow((void **)&g->gen, sizeof *g->gen, &g->gen_cap, g->ngen + 1) ||
         !slot_new(g, kind, g->ngen, &slot)) {
+        tt__cgroup_unmake(w, had);
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
         return NULL;
     }
@@ -616,9 +624,11 @@ tt_constraint tt_area_create(tt_world *w, const tt_area_def *d)
     if (check_soft(w, d->stiffness, d->compliance, fn) != TT_OK) return NONE;
     uint32_t *list = copy_list(w, d->particles, d->count, true, fn);
     if (!list) return NONE;
+    const bool had = tt__cgroup_peek(w) != NULL;
     tt__cgroup *g = tt__cgroup_get(w, true);
     if (!g || !grow((void **)&g->grad, 2 * sizeof(double), &g->grad_cap, d->count)) {
         free(list);
+        tt__cgroup_unmake(w, had);
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
         return NONE;
     }
@@ -626,6 +636,7 @@ tt_constraint tt_area_create(tt_world *w, const tt_area_def *d)
     tt__gcon *c = gen_new(w, TT_CONSTRAINT_AREA, &h, fn);
     if (!c) {
         free(list);
+        tt__cgroup_unmake(w, had);
         return NONE;
     }
     c->n = d->count;

@@ -48,20 +48,19 @@ tt_spring tt_spring_create(tt_world *w, const tt_spring_def *d)
         tt__fail(w, TT_EINVAL, "%s: rest_length must be -1 (current distance) or in [0, %g], got %g", fn, TT_MAX_VALUE, d->rest_length);
         return none;
     }
-    bool grew;
-    uint32_t i = tt_pool_alloc(&w->spool, UINT32_MAX - 1, &grew);
-    if (i == UINT32_MAX) { tt__fail(w, TT_ENOMEM, "%s: out of memory", fn); return none; }
-    if (i >= w->scap) {
+    /* room first: a slot taken and given back would age its generation, and
+     * a pool grown past the records would send the hash to a record not there */
+    uint32_t need = w->spool.free_count ? w->spool.count : w->spool.count + 1;
+    if (need > w->scap) {
         uint32_t cap = w->scap ? w->scap * 2 : 64;
         tt__spring *sp = realloc(w->springs, (size_t)cap * sizeof *sp);
-        if (!sp) {
-            tt_pool_free(&w->spool, i);
-            tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
-            return none;
-        }
+        if (!sp) { tt__fail(w, TT_ENOMEM, "%s: out of memory", fn); return none; }
         w->springs = sp;
         w->scap = cap;
     }
+    bool grew;
+    uint32_t i = tt_pool_alloc(&w->spool, UINT32_MAX - 1, &grew);
+    if (i == UINT32_MAX) { tt__fail(w, TT_ENOMEM, "%s: out of memory", fn); return none; }
     tt__spring *s = &w->springs[i];
     s->a = d->a.index;
     s->b = d->b.index;

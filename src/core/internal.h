@@ -149,6 +149,8 @@ void tt__particles_free(tt_world *w);
 bool tt__particle_ok(const tt_world *w, tt_particle p);
 tt_result tt__particle_check(const tt_world *w, tt_particle p, const char *fn);
 void tt__mark_fresh(tt_world *w, uint32_t i);
+/* How many more particles the world can hold (free slots and room to grow). */
+uint32_t tt__particle_room(const tt_world *w);
 static inline tt_vec2 tt__velocity(const tt_world *w, uint32_t i)
 {
     if (w->integrator == TT_VERLET)
@@ -181,6 +183,10 @@ void tt__springs_free(tt_world *w);
 int tt__group_add(tt_world *w, const tt__group_ops *ops, void *self);
 /* The group registered with ops, or NULL. */
 void *tt__group_find(const tt_world *w, const tt__group_ops *ops);
+/* Unregisters and destroys the group registered with ops, if any: a call
+ * that registered it and then failed takes it back, since a group, even
+ * empty, is swept and hashed. */
+void tt__group_remove(tt_world *w, const tt__group_ops *ops);
 void tt__solve(tt_world *w, double h);
 void tt__solver_after_step(tt_world *w);
 void tt__solver_particle_removed(tt_world *w, uint32_t index);
@@ -206,6 +212,12 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
 bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
 /* Whether any constraint keeps its particles from colliding (else the test above is always false). */
 bool tt__constraint_pairs_any(const tt_world *w);
+
+/* Geometry shared by the polygon shape and the lattice composite
+ * (collide/shapes.c): the vertex at which pts[0..n) (n >= 3) stops being a
+ * polygon's outline (a point repeated, three consecutive points on a line,
+ * with `convex` a turn against the winding), or n when none does. */
+uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex);
 
 /* Forces and integration (integrate.c / forces.c). */
 bool tt__has_forces(const tt_world *w);

@@ -82,6 +82,12 @@ double *tt__scratch(tt_world *w, int which)
     return w->scratch[which];
 }
 
+uint32_t tt__particle_room(const tt_world *w)
+{
+    /* a free slot is reused before the pool grows; the pool grows to max_particles */
+    return w->ppool.free_count + (w->max_particles - w->ppool.count);
+}
+
 bool tt__particle_ok(const tt_world *w, tt_particle p)
 {
     return w && p.index < w->ppool.count && p.gen != 0 && w->ppool.gen[p.index] == p.gen &&

@@ -37,6 +37,22 @@ void tt_pool_free(tt_pool *p, uint32_t index)
     p->free_list[p->free_count++] = index;
 }
 
+void tt_pool_unalloc(tt_pool *p, tt_pool_mark m, uint32_t k, uint32_t index, uint32_t gen)
+{
+    /* The free list hands out its top first, so the k-th slot came from
+     * m.free_count − 1 − k; past the list's end, from the high-water mark,
+     * which the rewind lowers (a slot above it starts afresh when reached). */
+    if (k >= m.free_count) return;
+    p->free_list[m.free_count - 1 - k] = index;
+    p->gen[index] = gen;
+}
+
+void tt_pool_rewind(tt_pool *p, tt_pool_mark m)
+{
+    p->free_count = m.free_count;
+    p->count = m.count;
+}
+
 void tt_pool_destroy(tt_pool *p)
 {
     uint32_t tag = p->tag;

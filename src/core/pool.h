@@ -23,10 +23,25 @@ typedef struct tt_pool {
     uint32_t tag;        /* 1…255, set by the world before first use (0 works, without the cross-world check) */
 } tt_pool;
 
-/* Returns a slot index, or UINT32_MAX if the pool cannot grow (limit or memory).
- * *grew is set when count increased (the caller must size its arrays to count). */
+/* Returns a slot index, or UINT32_MAX if the pool cannot grow (limit or memory;
+ * the pool is then unchanged). *grew is set when count increased (the caller
+ * must size its arrays to count). */
 uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew);
 void tt_pool_free(tt_pool *p, uint32_t index);
+
+/* Where a pool stood before a call that allocates many slots, so that a
+ * failure half way can put it back: the same handles then come next, as if
+ * the call had never been made. */
+typedef struct tt_pool_mark {
+    uint32_t free_count, count;
+} tt_pool_mark;
+static inline tt_pool_mark tt_pool_mark_now(const tt_pool *p) { return (tt_pool_mark){p->free_count, p->count}; }
+/* Gives slot `index`, the k-th (from 0) allocated since mark m and handed out
+ * with generation `gen`, back its place and generation of then. Call it for
+ * every slot allocated since m (freed again or not), then tt_pool_rewind;
+ * nothing else may have been allocated or freed since m. */
+void tt_pool_unalloc(tt_pool *p, tt_pool_mark m, uint32_t k, uint32_t index, uint32_t gen);
+void tt_pool_rewind(tt_pool *p, tt_pool_mark m);
 void tt_pool_destroy(tt_pool *p);
 size_t tt_pool_bytes(const tt_pool *p);
 

@@ -30,6 +30,18 @@ void *tt__group_find(const tt_world *w, const tt__group_ops *ops)
     return NULL;
 }
 
+void tt__group_remove(tt_world *w, const tt__group_ops *ops)
+{
+    for (int g = 0; g < w->group_count; g++) {
+        if (w->groups[g].ops != ops) continue;
+        tt__group gone = w->groups[g];
+        memmove(&w->groups[g], &w->groups[g + 1], (size_t)(w->group_count - g - 1) * sizeof w->groups[0]);
+        w->group_count--;
+        if (gone.ops->destroy) gone.ops->destroy(w, gone.self);
+        return;
+    }
+}
+
 static bool grow_to(void **p, size_t elem, uint32_t n)
 {
     void *q = realloc(*p, elem * (n ? n : 1));
