@@ -9,7 +9,7 @@ CC     ?= cc
 CXX    ?= c++
 
 # Debian packages the project needs (see README "Set-up").
-DEB_PKGS := pkg-config lua5.4 liblua5.4-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth gnuplot-nox
+DEB_PKGS := pkg-config lua5.4 liblua5.4-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth gnuplot-nox valgrind
 PC_PKGS  := lua5.4 box2d sdl2 osmesa libpng
 
 ifeq ($(SANITIZE),1)
@@ -71,7 +71,7 @@ RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 BENCH   := $(BUILD)/bench
 
-.PHONY: all deps demo pictures test test-c test-lua fuzz bench install uninstall clean
+.PHONY: all deps demo pictures test test-c test-lua fuzz memcheck bench install uninstall clean
 all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER)
 
 # --- dependencies -----------------------------------------------------------
@@ -182,6 +182,13 @@ pictures: all
 
 test: all $(TEST_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh
+
+# `make memcheck`: the C tests under valgrind memcheck; any error or leak
+# of ours fails (libOSMesa's own leak is suppressed by library).
+memcheck: all $(TEST_C)
+	valgrind --quiet --error-exitcode=3 --leak-check=full --errors-for-leak-kinds=definite,indirect \
+	  --suppressions=tests/valgrind.supp $(TEST_C) >$(BUILD)/memcheck.log 2>&1; rc=$$?; \
+	  grep -v '^ok ' $(BUILD)/memcheck.log | tail -n 40; exit $$rc
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
 # (tests/fuzz/); on a failure it prints the seed and a replay script and

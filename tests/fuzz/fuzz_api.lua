@@ -226,7 +226,7 @@ function tether.update()
   for _ = 1, 20 do
     if over() then done = true; break end
     local w, ws = world_src()
-    if F.alive(w) and w:count() > 3000 then
+    if F.alive(w) and w:count() > 600 then -- big worlds only slow the calls down
       emit("world.destroy", 1, { w }, { ws })
     elseif rand(10) == 1 then
       one_call("tether", nil, nil)
@@ -272,7 +272,10 @@ function tether.draw(g)
   phase = string.format("D(%d, function(g) ", draws)
   for _ = 1, 40 do
     local r = rand(4)
-    if r == 1 and #F.IMG > 0 then
+    if r == 1 and (#F.IMG == 0 or rand(8) == 1) then -- random sizes are rarely valid: make some
+      local wd, ht = rand(40), rand(40)
+      emit("gfx.new_image", 2, { wd, ht }, { tostring(wd), tostring(ht) })
+    elseif r == 1 then
       local i = rand(#F.IMG)
       one_call("image", F.IMG[i], "IMG[" .. i .. "]")
     elseif r == 2 then

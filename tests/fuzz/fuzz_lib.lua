@@ -114,7 +114,11 @@ function F.call(name, ...)
     if changed and F.callbacks == cb then F.fail("%s failed (%s) yet world %d changed", name, msg, changed) end
     return
   end
-  for i = 2, r.n do finite_values(r[i], name, 2) end
+  -- a table the caller passed in comes back refilled ("a given table is
+  -- reused"): what the call did not write there is the caller's own
+  local given = {}
+  for i = 1, select("#", ...) do local v = select(i, ...); if type(v) == "table" then given[v] = true end end
+  for i = 2, r.n do if not given[r[i]] then finite_values(r[i], name, 2) end end
   keep(r)
   if name == "world.step" then for _, w in ipairs(F.W) do F.check_world(w) end end
 end
