@@ -172,13 +172,17 @@ demo: all
 	  echo "demo: animated GIF $(DEMO_OUT)/$$name.gif"; \
 	else echo "demo: PNG frames in $(DEMO_OUT)/ (install ffmpeg or ImageMagick for a video)"; fi
 
-# `make pictures`: one small PNG per demo (400x300, after 5 s of simulated
-# time) into docs/img/, the pictures the README and docs/render.md show.
+# `make pictures`: one PNG per demo (640x480, after 5 s of simulated
+# time) into docs/img/, the pictures the README and docs/render.md show, and
+# docs/img/demo.gif, 6 s of the default demo at the top of the README.
 pictures: all
 	@mkdir -p docs/img
 	@for d in demos/*.lua; do n=$$(basename $$d .lua); \
-	  $(RUNNER) --headless --frames 1 --every 300 --size 400x300 --out $(BUILD)/pictures/$$n $$d >/dev/null 2>&1 && \
+	  $(RUNNER) --headless --frames 1 --every 300 --size 640x480 --out $(BUILD)/pictures/$$n $$d >/dev/null 2>&1 && \
 	  cp $(BUILD)/pictures/$$n/frame_00000.png docs/img/$$n.png && echo "docs/img/$$n.png" || echo "$$d: FAILED"; done
+	@rm -rf $(BUILD)/pictures/gif && $(RUNNER) --headless --frames 90 --every 4 --size 480x360 --out $(BUILD)/pictures/gif $(DEMO) >/dev/null 2>&1 && \
+	  convert -delay 7 -loop 0 $(BUILD)/pictures/gif/frame_*.png -layers Optimize docs/img/demo.gif && echo "docs/img/demo.gif" || \
+	  echo "docs/img/demo.gif: not made (needs ImageMagick's convert)"
 
 test: all $(TEST_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh

@@ -17,7 +17,8 @@ function tether.load(args)
   N = math.tointeger(tonumber(args[1] or "")) or N
   world = tether.world { iterations = 15, substeps = 2, damping = 0.1 }
   cloth = world:cloth { origin = { -2, 3 }, width = 4, height = 3, columns = N, rows = N,
-                        mass = 0.01, pin_top_row = true, break_strain = 0.6 }
+                        mass = 0.01, pin_top_row = true, break_strain = 0.6,
+                        shear_stiffness = 0.1, bend_stiffness = 0.1 } -- drapes: see docs (w:cloth)
   print(("cloth: %dx%d particles, %d links, tears past 60%% stretch"):format(N, N, world:constraint_count()))
 end
 
@@ -46,6 +47,12 @@ function tether.update(dt)
     print(("t=%5.2f s  wind %.3f N  torn %4d  links drawn %5d  sweeps %3d  error %.1e m  %.2f ms")
       :format(st.time, wx, torn, n, st.iterations, st.max_error, st.step_ms))
   end
+end
+
+function tether.draw(g)
+  g.fit(-3.5, -1.5, 3.5, 3.5)
+  world:draw { particles = false }
+  g.hud(world, ("torn %d links"):format(torn))
 end
 
 function tether.unload()

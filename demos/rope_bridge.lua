@@ -78,6 +78,15 @@ function tether.update(dt)
   end
 end
 
+function tether.draw(g)
+  g.fit(-SPAN / 2 - 1.5, -3, SPAN / 2 + 1.5, 5)
+  g.color(0.35, 0.3, 0.25) -- the cliffs (bounds blocks are not drawn by w:draw)
+  g.polygon { -SPAN / 2 - 3, -6, -SPAN / 2, -6, -SPAN / 2, 0, -SPAN / 2 - 3, 0 }
+  g.polygon { SPAN / 2, -6, SPAN / 2 + 3, -6, SPAN / 2 + 3, 0, SPAN / 2, 0 }
+  world:draw()
+  g.hud(world, ("sag %.2f m"):format(sag()))
+end
+
 function tether.unload()
   print(("rope_bridge: %d steps, %d particles, hash %s"):format(steps, world:count(), world:hash()))
   world:destroy()
