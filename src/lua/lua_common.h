@@ -190,6 +190,7 @@ void tl_stepping_register(lua_State *L);    /* lua_stepping.c */
 void tl_stats_register(lua_State *L);       /* lua_stats.c */
 void tl_bulk_register(lua_State *L);        /* lua_bulk.c */
 void tl_constraints_register(lua_State *L); /* lua_constraints.c */
+void tl_composites_register(lua_State *L);  /* lua_composites.c */
 void tl_collide_register(lua_State *L);     /* lua_collide.c */
 
 #endif
