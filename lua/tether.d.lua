@@ -370,7 +370,7 @@ function world:each() end
 ---a __close), the world is freed when that method returns.
 function world:destroy() end
 
--- Constraints and composites (lua_constraints.c) ---------------------------
+-- Constraints and composites (lua_constraints.c, lua_composites.c) ---------
 
 ---@alias tether.constraint integer
 ---@alias tether.composite integer

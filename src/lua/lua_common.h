@@ -120,6 +120,34 @@ bool tl_tohandle(lua_State *L, int idx, const char *kind, uint64_t *out);
 
 #define TL_WORLD_CLASS "tether.world"
 
+/* A reusable buffer of the bulk accessors, so that reading positions every
+ * frame allocates nothing. */
+typedef struct tl_buffer {
+    void *p;
+    size_t cap;
+} tl_buffer;
+
+/* The userdata. Made with w = NULL (harmless) before the world exists;
+ * w = NULL again once freed. scratch[d] belongs to the call at depth d + 1
+ * (a call nested in another on the same world must not clobber the outer
+ * one's buffer while it is still reading it). Here, not in lua_world.c,
+ * because the w:each() iterator (lua_bulk.c) holds the userdata itself, not
+ * a call's argument 1, and must see it die. */
+typedef struct tl_world_ud {
+    tt_world *w;
+    bool dead;         /* destroyed: no new call may use it; freed when pins is 0 */
+    unsigned pins;     /* calls running on this world, nested ones included */
+    tl_buffer *scratch;
+    unsigned nscratch;
+} tl_world_ud;
+
+/* Option names read by more than one file, NULL-terminated, in the order of
+ * tt_integrator, tt_solver_order (lua_world.c) and tt_move_mode
+ * (lua_particles.c), so that a name's index is the enum value. */
+extern const char *const tl_integrator_names[];
+extern const char *const tl_solver_names[];
+extern const char *const tl_move_modes[];
+
 /* Creates the world metatable (once per state); leaves nothing on the stack. */
 void tl_world_register(lua_State *L);
 /* tether.world([opts]) */
@@ -155,8 +183,14 @@ void tl_push_particle(lua_State *L, tt_particle p);
 /* The live world of the world userdata at idx, or NULL (not a world, or destroyed): never raises. */
 tt_world *tl_toworld(lua_State *L, int idx);
 
-/* --- feature bindings: each adds its methods to the world class ------------- */
+/* --- method files and feature bindings: each adds its methods to the world class */
+void tl_particles_register(lua_State *L);   /* lua_particles.c */
+void tl_springs_register(lua_State *L);     /* lua_springs.c */
+void tl_stepping_register(lua_State *L);    /* lua_stepping.c */
+void tl_stats_register(lua_State *L);       /* lua_stats.c */
+void tl_bulk_register(lua_State *L);        /* lua_bulk.c */
 void tl_constraints_register(lua_State *L); /* lua_constraints.c */
+void tl_composites_register(lua_State *L);  /* lua_composites.c */
 void tl_collide_register(lua_State *L);     /* lua_collide.c */
 
 #endif

@@ -1,6 +1,7 @@
-/* tether — the Lua drawing API (lua_render.c): what the module registers and
- * what the runner calls around each frame. No GL here: the runner owns the
- * canvas and the back end; the module only appends to the canvas. */
+/* tether — the Lua drawing API (lua_render.c, lua_gfx.c, lua_image.c): what
+ * the module registers and what the runner calls around each frame. No GL
+ * here: the runner owns the canvas and the back end; the module only appends
+ * to the canvas. */
 #ifndef TETHER_LUA_RENDER_H
 #define TETHER_LUA_RENDER_H
 
@@ -32,5 +33,26 @@ bool tl_render_pick(lua_State *L, double px, double py, double max_px, tt_partic
 tt_world *tl_render_drag_world(lua_State *L, double px, double py, tt_vec2 *pos);
 /* Forgets the drag target. */
 void tl_render_drag_end(lua_State *L);
+
+/* --- shared by the drawing files only, not for the runner --------------------- */
+
+/* registry: image → true for those drawn this frame (kept until rendered) */
+#define TL_IMAGES_KEY "tether.render.images"
+
+/* The canvas of the frame being made; raises "nothing to draw on" outside one. */
+tt_canvas *tl_render_canvas(lua_State *L);
+/* A colour channel in [0, 1] as a byte. */
+uint8_t tl_byte_of(double v);
+/* Raises the canvas's message unless r is TT_OK. */
+void tl_check_canvas_result(lua_State *L, tt_canvas *c, tt_result r);
+/* Draws text in a HUD panel at height *y, and moves *y below it. */
+void tl_render_hud_panel(tt_canvas *c, const char *text, double *y);
+/* Remembers the world at idx and the camera it is drawn with, for mouse picking. */
+void tl_render_remember(lua_State *L, int idx, tt_canvas *c);
+/* Wraps tether.world of the module table on the top of the stack (lua_render.c). */
+void tl_render_track_worlds(lua_State *L);
+/* Makes the image class, and adds g.new_image and g.image to the tether.gfx
+ * table on the top of the stack (lua_image.c). */
+void tl_image_register(lua_State *L);
 
 #endif

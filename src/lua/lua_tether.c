@@ -2,7 +2,8 @@
  *
  *   tether.version      "0.1.0"
  *   tether.integrators  {"euler", "symplectic_euler", "leapfrog", "verlet", "rk4"}
- *   tether.world(opts)  a new world (lua_world.c)
+ *   tether.world(opts)  a new world (lua_world.c), its methods added below by
+ *                       the lua_<concept>.c files
  *
  * Built into build/tether.so for stock lua5.4 and linked into the runner. */
 #include "lua_common.h"
@@ -19,7 +20,13 @@ TT_API int luaopen_tether(lua_State *L)
 {
     luaL_checkversion(L);
     tl_world_register(L);
+    tl_particles_register(L);
+    tl_springs_register(L);
+    tl_stepping_register(L);
+    tl_stats_register(L);
+    tl_bulk_register(L);
     tl_constraints_register(L);
+    tl_composites_register(L);
     tl_collide_register(L);
     lua_createtable(L, 0, 4);
     tl_setfuncs(L, tether_funcs, "tether.");

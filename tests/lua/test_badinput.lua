@@ -73,7 +73,7 @@ W:remove_shape(gone_sh)
 local STALE_SH = { gone_sh, 0, 987654321, -1, math.maxinteger, SH1 + (1 << 40) }
 local STALE_P = { gone, 0, 987654321, -1, math.maxinteger, math.mininteger, (3 << 32) | 1 }
 local STALE_S = { gone_s, 0, 987654321, -1, math.maxinteger, S1 + (1 << 40) }
-local C1 = W:distance(P1, P2)      -- constraints and composites (lua_constraints.c)
+local C1 = W:distance(P1, P2)      -- constraints and composites (lua_constraints.c, lua_composites.c)
 local PIN1 = W:pin(P3)
 local H1 = W:lattice { center = { 20, 20 } }
 local gone_c = W:distance(P1, P3)

@@ -1,0 +1,162 @@
+/* tether — Lua world methods that step the world and read or change how it
+ * steps: w:step, gravity, wind, damping, integrator, substeps, iterations,
+ * tolerance and solver (each a getter and a set_ setter). */
+#include "lua_common.h"
+
+/* w:step(dt [, n]) */
+static int w_step(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    double dt = tl_checknumber(L, 2, &TL_R_DT);
+    lua_Integer n = tl_optinteger(L, 3, 1, TL_MAX_STEPS, 1);
+    for (lua_Integer i = 0; i < n; i++)
+        tl_check_result(L, w, tt_world_step(w, dt));
+    return 0;
+}
+
+static int w_gravity(lua_State *L)
+{
+    tt_vec2 g = tt_world_get_gravity(tl_check_world(L, 1));
+    lua_pushnumber(L, g.x);
+    lua_pushnumber(L, g.y);
+    return 2;
+}
+
+static int w_set_gravity(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_vec2 g;
+    g.x = tl_checknumber(L, 2, &TL_R_COORD);
+    g.y = tl_checknumber(L, 3, &TL_R_COORD);
+    tl_check_result(L, w, tt_world_set_gravity(w, g));
+    return 0;
+}
+
+static int w_wind(lua_State *L)
+{
+    tt_vec2 f = tt_world_get_wind(tl_check_world(L, 1));
+    lua_pushnumber(L, f.x);
+    lua_pushnumber(L, f.y);
+    return 2;
+}
+
+static int w_set_wind(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_vec2 f;
+    f.x = tl_checknumber(L, 2, &TL_R_COORD);
+    f.y = tl_checknumber(L, 3, &TL_R_COORD);
+    tl_check_result(L, w, tt_world_set_wind(w, f));
+    return 0;
+}
+
+static int w_damping(lua_State *L)
+{
+    lua_pushnumber(L, tt_world_get_damping(tl_check_world(L, 1)));
+    return 1;
+}
+
+static int w_set_damping(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    double d = tl_checknumber(L, 2, &TL_R_NONNEG);
+    tl_check_result(L, w, tt_world_set_damping(w, d));
+    return 0;
+}
+
+static int w_integrator(lua_State *L)
+{
+    tt_integrator i = tt_world_get_integrator(tl_check_world(L, 1));
+    lua_pushstring(L, (unsigned)i < TT_INTEGRATOR_COUNT ? tl_integrator_names[i] : tt_integrator_name(i));
+    return 1;
+}
+
+static int w_set_integrator(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    int i = tl_checkoption(L, 2, "integrator", NULL, tl_integrator_names);
+    tl_check_result(L, w, tt_world_set_integrator(w, (tt_integrator)i));
+    return 0;
+}
+
+static int w_substeps(lua_State *L)
+{
+    lua_pushinteger(L, tt_world_get_substeps(tl_check_world(L, 1)));
+    return 1;
+}
+
+static int w_set_substeps(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_set_substeps(w, (uint32_t)tl_checkinteger(L, 2, 1, TT_MAX_SUBSTEPS)));
+    return 0;
+}
+
+static int w_iterations(lua_State *L)
+{
+    lua_pushinteger(L, tt_world_get_iterations(tl_check_world(L, 1)));
+    return 1;
+}
+
+static int w_set_iterations(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_set_iterations(w, (uint32_t)tl_checkinteger(L, 2, 1, TT_MAX_ITERATIONS)));
+    return 0;
+}
+
+static int w_tolerance(lua_State *L)
+{
+    lua_pushnumber(L, tt_world_get_tolerance(tl_check_world(L, 1)));
+    return 1;
+}
+
+static int w_set_tolerance(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_set_tolerance(w, tl_checknumber(L, 2, &TL_R_NONNEG)));
+    return 0;
+}
+
+static int w_solver(lua_State *L)
+{
+    tt_solver_order o = tt_world_get_solver_order(tl_check_world(L, 1));
+    lua_pushstring(L, tl_solver_names[o == TT_JACOBI ? 1 : 0]);
+    return 1;
+}
+
+static int w_set_solver(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    int o = tl_checkoption(L, 2, "solver", NULL, tl_solver_names);
+    tl_check_result(L, w, tt_world_set_solver_order(w, (tt_solver_order)o));
+    return 0;
+}
+
+/* --- registration ----------------------------------------------------------- */
+
+static const luaL_Reg stepping_methods[] = {
+    { "step", w_step },
+    { "gravity", w_gravity },
+    { "set_gravity", w_set_gravity },
+    { "wind", w_wind },
+    { "set_wind", w_set_wind },
+    { "damping", w_damping },
+    { "set_damping", w_set_damping },
+    { "integrator", w_integrator },
+    { "set_integrator", w_set_integrator },
+    { "substeps", w_substeps },
+    { "set_substeps", w_set_substeps },
+    { "iterations", w_iterations },
+    { "set_iterations", w_set_iterations },
+    { "tolerance", w_tolerance },
+    { "set_tolerance", w_set_tolerance },
+    { "solver", w_solver },
+    { "set_solver", w_set_solver },
+    { NULL, NULL }
+};
+
+void tl_stepping_register(lua_State *L)
+{
+    tl_world_add_methods(L, stepping_methods);
+}
