@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const double TT_PI = 3.14159265358979323846;
 #define NONE ((tt_composite){0, 0})
 
 /* ---- building ------------------------------------------------------------ */
