@@ -57,7 +57,8 @@ static double gen_error(const tt_world *w, const tt__gcon *c)
         }
         return e;
     }
-    case TT_CONSTRAINT_ANGLE: return fabs(tt__constraint_angle_error(tt__constraint_angle_at(w, c->p[0], c->p[1], c->p[2]), c->v[0], c->v[1]));
+    case TT_CONSTRAINT_ANGLE:
+        return fabs(tt__constraint_angle_error(tt__constraint_angle_at(w, c->p[0], c->p[1], c->p[2]), c->v[0], c->v[1]));
     case TT_CONSTRAINT_AREA: return fabs(tt__constraint_polygon_area(w, c->list, c->n) - c->v[0] * c->v[1]);
     case TT_CONSTRAINT_COLLINEAR: {
         uint32_t a = c->p[0], b = c->p[1], cc = c->p[2];

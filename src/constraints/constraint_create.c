@@ -118,7 +118,8 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     }
     const bool had = tt__cgroup_peek(w) != NULL; /* a group made here goes again if this fails */
     tt__cgroup *g = tt__cgroup_get(w, true);
-    if (!g || !tt__cgroup_refs_reserve(w, g) || !tt__constraints_grow((void **)&g->dist, sizeof *g->dist, &g->dist_cap, g->ndist + 1) ||
+    if (!g || !tt__cgroup_refs_reserve(w, g) ||
+        !tt__constraints_grow((void **)&g->dist, sizeof *g->dist, &g->dist_cap, g->ndist + 1) ||
         !tt__constraints_grow((void **)&g->dx, sizeof *g->dx, &g->dx_cap, g->ndist + 1))
         goto nomem;
     if (!d->collide && !tt__constraint_pair_add(g, d->a.index, d->b.index)) goto nomem;
@@ -155,7 +156,8 @@ static tt__gcon *gen_new(tt_world *w, uint8_t kind, tt_constraint *h, const char
     const bool had = tt__cgroup_peek(w) != NULL;
     tt__cgroup *g = tt__cgroup_get(w, true);
     uint32_t slot;
-    if (!g || !tt__cgroup_refs_reserve(w, g) || !tt__constraints_grow((void **)&g->gen, sizeof *g->gen, &g->gen_cap, g->ngen + 1) ||
+    if (!g || !tt__cgroup_refs_reserve(w, g) ||
+        !tt__constraints_grow((void **)&g->gen, sizeof *g->gen, &g->gen_cap, g->ngen + 1) ||
         !tt__cgroup_slot_new(g, kind, g->ngen, &slot)) {
         tt__cgroup_unmake(w, had);
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
