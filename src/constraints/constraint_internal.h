@@ -1,8 +1,8 @@
 /* tether — private storage of the constraints feature, and what its files
  * share: constraints.c (the group, slots, removal), constraint_pairs.c,
  * constraint_create.c, constraint_access.c, constraint_relax.c,
- * distance_sweep.c, constraint_breaks.c, constraint_hash.c, and
- * composites.c. */
+ * distance_sweep.c, constraint_breaks.c, constraint_hash.c; composites.c
+ * (handles, queries), composite_builder.c, composite_kinds.c. */
 #ifndef TETHER_CONSTRAINT_INTERNAL_H
 #define TETHER_CONSTRAINT_INTERNAL_H
 
@@ -168,9 +168,44 @@ double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, double h);
 /* ---- breaking (constraint_breaks.c) ---------------------------------------- */
 void tt__cgroup_break_links(tt_world *w, tt__cgroup *g);
 
-/* ---- composites (composites.c) --------------------------------------------- */
+/* ---- composites: the group's hooks (composites.c) ------------------------- */
 void tt__composites_free(tt__cgroup *g);
 size_t tt__composites_memory(const tt__cgroup *g);
 uint64_t tt__composites_hash(const tt__cgroup *g, uint64_t h);
+
+/* ---- composites: the builder (composite_builder.c), used by composite_kinds.c */
+
+/* A builder places every particle first and checks them all (and that they
+ * fit) before it makes the first, so bad input changes nothing. Running out
+ * of memory half way is undone whole: what was made is removed and the pools
+ * are put back, so the next handles are those of a world that never saw the
+ * call. */
+typedef struct tt__spot {
+    tt_vec2 at;
+    bool pinned;
+} tt__spot;
+
+typedef struct tt__builder {
+    tt_world *w;
+    const char *fn;
+    tt__composite c;
+    tt_composite_common k;
+    tt__spot *spots;        /* where each particle goes, in order */
+    uint32_t nspots;
+    /* the world before its first change, for undo */
+    tt_pool_mark pmark, cmark;
+    uint32_t fresh_count;
+    bool had_group;         /* the constraint group was there before */
+    bool failed;
+} tt__builder;
+
+bool tt__builder_begin(tt__builder *b, tt_world *w, const tt_composite_common *k, uint32_t particles, const char *fn);
+void tt__builder_place(tt__builder *b, double x, double y, bool pinned);
+bool tt__builder_spawn(tt__builder *b);
+bool tt__builder_con_room(tt__builder *b);
+void tt__builder_add_constraint(tt__builder *b, tt_constraint h);
+void tt__builder_link(tt__builder *b, uint32_t i, uint32_t j, double stiffness, tt_distance_mode mode, double break_strain);
+void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, double hi);
+tt_composite tt__builder_finish(tt__builder *b);
 
 #endif
