@@ -1,5 +1,8 @@
-/* tether — private storage of the constraints feature, shared by
- * constraints.c (storage, API, relaxation) and composites.c. */
+/* tether — private storage of the constraints feature, and what its files
+ * share: constraints.c (the group, slots, removal), constraint_pairs.c,
+ * constraint_create.c, constraint_access.c, constraint_relax.c,
+ * distance_sweep.c, constraint_breaks.c, constraint_hash.c; composites.c
+ * (handles, queries), composite_builder.c, composite_kinds.c. */
 #ifndef TETHER_CONSTRAINT_INTERNAL_H
 #define TETHER_CONSTRAINT_INTERNAL_H
 
@@ -103,8 +106,9 @@ typedef struct tt__cgroup {
     uint32_t comp_cap, comps_alive;
 } tt__cgroup;
 
-/* Sets w's mode; false (and no change) when this build or processor lacks it. */
-bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
+static const double TT_PI = 3.14159265358979323846;
+
+/* ---- the group and its storage (constraints.c) ---------------------------- */
 
 /* The group of w, made and registered on first use when create is true (NULL on no memory). */
 tt__cgroup *tt__cgroup_get(tt_world *w, bool create);
@@ -112,8 +116,96 @@ const tt__cgroup *tt__cgroup_peek(const tt_world *w);
 /* Takes the group back when the failing call that made it was its first use
  * (had: whether it was there before the call). */
 void tt__cgroup_unmake(tt_world *w, bool had);
+/* Grows *p (elem bytes each) to hold need, doubling from 64; false on no memory. */
+bool tt__constraints_grow(void **p, size_t elem, uint32_t *cap, uint32_t need);
+bool tt__cgroup_slot_new(tt__cgroup *g, uint8_t kind, uint32_t dense, uint32_t *out);
+bool tt__cgroup_refs_reserve(const tt_world *w, tt__cgroup *g);
+void tt__cgroup_gen_refs(tt__cgroup *g, const tt__gcon *c, int delta);
+void tt__cgroup_dist_remove(tt__cgroup *g, uint32_t d);
+void tt__cgroup_slot_remove(tt__cgroup *g, uint32_t s);
+static inline tt_constraint tt__cgroup_handle(const tt__cgroup *g, uint32_t slot)
+{
+    return (tt_constraint){slot, g->pool.gen[slot]};
+}
+static inline tt_particle tt__cgroup_particle(const tt_world *w, uint32_t i) { return (tt_particle){i, w->ppool.gen[i]}; }
+
+/* ---- excluded collision pairs (constraint_pairs.c) ------------------------- */
+/* Counted: a pair stays excluded until the last constraint naming it goes. */
+bool tt__constraint_pair_add(tt__cgroup *g, uint32_t a, uint32_t b);
+void tt__constraint_pair_remove(tt__cgroup *g, uint32_t a, uint32_t b);
+
+/* ---- checks the setters share with the creating calls (constraint_create.c) */
+tt_result tt__constraint_check_compliance(const tt_world *w, double alpha, const char *fn);
+tt_result tt__constraint_check_box(const tt_world *w, tt_vec2 lo, tt_vec2 hi, const char *fn);
+
+/* ---- geometry (constraint_relax.c, beside the sweeps that use it most) ----- */
+static inline double tt__constraint_dist_of(const tt_world *w, uint32_t a, uint32_t b)
+{
+    double dx = w->px[b] - w->px[a], dy = w->py[b] - w->py[a];
+    return sqrt(dx * dx + dy * dy);
+}
+double tt__constraint_angle_at(const tt_world *w, uint32_t a, uint32_t b, uint32_t c);
+double tt__constraint_angle_error(double th, double lo, double hi);
+double tt__constraint_polygon_area(const tt_world *w, const uint32_t *p, uint32_t n);
+/* How far particle i is on the wrong side of bounds c; (*dx, *dy): the move that fixes it. */
+double tt__constraint_bounds_violation(const tt_world *w, const tt__gcon *c, uint32_t i, double *dx, double *dy);
+
+/* ---- the group's hooks (tt__group_ops), registered by constraints.c -------- */
+void tt__cgroup_begin(tt_world *w, void *self, double h);                  /* constraint_relax.c */
+double tt__cgroup_relax(tt_world *w, void *self, double h);                /* constraint_relax.c */
+void tt__cgroup_sweeps_done(tt_world *w, void *self);                       /* distance_sweep.c */
+void tt__cgroup_end(tt_world *w, void *self, double h);                    /* constraint_relax.c */
+void tt__cgroup_after_step(tt_world *w, void *self);                        /* constraint_breaks.c */
+uint64_t tt__cgroup_hash(const tt_world *w, const void *self, uint64_t h); /* constraint_hash.c */
+
+/* ---- the distance links' sweep (distance_sweep.c) -------------------------- */
+/* Sets w's mode; false (and no change) when this build or processor lacks it. */
+bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
+void tt__distance_hot_sync(tt__cgroup *g, uint32_t i);
+double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h);
+double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, double h);
+
+/* ---- breaking (constraint_breaks.c) ---------------------------------------- */
+void tt__cgroup_break_links(tt_world *w, tt__cgroup *g);
+
+/* ---- composites: the group's hooks (composites.c) ------------------------- */
 void tt__composites_free(tt__cgroup *g);
 size_t tt__composites_memory(const tt__cgroup *g);
 uint64_t tt__composites_hash(const tt__cgroup *g, uint64_t h);
+
+/* ---- composites: the builder (composite_builder.c), used by composite_kinds.c */
+
+/* A builder places every particle first and checks them all (and that they
+ * fit) before it makes the first, so bad input changes nothing. Running out
+ * of memory half way is undone whole: what was made is removed and the pools
+ * are put back, so the next handles are those of a world that never saw the
+ * call. */
+typedef struct tt__spot {
+    tt_vec2 at;
+    bool pinned;
+} tt__spot;
+
+typedef struct tt__builder {
+    tt_world *w;
+    const char *fn;
+    tt__composite c;
+    tt_composite_common k;
+    tt__spot *spots;        /* where each particle goes, in order */
+    uint32_t nspots;
+    /* the world before its first change, for undo */
+    tt_pool_mark pmark, cmark;
+    uint32_t fresh_count;
+    bool had_group;         /* the constraint group was there before */
+    bool failed;
+} tt__builder;
+
+bool tt__builder_begin(tt__builder *b, tt_world *w, const tt_composite_common *k, uint32_t particles, const char *fn);
+void tt__builder_place(tt__builder *b, double x, double y, bool pinned);
+bool tt__builder_spawn(tt__builder *b);
+bool tt__builder_con_room(tt__builder *b);
+void tt__builder_add_constraint(tt__builder *b, tt_constraint h);
+void tt__builder_link(tt__builder *b, uint32_t i, uint32_t j, double stiffness, tt_distance_mode mode, double break_strain);
+void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, double hi);
+tt_composite tt__builder_finish(tt__builder *b);
 
 #endif

@@ -1,0 +1,54 @@
+/* tether — break events: links stretched past their break strain are
+ * removed at the end of a substep, each with an event; the events gathered
+ * during a step are published after it, for scripts to read until the next. */
+#include "constraint_internal.h"
+
+static bool event_push(tt__cgroup *g, tt_break_event e)
+{
+    if (!tt__constraints_grow((void **)&g->ev_new, sizeof *g->ev_new, &g->cap_new, g->nnew + 1)) return false;
+    g->ev_new[g->nnew++] = e;
+    return true;
+}
+
+/* Called at the end of each substep, after the bounds' friction. */
+void tt__cgroup_break_links(tt_world *w, tt__cgroup *g)
+{
+    if (!g->nbreakable) return;
+    /* Backwards, so the element swapped into a removed place was already checked. */
+    for (uint32_t i = g->ndist; i-- > 0;) {
+        const tt__dist *d = &g->dist[i];
+        const tt__dist_x *x = &g->dx[i];
+        if (x->break_strain <= 0.0) continue;
+        double len = tt__constraint_dist_of(w, d->a, d->b), rest = x->mode == TT_DISTANCE_MIN ? d->lo : d->hi;
+        if (!(len > rest * (1.0 + x->break_strain))) continue;
+        tt_break_event e = {tt__cgroup_handle(g, x->slot), tt__cgroup_particle(w, d->a), tt__cgroup_particle(w, d->b),
+                            len, rest > 0.0 ? len / rest - 1.0 : TT_MAX_VALUE};
+        event_push(g, e); /* no memory: the constraint still breaks, the event is lost */
+        tt__cgroup_dist_remove(g, i);
+    }
+}
+
+void tt__cgroup_after_step(tt_world *w, void *self)
+{
+    (void)w;
+    tt__cgroup *g = self;
+    /* publish: the gathered list becomes the readable one, the old one is reused */
+    tt_break_event *e = g->ev_pub;
+    uint32_t cap = g->cap_pub;
+    g->ev_pub = g->ev_new;
+    g->cap_pub = g->cap_new;
+    g->npub = g->nnew;
+    g->ev_new = e;
+    g->cap_new = cap;
+    g->nnew = 0;
+}
+
+tt_result tt_world_get_break_events(const tt_world *w, const tt_break_event **events, uint32_t *count)
+{
+    TT_CHECK_WORLD(w, "tt_world_get_break_events");
+    if (!events || !count) return tt__fail(w, TT_EINVAL, "tt_world_get_break_events: NULL argument");
+    const tt__cgroup *g = tt__cgroup_peek(w);
+    *events = g ? g->ev_pub : NULL;
+    *count = g ? g->npub : 0;
+    return TT_OK;
+}
