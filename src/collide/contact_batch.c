@@ -209,7 +209,7 @@ TT_AVX2 TT_INLINE double batches_run(tt__batches *B)
 TT_AVX2 static double run_avx2(tt__batches *B) { return batches_run(B); }
 TT_AVX512 static double run_avx512(tt__batches *B) { return batches_run(B); }
 
-/* pair_end's Verlet arithmetic (contacts.c, with respond), lane by lane in
+/* pair_end's Verlet arithmetic (contact_response.c, with respond), lane by lane in
  * the same order, in pair form on xy rows: positions, (x_old, y_old) and
  * the pre-solve (vx, vy). The normal from the final positions,
  * restitution or no approach (settled: no more separation than before the
