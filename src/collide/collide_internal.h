@@ -286,7 +286,7 @@ static inline int32_t tt__cell_coord(double v, double o, double inv)
 /* Brute force (broadphase_brute.c): the same candidate set, every pair tested. */
 bool tt__brute_pairs(tt_world *w, tt__collide *c);
 
-/* Shapes (shapes.c). */
+/* Shapes (shapes.c; primitives and the static index: static_index.c). */
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
 void tt__shapes_free(tt__collide *c);
 size_t tt__shapes_bytes(const tt__collide *c);
@@ -297,6 +297,15 @@ void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double 
  * query (most particles, most steps, are near no shape). */
 bool tt__sgrid_near(const tt__collide *c, double lox, double loy, double hix, double hiy);
 bool tt__shape_ok(const tt__collide *c, tt_shape s);
+/* Opens a public call on shape s of world w (shapes.c, shape_outline.c):
+ * fails on a NULL world or a stale handle, else leaves c, the collision
+ * state, and sh, the shape. */
+#define TT__SHAPE_CHECK(fn)                                                                   \
+    if (!w) return tt__fail(NULL, TT_EINVAL, "%s: world is NULL", fn);                       \
+    tt__collide *c = tt__collide_peek(w);                                                     \
+    if (!tt__shape_ok(c, s))                                                                  \
+        return tt__fail(w, TT_ESTALE, "%s: stale shape handle (index %u, generation %u)", fn, s.index, s.gen); \
+    tt__shape *sh = &c->shapes[s.index]
 
 /* Narrowphase (narrowphase.c). depth > 0 is penetration; the nearest valid
  * position is (x, y) + n·depth. Always filled (depth may be negative). */
