@@ -4,7 +4,7 @@
  * At the first hit the particle stops at the time of impact and the contact
  * is handed to the solver, which bounces it with the velocity it had before
  * the cut. Slow scenes mark no bullet and never come here. The same sweep
- * guards the solver's corrections (contacts.c, sweeps_done). */
+ * guards the solver's corrections (contact_response.c, sweeps_done). */
 #include "collide_internal.h"
 
 typedef struct sweep_ctx {

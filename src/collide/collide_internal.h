@@ -1,5 +1,7 @@
 /* tether — private declarations of the collision feature (grid.c,
- * broadphase_brute.c, shapes.c, narrowphase.c, contacts.c, ccd.c, query.c). */
+ * broadphase_brute.c, shapes.c, narrowphase.c, collide.c, contacts.c,
+ * contact_detect.c, contact_response.c, contact_events.c, contact_batch.c,
+ * ccd.c, query.c). */
 #ifndef TETHER_COLLIDE_INTERNAL_H
 #define TETHER_COLLIDE_INTERNAL_H
 
@@ -109,8 +111,8 @@ typedef struct tt__respond_in {
     double e, mus, muk, thr; /* the world's materials; restitution threshold */
     double h;                /* substep */
 } tt__respond_in;
-/* The velocity pass of the batches' pairs in vector lanes, as contacts.c's
- * pair_end does it lane by lane for Verlet and world materials; one(ctx,
+/* The velocity pass of the batches' pairs in vector lanes, as
+ * contact_response.c's pair_end does it lane by lane for Verlet and world materials; one(ctx,
  * entry) takes the batches the lanes cannot (solo, two particles on one
  * centre) through pair_end. False, touching nothing, when there are no
  * vector lanes here: then the caller runs pair_end on every pair. */
@@ -220,6 +222,35 @@ static inline tt__collide *tt__collide_peek(const tt_world *w)
 }
 bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem);
 
+/* The stages of the contacts group (contacts.c registers them): detection
+ * (contact_detect.c), projection and the velocity pass
+ * (contact_response.c), events after the step (contact_events.c). */
+void tt__contacts_begin(tt_world *w, void *self, double h);
+double tt__contacts_relax(tt_world *w, void *self, double h);
+void tt__contacts_sweeps_done(tt_world *w, void *self);
+void tt__contacts_end(tt_world *w, void *self, double h);
+void tt__contacts_after_step(tt_world *w, void *self);
+size_t tt__contacts_memory(const tt_world *w, const void *self);
+
+/* Keys of a step's contacts: a particle pair, or a shape and a particle
+ * (bit 63 set, the shape slot in bits 32..62). */
+static inline uint64_t tt__pair_key(uint32_t a, uint32_t b)
+{
+    return a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
+}
+static inline uint64_t tt__shape_key(uint32_t shape, uint32_t a) { return (1ull << 63) | ((uint64_t)shape << 32) | a; }
+/* Records one contact of the substep for the step's events (contact_events.c). */
+void tt__record_contact(tt_world *w, tt__collide *c, uint64_t key, uint32_t a, uint32_t b, uint32_t shape, bool sensor,
+                        double nx, double ny, double impulse);
+
+/* Particle i's material k (0 restitution, 1 static friction, 2 kinetic):
+ * its own where tt_particle_set_material gave one, else the world's. */
+static inline double tt__mat(const tt__collide *c, uint32_t i, int k)
+{
+    if (c->mat && i < c->matcap && c->mat[3 * (size_t)i + k] >= 0.0f) return c->mat[3 * (size_t)i + k];
+    return k == 0 ? c->set.restitution : k == 1 ? c->set.friction_static : c->set.friction_kinetic;
+}
+
 /* Filters: the one place that decides whether two particles may collide
  * (layers, two pinned, switched-off pairs, particles joined by a constraint
  * that does not let them collide). */
@@ -255,7 +286,7 @@ static inline int32_t tt__cell_coord(double v, double o, double inv)
 /* Brute force (broadphase_brute.c): the same candidate set, every pair tested. */
 bool tt__brute_pairs(tt_world *w, tt__collide *c);
 
-/* Shapes (shapes.c). */
+/* Shapes (shapes.c; primitives and the static index: static_index.c). */
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
 void tt__shapes_free(tt__collide *c);
 size_t tt__shapes_bytes(const tt__collide *c);
@@ -266,6 +297,15 @@ void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double 
  * query (most particles, most steps, are near no shape). */
 bool tt__sgrid_near(const tt__collide *c, double lox, double loy, double hix, double hiy);
 bool tt__shape_ok(const tt__collide *c, tt_shape s);
+/* Opens a public call on shape s of world w (shapes.c, shape_outline.c):
+ * fails on a NULL world or a stale handle, else leaves c, the collision
+ * state, and sh, the shape. */
+#define TT__SHAPE_CHECK(fn)                                                                   \
+    if (!w) return tt__fail(NULL, TT_EINVAL, "%s: world is NULL", fn);                       \
+    tt__collide *c = tt__collide_peek(w);                                                     \
+    if (!tt__shape_ok(c, s))                                                                  \
+        return tt__fail(w, TT_ESTALE, "%s: stale shape handle (index %u, generation %u)", fn, s.index, s.gen); \
+    tt__shape *sh = &c->shapes[s.index]
 
 /* Narrowphase (narrowphase.c). depth > 0 is penetration; the nearest valid
  * position is (x, y) + n·depth. Always filled (depth may be negative). */

@@ -209,7 +209,33 @@ TT_AVX2 TT_INLINE double batches_run(tt__batches *B)
 TT_AVX2 static double run_avx2(tt__batches *B) { return batches_run(B); }
 TT_AVX512 static double run_avx512(tt__batches *B) { return batches_run(B); }
 
-/* pair_end's Verlet arithmetic (contacts.c, with respond), lane by lane in
+#define LO(v) _mm256_unpacklo_pd((v), (v)) /* lanes 0, 2 of a per-lane vector in pair form */
+#define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
+#define LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
+
+/* respond's Coulomb friction, lane by lane, for respond4 below: r the
+ * relative velocity and n the normal in pair form, vn the normal speed,
+ * change the normal velocity change (Δvn). A lane sticks (tangential
+ * velocity within μs·Δvn: st gets it, to undo as a slide) or slides (dv
+ * loses μk·Δvn of it). */
+TT_AVX2 TT_INLINE void friction4(const tt__respond_in *in, __m256d r02, __m256d r13, __m256d n02, __m256d n13, __m256d vn,
+                                 __m256d change, __m256d act, __m256d *dv02, __m256d *dv13, __m256d *st02, __m256d *st13)
+{
+    const __m256d one = _mm256_set1_pd(1.0);
+    const __m256d t02 = _mm256_sub_pd(r02, _mm256_mul_pd(LO(vn), n02)), t13 = _mm256_sub_pd(r13, _mm256_mul_pd(HI(vn), n13));
+    const __m256d t2 = LANES(_mm256_mul_pd(t02, t02), _mm256_mul_pd(t13, t13));
+    const __m256d lim = _mm256_mul_pd(_mm256_set1_pd(in->mus), change);
+    const __m256d stick = _mm256_cmp_pd(t2, _mm256_mul_pd(lim, lim), _CMP_LE_OQ);
+    const __m256d tl = _mm256_sqrt_pd(t2), mc = _mm256_mul_pd(_mm256_set1_pd(in->muk), change);
+    const __m256d slides = _mm256_andnot_pd(stick, act);
+    const __m256d f = _mm256_div_pd(_mm256_blendv_pd(tl, mc, _mm256_cmp_pd(mc, tl, _CMP_LT_OQ)), _mm256_blendv_pd(one, tl, slides));
+    *dv02 = _mm256_blendv_pd(_mm256_sub_pd(*dv02, _mm256_mul_pd(t02, LO(f))), *dv02, LO(stick));
+    *dv13 = _mm256_blendv_pd(_mm256_sub_pd(*dv13, _mm256_mul_pd(t13, HI(f))), *dv13, HI(stick));
+    *st02 = _mm256_and_pd(t02, LO(stick));
+    *st13 = _mm256_and_pd(t13, HI(stick));
+}
+
+/* pair_end's Verlet arithmetic (contact_response.c, with respond), lane by lane in
  * the same order, in pair form on xy rows: positions, (x_old, y_old) and
  * the pre-solve (vx, vy). The normal from the final positions,
  * restitution or no approach (settled: no more separation than before the
@@ -245,9 +271,6 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     /* lanes out of play divide by 1 (no exception the scalar code would not raise) */
     const __m256d iws = _mm256_div_pd(one, _mm256_blendv_pd(one, ws, act)), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
     const __m256d id = _mm256_div_pd(one, _mm256_sqrt_pd(_mm256_blendv_pd(one, d2, act)));
-#define LO(v) _mm256_unpacklo_pd((v), (v)) /* lanes 0, 2 of a per-lane vector in pair form */
-#define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
-#define LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
     const __m256d n02 = _mm256_mul_pd(d02, LO(id)), n13 = _mm256_mul_pd(d13, HI(id));
     /* relative velocity ((xa − xa_old) − (xb − xb_old))·(1/dt), as pair_end; and before the sweeps */
     const __m256d r02 = _mm256_mul_pd(_mm256_sub_pd(_mm256_sub_pd(pa02, qa02), _mm256_sub_pd(pb02, qb02)), idt);
@@ -264,19 +287,7 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     change = _mm256_blendv_pd(change, zero, _mm256_cmp_pd(change, zero, _CMP_LT_OQ));
     const __m256d tv = _mm256_sub_pd(target, vn);
     __m256d dv02 = _mm256_mul_pd(LO(tv), n02), dv13 = _mm256_mul_pd(HI(tv), n13), st02 = zero, st13 = zero;
-    if (!(in->mus == 0.0 && in->muk == 0.0)) {
-        const __m256d t02 = _mm256_sub_pd(r02, _mm256_mul_pd(LO(vn), n02)), t13 = _mm256_sub_pd(r13, _mm256_mul_pd(HI(vn), n13));
-        const __m256d t2 = LANES(_mm256_mul_pd(t02, t02), _mm256_mul_pd(t13, t13));
-        const __m256d lim = _mm256_mul_pd(_mm256_set1_pd(in->mus), change);
-        const __m256d stick = _mm256_cmp_pd(t2, _mm256_mul_pd(lim, lim), _CMP_LE_OQ);
-        const __m256d tl = _mm256_sqrt_pd(t2), mc = _mm256_mul_pd(_mm256_set1_pd(in->muk), change);
-        const __m256d slides = _mm256_andnot_pd(stick, act);
-        const __m256d f = _mm256_div_pd(_mm256_blendv_pd(tl, mc, _mm256_cmp_pd(mc, tl, _CMP_LT_OQ)), _mm256_blendv_pd(one, tl, slides));
-        dv02 = _mm256_blendv_pd(_mm256_sub_pd(dv02, _mm256_mul_pd(t02, LO(f))), dv02, LO(stick));
-        dv13 = _mm256_blendv_pd(_mm256_sub_pd(dv13, _mm256_mul_pd(t13, HI(f))), dv13, HI(stick));
-        st02 = _mm256_and_pd(t02, LO(stick));
-        st13 = _mm256_and_pd(t13, HI(stick));
-    }
+    if (!(in->mus == 0.0 && in->muk == 0.0)) friction4(in, r02, r13, n02, n13, vn, change, act, &dv02, &dv13, &st02, &st13);
     /* a lane slid (its stick velocity is not zero): x moves back; both components of a lane agree */
     const __m256d z02 = _mm256_cmp_pd(st02, zero, _CMP_NEQ_UQ), z13 = _mm256_cmp_pd(st13, zero, _CMP_NEQ_UQ);
     const __m256d m02 = LO(act), m13 = HI(act);
@@ -298,11 +309,11 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     tt__xy_store2(q, A[1], A[3], _mm256_blendv_pd(qa13, qa13n, m13));
     tt__xy_store2(q, Bb[0], Bb[2], _mm256_blendv_pd(qb02, qb02n, m02));
     tt__xy_store2(q, Bb[1], Bb[3], _mm256_blendv_pd(qb13, qb13n, m13));
+    return true;
+}
 #undef LO
 #undef HI
 #undef LANES
-    return true;
-}
 
 /* Rows and world arrays agree again for batch k's particles: to the world
  * (to_world) before the scalar code takes the batch, back after. */

@@ -50,14 +50,62 @@ static void fit(tt__grid *g, double lox, double loy, double hix, double hiy)
     g->ny = cells_across(loy, hiy, g->inv);
 }
 
+/* The counting sort of the live particles into the grid's ncell cells,
+ * laid out: each particle's cell, the cells' starts, the sorted copies. */
+static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
+{
+    /* locals: the uint8_t stores below may alias any field of w or g */
+    const uint16_t *flags = w->flags;
+    const double *px = w->px, *py = w->py, *im = w->inv_mass;
+    const float *rad = w->radius;
+    const uint32_t m = g->n, ncell = g->ncell;
+    uint32_t *start = g->start, *cell = g->cell, *idx = g->idx, *out_list = g->out_list, nout = 0;
+    double *sx = g->sx, *sy = g->sy, *sr = g->sr;
+    uint8_t *bits = g->bits;
+    memset(start, 0, (size_t)ncell * sizeof *start);
+    const double ox = g->ox, oy = g->oy, inv = g->inv;
+    const int32_t nx = g->nx, ny = g->ny;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        int32_t cx = tt__cell_coord(px[i], ox, inv), cy = tt__cell_coord(py[i], oy, inv);
+        bool out = cx < 0 || cy < 0 || cx >= nx || cy >= ny;
+        if (TT_UNLIKELY(out)) {
+            cx = cx < 0 ? 0 : cx >= nx ? nx - 1 : cx;
+            cy = cy < 0 ? 0 : cy >= ny ? ny - 1 : cy;
+            out_list[nout++] = i;
+        }
+        uint32_t c = (uint32_t)cy * (uint32_t)nx + (uint32_t)cx;
+        cell[i] = c | (out ? 0x80000000u : 0u);
+        start[c]++;
+    }
+    g->nout = nout;
+    uint32_t sum = 0; /* start[c] becomes the end of cell c */
+    for (uint32_t c = 0; c < ncell; c++) start[c] = sum += start[c];
+    start[ncell] = m;
+    /* scatter backwards, so each cell fills from its end and keeps slot order
+     * (stable, deterministic); start[c] ends at cell c's beginning */
+    for (uint32_t i = n; i-- > 0;) {
+        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        uint32_t c = cell[i] & 0x7FFFFFFFu, k = --start[c];
+        idx[k] = i;
+        sx[k] = px[i];
+        sy[k] = py[i];
+        sr[k] = rad[i];
+        bits[k] = (uint8_t)((cell[i] >> 31) | (im[i] == 0.0 ? TT__GRID_PINNED : 0));
+    }
+    for (uint32_t k = m; k < m + TT__GRID_PAD; k++) { /* read, never used */
+        sx[k] = sy[k] = sr[k] = 0.0;
+        idx[k] = 0;
+    }
+}
+
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
 {
     const uint32_t n = w->ppool.count;
     g->epoch = UINT64_MAX;
     if (!grow_n(g, n ? n : 1)) return false;
-    /* locals: the uint8_t stores below may alias any field of w or g */
     const uint16_t *flags = w->flags, *cat = w->category, *msk = w->mask;
-    const double *px = w->px, *py = w->py, *im = w->inv_mass;
+    const double *px = w->px, *py = w->py;
     const float *rad = w->radius;
     double lox = INFINITY, loy = INFINITY, hix = -INFINITY, hiy = -INFINITY, rmax = 0.0;
     uint32_t m = 0;
@@ -111,44 +159,7 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     const uint32_t ncell = (uint32_t)g->nx * (uint32_t)g->ny;
     if (!tt__grow((void **)&g->start, &g->cap_cells, ncell + 1, sizeof *g->start)) return false;
     g->ncell = ncell;
-    uint32_t *start = g->start, *cell = g->cell, *idx = g->idx, *out_list = g->out_list, nout = 0;
-    double *sx = g->sx, *sy = g->sy, *sr = g->sr;
-    uint8_t *bits = g->bits;
-    memset(start, 0, (size_t)ncell * sizeof *start);
-    const double ox = g->ox, oy = g->oy, inv = g->inv;
-    const int32_t nx = g->nx, ny = g->ny;
-    for (uint32_t i = 0; i < n; i++) {
-        if (!(flags[i] & TT_PF_ALIVE)) continue;
-        int32_t cx = tt__cell_coord(px[i], ox, inv), cy = tt__cell_coord(py[i], oy, inv);
-        bool out = cx < 0 || cy < 0 || cx >= nx || cy >= ny;
-        if (TT_UNLIKELY(out)) {
-            cx = cx < 0 ? 0 : cx >= nx ? nx - 1 : cx;
-            cy = cy < 0 ? 0 : cy >= ny ? ny - 1 : cy;
-            out_list[nout++] = i;
-        }
-        uint32_t c = (uint32_t)cy * (uint32_t)nx + (uint32_t)cx;
-        cell[i] = c | (out ? 0x80000000u : 0u);
-        start[c]++;
-    }
-    g->nout = nout;
-    uint32_t sum = 0; /* start[c] becomes the end of cell c */
-    for (uint32_t c = 0; c < ncell; c++) start[c] = sum += start[c];
-    start[ncell] = m;
-    /* scatter backwards, so each cell fills from its end and keeps slot order
-     * (stable, deterministic); start[c] ends at cell c's beginning */
-    for (uint32_t i = n; i-- > 0;) {
-        if (!(flags[i] & TT_PF_ALIVE)) continue;
-        uint32_t c = cell[i] & 0x7FFFFFFFu, k = --start[c];
-        idx[k] = i;
-        sx[k] = px[i];
-        sy[k] = py[i];
-        sr[k] = rad[i];
-        bits[k] = (uint8_t)((cell[i] >> 31) | (im[i] == 0.0 ? TT__GRID_PINNED : 0));
-    }
-    for (uint32_t k = m; k < m + TT__GRID_PAD; k++) { /* read, never used */
-        sx[k] = sy[k] = sr[k] = 0.0;
-        idx[k] = 0;
-    }
+    sort_into_cells(w, g, n);
     return true;
 }
 

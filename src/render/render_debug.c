@@ -1,9 +1,8 @@
 /* tether — debug draw of a world onto a canvas, through the public API only.
  *
- * Each kind of object is one block below, drawn bottom to top. Constraints
- * (issue 4) and shapes (issue 5) join as one block each, at the places
- * marked "joins here", reading their objects through their own public
- * listing calls the way springs do. */
+ * Each kind of object is one function below, drawn bottom to top by
+ * tt_canvas_draw_world; each reads its objects through their own public
+ * listing calls, so the renderer needs no engine internals. */
 #include "render_internal.h"
 
 #include <math.h>
@@ -44,6 +43,110 @@ static tt_color stress_color(double s, double full)
     return k;
 }
 
+/* springs */
+static tt_result draw_springs(tt_canvas *c, const tt_world *w, const tt_debug_draw *o)
+{
+    tt_result r = TT_OK;
+    uint32_t n = tt_world_list_springs(w, NULL, 0);
+    tt_spring *s = malloc((size_t)n * sizeof *s + 1);
+    if (!s) r = TT_ENOMEM;
+    else {
+        n = tt_world_list_springs(w, s, n);
+        for (uint32_t i = 0; i < n && r == TT_OK; i++) {
+            tt_spring_def d;
+            tt_vec2 a, b;
+            if (tt_spring_get_def(w, s[i], &d) != TT_OK || tt_particle_get_position(w, d.a, &a) != TT_OK ||
+                tt_particle_get_position(w, d.b, &b) != TT_OK)
+                continue;
+            double len = hypot(a.x - b.x, a.y - b.y);
+            double strain = d.rest_length > 0 ? (len - d.rest_length) / d.rest_length : 0;
+            tt_color k = stress_color(strain, o->strain_full);
+            r = tt_canvas_line2(c, a, b, k, k);
+        }
+        free(s);
+    }
+    return r;
+}
+
+/* distance constraints and pins, as segments read in bulk */
+static tt_result draw_constraints(tt_canvas *c, const tt_world *w, const tt_debug_draw *o)
+{
+    tt_result r = TT_OK;
+    uint32_t n = tt_world_read_constraint_lines(w, NULL, 0);
+    double *xy = malloc(4 * (size_t)n * sizeof *xy + 1);
+    if (!xy) r = TT_ENOMEM;
+    else {
+        n = tt_world_read_constraint_lines(w, xy, n);
+        for (uint32_t i = 0; i < n && r == TT_OK; i++)
+            r = tt_canvas_line2(c, (tt_vec2){xy[4 * i], xy[4 * i + 1]}, (tt_vec2){xy[4 * i + 2], xy[4 * i + 3]},
+                                o->constraint, o->constraint);
+        free(xy);
+    }
+    return r;
+}
+
+/* shapes, as outlines under the particles */
+static tt_result draw_shapes(tt_canvas *c, const tt_world *w, const tt_debug_draw *o)
+{
+    tt_result r = TT_OK;
+    uint32_t n = tt_world_list_shapes(w, NULL, 0);
+    tt_shape *ids = malloc((size_t)n * sizeof *ids + 1);
+    tt_vec2 *pts = NULL;
+    uint32_t cap = 0;
+    if (!ids) r = TT_ENOMEM;
+    else n = tt_world_list_shapes(w, ids, n);
+    for (uint32_t i = 0; ids && i < n && r == TT_OK; i++) {
+        uint32_t count;
+        bool closed;
+        if (tt_shape_get_outline(w, ids[i], NULL, 0, &count, &closed) != TT_OK || count == 0) continue;
+        if (count > cap) {
+            tt_vec2 *p = realloc(pts, (size_t)count * sizeof *p);
+            if (!p) { r = TT_ENOMEM; break; }
+            pts = p;
+            cap = count;
+        }
+        tt_shape_get_outline(w, ids[i], pts, cap, &count, &closed);
+        bool sensor = false;
+        tt_shape_get_sensor(w, ids[i], &sensor);
+        tt_color k = o->shape;
+        if (sensor) k.a = (uint8_t)(k.a / 3);
+        for (uint32_t j = 0; j + 1 < count && r == TT_OK; j++) r = tt_canvas_line2(c, pts[j], pts[j + 1], k, k);
+        if (closed && count > 2 && r == TT_OK) r = tt_canvas_line2(c, pts[count - 1], pts[0], k, k);
+    }
+    free(pts);
+    free(ids);
+    return r;
+}
+
+/* particles: positions in bulk, radius and pinned state per handle */
+static tt_result draw_particles(tt_canvas *c, const tt_world *w, const tt_debug_draw *o)
+{
+    tt_result r = TT_OK;
+    uint32_t n = tt_world_particle_count(w);
+    tt_particle *ids = malloc(((size_t)n + 1) * sizeof *ids);
+    double *xy = malloc((2 * (size_t)n + 2) * sizeof *xy);
+    if (!ids || !xy) {
+        r = TT_ENOMEM;
+    } else {
+        n = tt_world_list_particles(w, ids, n);
+        tt_world_read_positions(w, xy, n);
+        double minr = o->min_radius_px / c->zoom;
+        for (uint32_t i = 0; i < n; i++) {
+            double rad = 0;
+            bool pinned = false;
+            tt_particle_get_radius(w, ids[i], &rad);
+            tt_particle_get_pinned(w, ids[i], &pinned);
+            c->color = pinned ? o->pinned : o->particle;
+            if (rad < minr) rad = minr;
+            r = tt_canvas_circle(c, (tt_vec2){xy[2 * i], xy[2 * i + 1]}, rad, true);
+            if (r != TT_OK) break;
+        }
+    }
+    free(ids);
+    free(xy);
+    return r;
+}
+
 tt_result tt_canvas_draw_world(tt_canvas *c, const tt_world *w, const tt_debug_draw *opts)
 {
     const char *fn = "tt_canvas_draw_world";
@@ -61,98 +164,10 @@ tt_result tt_canvas_draw_world(tt_canvas *c, const tt_world *w, const tt_debug_d
     tt_color color = c->color;
     c->layer = TT_LAYER_WORLD;
     tt_result r = TT_OK;
-
-    /* springs */
-    if (o.springs && tt_world_spring_count(w) > 0) {
-        uint32_t n = tt_world_list_springs(w, NULL, 0);
-        tt_spring *s = malloc((size_t)n * sizeof *s + 1);
-        if (!s) r = TT_ENOMEM;
-        else {
-            n = tt_world_list_springs(w, s, n);
-            for (uint32_t i = 0; i < n && r == TT_OK; i++) {
-                tt_spring_def d;
-                tt_vec2 a, b;
-                if (tt_spring_get_def(w, s[i], &d) != TT_OK || tt_particle_get_position(w, d.a, &a) != TT_OK ||
-                    tt_particle_get_position(w, d.b, &b) != TT_OK)
-                    continue;
-                double len = hypot(a.x - b.x, a.y - b.y);
-                double strain = d.rest_length > 0 ? (len - d.rest_length) / d.rest_length : 0;
-                tt_color k = stress_color(strain, o.strain_full);
-                r = tt_canvas_line2(c, a, b, k, k);
-            }
-            free(s);
-        }
-    }
-
-    /* distance constraints and pins, as segments read in bulk */
-    if (o.constraints && r == TT_OK && tt_world_constraint_count(w) > 0) {
-        uint32_t n = tt_world_read_constraint_lines(w, NULL, 0);
-        double *xy = malloc(4 * (size_t)n * sizeof *xy + 1);
-        if (!xy) r = TT_ENOMEM;
-        else {
-            n = tt_world_read_constraint_lines(w, xy, n);
-            for (uint32_t i = 0; i < n && r == TT_OK; i++)
-                r = tt_canvas_line2(c, (tt_vec2){xy[4 * i], xy[4 * i + 1]}, (tt_vec2){xy[4 * i + 2], xy[4 * i + 3]},
-                                    o.constraint, o.constraint);
-            free(xy);
-        }
-    }
-
-    /* shapes, as outlines under the particles */
-    if (o.shapes && r == TT_OK && tt_world_shape_count(w) > 0) {
-        uint32_t n = tt_world_list_shapes(w, NULL, 0);
-        tt_shape *ids = malloc((size_t)n * sizeof *ids + 1);
-        tt_vec2 *pts = NULL;
-        uint32_t cap = 0;
-        if (!ids) r = TT_ENOMEM;
-        else n = tt_world_list_shapes(w, ids, n);
-        for (uint32_t i = 0; ids && i < n && r == TT_OK; i++) {
-            uint32_t count;
-            bool closed;
-            if (tt_shape_get_outline(w, ids[i], NULL, 0, &count, &closed) != TT_OK || count == 0) continue;
-            if (count > cap) {
-                tt_vec2 *p = realloc(pts, (size_t)count * sizeof *p);
-                if (!p) { r = TT_ENOMEM; break; }
-                pts = p;
-                cap = count;
-            }
-            tt_shape_get_outline(w, ids[i], pts, cap, &count, &closed);
-            bool sensor = false;
-            tt_shape_get_sensor(w, ids[i], &sensor);
-            tt_color k = o.shape;
-            if (sensor) k.a = (uint8_t)(k.a / 3);
-            for (uint32_t j = 0; j + 1 < count && r == TT_OK; j++) r = tt_canvas_line2(c, pts[j], pts[j + 1], k, k);
-            if (closed && count > 2 && r == TT_OK) r = tt_canvas_line2(c, pts[count - 1], pts[0], k, k);
-        }
-        free(pts);
-        free(ids);
-    }
-
-    /* particles: positions in bulk, radius and pinned state per handle */
-    if (o.particles && r == TT_OK) {
-        uint32_t n = tt_world_particle_count(w);
-        tt_particle *ids = malloc(((size_t)n + 1) * sizeof *ids);
-        double *xy = malloc((2 * (size_t)n + 2) * sizeof *xy);
-        if (!ids || !xy) {
-            r = TT_ENOMEM;
-        } else {
-            n = tt_world_list_particles(w, ids, n);
-            tt_world_read_positions(w, xy, n);
-            double minr = o.min_radius_px / c->zoom;
-            for (uint32_t i = 0; i < n; i++) {
-                double rad = 0;
-                bool pinned = false;
-                tt_particle_get_radius(w, ids[i], &rad);
-                tt_particle_get_pinned(w, ids[i], &pinned);
-                c->color = pinned ? o.pinned : o.particle;
-                if (rad < minr) rad = minr;
-                r = tt_canvas_circle(c, (tt_vec2){xy[2 * i], xy[2 * i + 1]}, rad, true);
-                if (r != TT_OK) break;
-            }
-        }
-        free(ids);
-        free(xy);
-    }
+    if (o.springs && tt_world_spring_count(w) > 0) r = draw_springs(c, w, &o);
+    if (o.constraints && r == TT_OK && tt_world_constraint_count(w) > 0) r = draw_constraints(c, w, &o);
+    if (o.shapes && r == TT_OK && tt_world_shape_count(w) > 0) r = draw_shapes(c, w, &o);
+    if (o.particles && r == TT_OK) r = draw_particles(c, w, &o);
     c->layer = layer;
     c->color = color;
     if (r == TT_ENOMEM) tt__errf(c->error, sizeof c->error, "%s: out of memory", fn);

@@ -97,10 +97,8 @@ static int bad_usage(const char *fmt, const char *what)
     return 2;
 }
 
-/* Parses the options; returns -1 to go on, or an exit status. */
-static int parse_args(int argc, char **argv, options *o)
+static void default_options(options *o)
 {
-    int i;
     o->headless = false;
     o->steps = 600;
     o->dt = 1.0 / 60.0;
@@ -112,10 +110,118 @@ static int parse_args(int argc, char **argv, options *o)
     o->height = 600;
     o->screenshot = NULL;
     o->events = NULL;
+}
+
+/* What an option parser returns besides an exit status: the option was
+ * taken (go on with the next argument), or it is not one of its own. */
+enum { OPT_NEXT = -1, OPT_NOT_MINE = -2 };
+
+/* The numeric options, --steps, --dt, --frames, --every, at argv[*i]
+ * (*i moves past a separate value). */
+static int parse_number_option(int argc, char **argv, int *i, options *o)
+{
+    const char *a = argv[*i];
+    const char *val = NULL;
+    char *end = NULL;
+    if (strncmp(a, "--steps", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
+        val = a[7] == '=' ? a + 8 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL)
+            return bad_usage("%s needs a value", "--steps");
+        errno = 0;
+        o->steps = strtol(val, &end, 10);
+        if (errno != 0 || end == val || *end != '\0' || o->steps < 1 || o->steps > MAX_STEPS)
+            return bad_usage("--steps: an integer in [1, 10000000] expected, got '%s'", val);
+        return OPT_NEXT;
+    }
+    if (strncmp(a, "--dt", 4) == 0 && (a[4] == '\0' || a[4] == '=')) {
+        val = a[4] == '=' ? a + 5 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL)
+            return bad_usage("%s needs a value", "--dt");
+        errno = 0;
+        o->dt = strtod(val, &end);
+        if (errno != 0 || end == val || *end != '\0' || !isfinite(o->dt) || o->dt <= 0.0 || o->dt > 10.0)
+            return bad_usage("--dt: a number in (0, 10] expected, got '%s'", val);
+        return OPT_NEXT;
+    }
+    if (strncmp(a, "--frames", 8) == 0 && (a[8] == '\0' || a[8] == '=')) {
+        val = a[8] == '=' ? a + 9 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL)
+            return bad_usage("%s needs a value", "--frames");
+        errno = 0;
+        o->frames = strtol(val, &end, 10);
+        if (errno != 0 || end == val || *end != '\0' || o->frames < 1 || o->frames > 1000000)
+            return bad_usage("--frames: an integer in [1, 1000000] expected, got '%s'", val);
+        return OPT_NEXT;
+    }
+    if (strncmp(a, "--every", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
+        val = a[7] == '=' ? a + 8 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL)
+            return bad_usage("%s needs a value", "--every");
+        errno = 0;
+        o->every = strtol(val, &end, 10);
+        if (errno != 0 || end == val || *end != '\0' || o->every < 1 || o->every > 100000)
+            return bad_usage("--every: an integer in [1, 100000] expected, got '%s'", val);
+        return OPT_NEXT;
+    }
+    return OPT_NOT_MINE;
+}
+
+/* The options naming a folder or a file, --out, --screenshot, --events,
+ * and --size, at argv[*i] (*i moves past a separate value). */
+static int parse_name_option(int argc, char **argv, int *i, options *o)
+{
+    const char *a = argv[*i];
+    const char *val = NULL;
+    char *end = NULL;
+    if (strncmp(a, "--out", 5) == 0 && (a[5] == '\0' || a[5] == '=')) {
+        val = a[5] == '=' ? a + 6 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL || *val == '\0')
+            return bad_usage("%s needs a folder", "--out");
+        o->out = val;
+        return OPT_NEXT;
+    }
+    if (strncmp(a, "--screenshot", 12) == 0 && (a[12] == '\0' || a[12] == '=')) {
+        val = a[12] == '=' ? a + 13 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL || *val == '\0')
+            return bad_usage("%s needs a file name", "--screenshot");
+        o->screenshot = val;
+        return OPT_NEXT;
+    }
+    if (strncmp(a, "--events", 8) == 0 && (a[8] == '\0' || a[8] == '=')) {
+        val = a[8] == '=' ? a + 9 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL || *val == '\0')
+            return bad_usage("%s needs a file name", "--events");
+        o->events = val;
+        return OPT_NEXT;
+    }
+    if (strncmp(a, "--size", 6) == 0 && (a[6] == '\0' || a[6] == '=')) {
+        long w, h;
+        val = a[6] == '=' ? a + 7 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (val == NULL)
+            return bad_usage("%s needs a value", "--size");
+        errno = 0;
+        w = strtol(val, &end, 10);
+        if (errno == 0 && end != val && (*end == 'x' || *end == 'X')) {
+            const char *hs = end + 1;
+            h = strtol(hs, &end, 10);
+            if (errno == 0 && end != hs && *end == '\0' && w >= 16 && w <= 8192 && h >= 16 && h <= 8192) {
+                o->width = (int)w;
+                o->height = (int)h;
+                return OPT_NEXT;
+            }
+        }
+        return bad_usage("--size: WxH with each side in [16, 8192] expected, got '%s'", val);
+    }
+    return OPT_NOT_MINE;
+}
+
+/* Parses the options; returns -1 to go on, or an exit status. */
+static int parse_args(int argc, char **argv, options *o)
+{
+    int i;
+    default_options(o);
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
-        const char *val = NULL;
-        char *end = NULL;
         if (strcmp(a, "--") == 0) {
             i++;
             break;
@@ -134,86 +240,13 @@ static int parse_args(int argc, char **argv, options *o)
             o->headless = true;
             continue;
         }
-        if (strncmp(a, "--steps", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
-            val = a[7] == '=' ? a + 8 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL)
-                return bad_usage("%s needs a value", "--steps");
-            errno = 0;
-            o->steps = strtol(val, &end, 10);
-            if (errno != 0 || end == val || *end != '\0' || o->steps < 1 || o->steps > MAX_STEPS)
-                return bad_usage("--steps: an integer in [1, 10000000] expected, got '%s'", val);
-            continue;
-        }
-        if (strncmp(a, "--dt", 4) == 0 && (a[4] == '\0' || a[4] == '=')) {
-            val = a[4] == '=' ? a + 5 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL)
-                return bad_usage("%s needs a value", "--dt");
-            errno = 0;
-            o->dt = strtod(val, &end);
-            if (errno != 0 || end == val || *end != '\0' || !isfinite(o->dt) || o->dt <= 0.0 || o->dt > 10.0)
-                return bad_usage("--dt: a number in (0, 10] expected, got '%s'", val);
-            continue;
-        }
-        if (strncmp(a, "--frames", 8) == 0 && (a[8] == '\0' || a[8] == '=')) {
-            val = a[8] == '=' ? a + 9 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL)
-                return bad_usage("%s needs a value", "--frames");
-            errno = 0;
-            o->frames = strtol(val, &end, 10);
-            if (errno != 0 || end == val || *end != '\0' || o->frames < 1 || o->frames > 1000000)
-                return bad_usage("--frames: an integer in [1, 1000000] expected, got '%s'", val);
-            continue;
-        }
-        if (strncmp(a, "--every", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
-            val = a[7] == '=' ? a + 8 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL)
-                return bad_usage("%s needs a value", "--every");
-            errno = 0;
-            o->every = strtol(val, &end, 10);
-            if (errno != 0 || end == val || *end != '\0' || o->every < 1 || o->every > 100000)
-                return bad_usage("--every: an integer in [1, 100000] expected, got '%s'", val);
-            continue;
-        }
-        if (strncmp(a, "--out", 5) == 0 && (a[5] == '\0' || a[5] == '=')) {
-            val = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL || *val == '\0')
-                return bad_usage("%s needs a folder", "--out");
-            o->out = val;
-            continue;
-        }
-        if (strncmp(a, "--screenshot", 12) == 0 && (a[12] == '\0' || a[12] == '=')) {
-            val = a[12] == '=' ? a + 13 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL || *val == '\0')
-                return bad_usage("%s needs a file name", "--screenshot");
-            o->screenshot = val;
-            continue;
-        }
-        if (strncmp(a, "--events", 8) == 0 && (a[8] == '\0' || a[8] == '=')) {
-            val = a[8] == '=' ? a + 9 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL || *val == '\0')
-                return bad_usage("%s needs a file name", "--events");
-            o->events = val;
-            continue;
-        }
-        if (strncmp(a, "--size", 6) == 0 && (a[6] == '\0' || a[6] == '=')) {
-            long w, h;
-            val = a[6] == '=' ? a + 7 : (i + 1 < argc ? argv[++i] : NULL);
-            if (val == NULL)
-                return bad_usage("%s needs a value", "--size");
-            errno = 0;
-            w = strtol(val, &end, 10);
-            if (errno == 0 && end != val && (*end == 'x' || *end == 'X')) {
-                const char *hs = end + 1;
-                h = strtol(hs, &end, 10);
-                if (errno == 0 && end != hs && *end == '\0' && w >= 16 && w <= 8192 && h >= 16 && h <= 8192) {
-                    o->width = (int)w;
-                    o->height = (int)h;
-                    continue;
-                }
-            }
-            return bad_usage("--size: WxH with each side in [16, 8192] expected, got '%s'", val);
-        }
-        return bad_usage("unknown option '%s'", a);
+        int st = parse_number_option(argc, argv, &i, o);
+        if (st == OPT_NOT_MINE)
+            st = parse_name_option(argc, argv, &i, o);
+        if (st == OPT_NOT_MINE)
+            return bad_usage("unknown option '%s'", a);
+        if (st != OPT_NEXT)
+            return st;
     }
     if (i >= argc)
         return bad_usage("%s", "no script given");

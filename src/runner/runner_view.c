@@ -358,6 +358,144 @@ static void status_line(tt_canvas *c, bool paused, double speed, double fps, boo
     tt_canvas_set_layer(c, TT_LAYER_WORLD);
 }
 
+/* What the window's loop keeps from frame to frame besides the script. */
+typedef struct window_state {
+    bool quit, paused, step_once, has_update;
+    double speed, acc;     /* simulated seconds per real one; simulated time not yet stepped */
+    long steps;
+    drag d;
+} window_state;
+
+/* Pushes the scripted events due at this frame; a resize is done at once,
+ * as a user would do it. */
+static void push_scripted(scripted *events, size_t nevents, size_t *next_event, long frames)
+{
+    while (*next_event < nevents && events[*next_event].frame <= frames) {
+        SDL_Event *e = &events[(*next_event)++].ev;
+        if (e->type == SDL_USEREVENT && e->user.code == 1)
+            SDL_SetWindowSize(SDL_GL_GetCurrentWindow(), (int)(intptr_t)e->user.data1, (int)(intptr_t)e->user.data2);
+        else
+            SDL_PushEvent(e);
+    }
+}
+
+/* The keys; true when r asks for the script from scratch. */
+static bool on_key(window_state *ws, SDL_Keycode key)
+{
+    bool reset = false;
+    switch (key) {
+    case SDLK_ESCAPE: case SDLK_q: ws->quit = true; break;
+    case SDLK_SPACE: case SDLK_p: ws->paused = !ws->paused; break;
+    case SDLK_s: case SDLK_RIGHT: ws->paused = true; ws->step_once = true; break;
+    case SDLK_MINUS: case SDLK_KP_MINUS: ws->speed = ws->speed > 1.0 / 16 ? ws->speed / 2 : ws->speed; break;
+    case SDLK_PLUS: case SDLK_EQUALS: case SDLK_KP_PLUS: ws->speed = ws->speed < 8 ? ws->speed * 2 : ws->speed; break;
+    case SDLK_0: case SDLK_1: ws->speed = 1.0; break;
+    case SDLK_r: reset = true; break;
+    default: break;
+    }
+    return reset;
+}
+
+/* Takes the particle under the cursor (x, y window pixels; drawable
+ * pixels are sx, sy of them), pinned while it is dragged. */
+static void drag_begin(session *s, drag *d, int x, int y, double sx, double sy)
+{
+    d->mx = x * sx;
+    d->my = y * sy;
+    if (tl_render_pick(s->L, d->mx, d->my, 40.0 * sx, &d->p)) {
+        tt_world *w = tl_render_drag_world(s->L, d->mx, d->my, &d->pos);
+        d->prev = d->pos;
+        d->vt = 0;
+        d->active = w != NULL;
+        if (w) {
+            tt_particle_get_pinned(w, d->p, &d->was_pinned);
+            tt_particle_set_pinned(w, d->p, true);
+        }
+    }
+}
+
+/* The window's events since the last frame; true when the script is to
+ * start from scratch. */
+static bool poll_events(session *s, window_state *ws, double sx, double sy)
+{
+    SDL_Event ev;
+    bool reset = false;
+    while (SDL_PollEvent(&ev)) {
+        switch (ev.type) {
+        case SDL_QUIT:
+            ws->quit = true;
+            break;
+        case SDL_KEYDOWN:
+            if (on_key(ws, ev.key.keysym.sym))
+                reset = true;
+            break;
+        case SDL_MOUSEBUTTONDOWN:
+            if (ev.button.button == SDL_BUTTON_LEFT && !ws->d.active)
+                drag_begin(s, &ws->d, ev.button.x, ev.button.y, sx, sy);
+            break;
+        case SDL_MOUSEBUTTONUP:
+            if (ev.button.button == SDL_BUTTON_LEFT)
+                drag_release(s, &ws->d);
+            break;
+        case SDL_MOUSEMOTION:
+            ws->d.mx = ev.motion.x * sx;
+            ws->d.my = ev.motion.y * sy;
+            break;
+        default:
+            break;
+        }
+    }
+    return reset;
+}
+
+/* The script from scratch: a new Lua state; false when it fails. */
+static bool restart(session *s, const options *o, window_state *ws)
+{
+    bool bad = false;
+    ws->d.active = false;
+    bool ok = call_unload(s);
+    tr_session_close(s);
+    if (!ok || !tr_session_open(s, o, s->argc, s->argv))
+        return false;
+    ok = tr_call_load(s);
+    ws->has_update = ok && tr_get_callback(s->L, s->module, "update", &bad);
+    if (ws->has_update)
+        lua_pop(s->L, 1);
+    ws->acc = 0.0;
+    return ok;
+}
+
+/* Steps the physics through `real` seconds of the clock; false on a script error. */
+static bool advance(session *s, const options *o, window_state *ws, double real)
+{
+    bool ok = true;
+    if (ws->d.active) {
+        ws->d.prev = ws->d.pos;
+        ws->d.vt = real * ws->speed;
+    }
+    drag_apply(s, &ws->d);
+    /* fixed-rate physics: the accumulator holds simulated time not yet stepped */
+    if (!ws->paused)
+        ws->acc += real * ws->speed;
+    int n = 0;
+    while (ok && ws->acc >= o->dt && n < 8) {
+        drag_apply(s, &ws->d);
+        ok = update_once(s, o, &ws->has_update);
+        ws->acc -= o->dt;
+        n++;
+        ws->steps++;
+    }
+    if (n == 8)
+        ws->acc = 0.0; /* slower than real time: drop the rest */
+    if (ok && ws->step_once) {
+        drag_apply(s, &ws->d);
+        ok = update_once(s, o, &ws->has_update);
+        ws->steps++;
+        ws->step_once = false;
+    }
+    return ok;
+}
+
 int tr_run_window(session *s, const options *o)
 {
     char err[256] = "", title[512];
@@ -375,92 +513,28 @@ int tr_run_window(session *s, const options *o)
         fprintf(stderr, PROGNAME ": out of memory\n");
         return 1;
     }
-    bool ok = tr_call_load(s), bad = false, quit = false, paused = false, step_once = false;
-    bool has_update = ok && tr_get_callback(s->L, s->module, "update", &bad);
-    if (has_update)
+    window_state ws;
+    memset(&ws, 0, sizeof ws);
+    bool ok = tr_call_load(s), bad = false;
+    ws.has_update = ok && tr_get_callback(s->L, s->module, "update", &bad);
+    if (ws.has_update)
         lua_pop(s->L, 1);
-    double speed = 1.0, acc = 0.0, t_prev = tr_now_s(), t0 = t_prev, fps = 0.0;
-    long frames = 0, steps = 0;
-    drag d;
-    memset(&d, 0, sizeof d);
+    ws.speed = 1.0;
+    double t_prev = tr_now_s(), t0 = t_prev, fps = 0.0;
+    long frames = 0;
     size_t nevents = 0, next_event = 0;
     scripted *events = NULL;
     if (ok && o->events && !(events = read_events(o->events, &nevents)))
         ok = false;
 
-    while (ok && !quit && !g_quit && !g_interrupted) {
+    while (ok && !ws.quit && !g_quit && !g_interrupted) {
         int ww, wh, dw, dh;
-        SDL_Event ev;
-        bool reset = false;
         tt_window_size(win, &dw, &dh);
         SDL_GetWindowSize(SDL_GL_GetCurrentWindow(), &ww, &wh);
         double sx = ww > 0 ? (double)dw / ww : 1.0, sy = wh > 0 ? (double)dh / wh : 1.0;
-        while (next_event < nevents && events[next_event].frame <= frames) {
-            SDL_Event *e = &events[next_event++].ev;
-            if (e->type == SDL_USEREVENT && e->user.code == 1)
-                SDL_SetWindowSize(SDL_GL_GetCurrentWindow(), (int)(intptr_t)e->user.data1, (int)(intptr_t)e->user.data2);
-            else
-                SDL_PushEvent(e);
-        }
-        while (SDL_PollEvent(&ev)) {
-            switch (ev.type) {
-            case SDL_QUIT:
-                quit = true;
-                break;
-            case SDL_KEYDOWN:
-                switch (ev.key.keysym.sym) {
-                case SDLK_ESCAPE: case SDLK_q: quit = true; break;
-                case SDLK_SPACE: case SDLK_p: paused = !paused; break;
-                case SDLK_s: case SDLK_RIGHT: paused = true; step_once = true; break;
-                case SDLK_MINUS: case SDLK_KP_MINUS: speed = speed > 1.0 / 16 ? speed / 2 : speed; break;
-                case SDLK_PLUS: case SDLK_EQUALS: case SDLK_KP_PLUS: speed = speed < 8 ? speed * 2 : speed; break;
-                case SDLK_0: case SDLK_1: speed = 1.0; break;
-                case SDLK_r: reset = true; break;
-                default: break;
-                }
-                break;
-            case SDL_MOUSEBUTTONDOWN:
-                if (ev.button.button == SDL_BUTTON_LEFT && !d.active) {
-                    d.mx = ev.button.x * sx;
-                    d.my = ev.button.y * sy;
-                    if (tl_render_pick(s->L, d.mx, d.my, 40.0 * sx, &d.p)) {
-                        tt_world *w = tl_render_drag_world(s->L, d.mx, d.my, &d.pos);
-                        d.prev = d.pos;
-                        d.vt = 0;
-                        d.active = w != NULL;
-                        if (w) {
-                            tt_particle_get_pinned(w, d.p, &d.was_pinned);
-                            tt_particle_set_pinned(w, d.p, true);
-                        }
-                    }
-                }
-                break;
-            case SDL_MOUSEBUTTONUP:
-                if (ev.button.button == SDL_BUTTON_LEFT)
-                    drag_release(s, &d);
-                break;
-            case SDL_MOUSEMOTION:
-                d.mx = ev.motion.x * sx;
-                d.my = ev.motion.y * sy;
-                break;
-            default:
-                break;
-            }
-        }
-        if (reset) { /* the script from scratch: a new Lua state */
-            d.active = false;
-            ok = call_unload(s);
-            tr_session_close(s);
-            if (!ok || !tr_session_open(s, o, s->argc, s->argv)) {
-                ok = false;
-                break;
-            }
-            ok = tr_call_load(s);
-            bad = false;
-            has_update = ok && tr_get_callback(s->L, s->module, "update", &bad);
-            if (has_update)
-                lua_pop(s->L, 1);
-            acc = 0.0;
+        push_scripted(events, nevents, &next_event, frames);
+        if (poll_events(s, &ws, sx, sy)) {
+            ok = restart(s, o, &ws);
             continue;
         }
         double now = tr_now_s(), real = now - t_prev;
@@ -468,36 +542,13 @@ int tr_run_window(session *s, const options *o)
         if (real > 0.25)
             real = 0.25; /* after a stall: slow down rather than spiral */
         fps = fps == 0.0 ? 1.0 / fmax(real, 1e-6) : 0.95 * fps + 0.05 / fmax(real, 1e-6);
-        if (d.active) {
-            d.prev = d.pos;
-            d.vt = real * speed;
-        }
-        drag_apply(s, &d);
-        /* fixed-rate physics: the accumulator holds simulated time not yet stepped */
-        if (!paused)
-            acc += real * speed;
-        int n = 0;
-        while (ok && acc >= o->dt && n < 8) {
-            drag_apply(s, &d);
-            ok = update_once(s, o, &has_update);
-            acc -= o->dt;
-            n++;
-            steps++;
-        }
-        if (n == 8)
-            acc = 0.0; /* slower than real time: drop the rest */
-        if (ok && step_once) {
-            drag_apply(s, &d);
-            ok = update_once(s, o, &has_update);
-            steps++;
-            step_once = false;
-        }
+        ok = advance(s, o, &ws, real);
         if (!ok)
             break;
         if (dw > 0 && dh > 0)
             tt_canvas_resize(c, dw, dh);
         ok = draw_frame(s, c);
-        status_line(c, paused, speed, fps, d.active);
+        status_line(c, ws.paused, ws.speed, fps, ws.d.active);
         frames++;
         bool last = o->frames > 0 && frames >= o->frames;
         if (tt_window_present(win, c, last ? o->screenshot : NULL) != TT_OK) {
@@ -516,7 +567,7 @@ int tr_run_window(session *s, const options *o)
     else if (g_interrupted)
         fprintf(stderr, PROGNAME ": interrupted\n");
     if (ok) {
-        printf(PROGNAME ": window: %ld frames, %ld steps of %.6f s in %.2f s%s%s\n", frames, steps, o->dt,
+        printf(PROGNAME ": window: %ld frames, %ld steps of %.6f s in %.2f s%s%s\n", frames, ws.steps, o->dt,
                tr_now_s() - t0, o->screenshot && o->frames > 0 && frames >= o->frames ? ", screenshot " : "",
                o->screenshot && o->frames > 0 && frames >= o->frames ? o->screenshot : "");
         fflush(stdout);

@@ -1,0 +1,195 @@
+/* tether — contact detection, the group's begin (per substep): the
+ * velocities and positions the substep starts from, bullets' sweeps, the
+ * particle grid and its pairs (planned into batches), and particles against
+ * the static index. */
+#include "collide_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct detect_ctx {
+    tt_world *w;
+    tt__collide *c;
+    uint32_t i;
+    double x, y, r, margin;
+    bool ok;
+} detect_ctx;
+
+static void detect_visit(void *ctx, uint32_t k)
+{
+    detect_ctx *d = ctx;
+    tt__collide *c = d->c;
+    const tt__prim *p = &c->prims[k];
+    const tt_shape_def *sd = &c->shapes[p->shape].def;
+    if (!tt__shape_filter(d->w, sd, d->i)) return;
+    if (c->ccd_prim && d->i < c->bulletcap && c->ccd_prim[d->i] == (int32_t)k) return; /* the sweep has it */
+    tt__hit hit;
+    tt__circle_vs_prim(c, p, d->x, d->y, d->r, &hit);
+    if (sd->sensor) {
+        if (hit.depth > 0.0 && c->set.events)
+            tt__record_contact(d->w, c, tt__shape_key(p->shape, d->i), d->i, UINT32_MAX, p->shape, true, hit.nx, hit.ny, 0.0);
+        return;
+    }
+    if (hit.depth <= -d->margin) return;
+    if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) {
+        d->ok = false;
+        return;
+    }
+    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0};
+}
+
+/* Marks the cells of the particle grid, just built, (c->near) a particle
+ * centred in could touch a static primitive: each primitive's box grown by
+ * the largest radius and the margin, clamped into the grid as particles are
+ * (clamping is monotone, so a particle outside still lands in a marked cell).
+ * One byte load then spares most particles the static test. False on no
+ * memory. */
+static bool grid_near_shapes(tt__collide *c)
+{
+    const tt__grid *g = &c->grid;
+    if (g->ncell == 0) return false;
+    if (g->ncell > c->near_cap) {
+        uint8_t *p = realloc(c->near, g->ncell);
+        if (!p) return false;
+        c->near = p;
+        c->near_cap = g->ncell;
+    }
+    memset(c->near, 0, g->ncell);
+    const double grow = g->rmax * (1.0 + TT__CONTACT_MARGIN);
+    for (uint32_t k = 0; k < c->nprim; k++) {
+        const tt__prim *p = &c->prims[k];
+        int32_t x0 = tt__cell_coord(p->lox - grow, g->ox, g->inv), x1 = tt__cell_coord(p->hix + grow, g->ox, g->inv);
+        int32_t y0 = tt__cell_coord(p->loy - grow, g->oy, g->inv), y1 = tt__cell_coord(p->hiy + grow, g->oy, g->inv);
+        x0 = x0 < 0 ? 0 : x0 >= g->nx ? g->nx - 1 : x0;
+        x1 = x1 < 0 ? 0 : x1 >= g->nx ? g->nx - 1 : x1;
+        y0 = y0 < 0 ? 0 : y0 >= g->ny ? g->ny - 1 : y0;
+        y1 = y1 < 0 ? 0 : y1 >= g->ny ? g->ny - 1 : y1;
+        for (int32_t y = y0; y <= y1; y++)
+            memset(c->near + (size_t)y * (size_t)g->nx + (size_t)x0, 1, (size_t)(x1 - x0 + 1));
+    }
+    return true;
+}
+
+/* A pair of per-particle arrays grown to hold n (to the world's capacity
+ * at once); false, the old ones kept, on no memory. */
+static bool grow_xy(const tt_world *w, double **x, double **y, uint32_t *cap, uint32_t n)
+{
+    if (*cap >= n) return true;
+    const uint32_t want = w->pcap > n ? w->pcap : n;
+    double *a = realloc(*x, (size_t)want * sizeof *a);
+    if (!a) return false;
+    *x = a;
+    double *b = realloc(*y, (size_t)want * sizeof *b);
+    if (!b) return false;
+    *y = b;
+    *cap = want;
+    return true;
+}
+
+/* The velocities and positions the substep starts from; false (the
+ * substep detects nothing) on no memory. */
+static bool substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
+{
+    /* pre-solve velocities: what restitution and friction measure against */
+    if (!grow_xy(w, &c->vx0, &c->vy0, &c->vcap, n)) return false;
+    if (w->integrator == TT_VERLET) {
+        const double inv_h = 1.0 / h;
+        for (uint32_t i = 0; i < n; i++) {
+            c->vx0[i] = (w->px[i] - w->qx[i]) * inv_h;
+            c->vy0[i] = (w->py[i] - w->qy[i]) * inv_h;
+        }
+    } else {
+        tt__copy(c->vx0, w->qx, (size_t)n * sizeof *c->vx0);
+        tt__copy(c->vy0, w->qy, (size_t)n * sizeof *c->vy0);
+    }
+    if (w->integrator != TT_VERLET) {
+        if (!grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return false;
+        /* the last substep's end positions, unless something moved or appeared since: then x − v·h */
+        if (!(c->s_epoch == w->epoch && c->s_count == n)) {
+            /* where each integrator started the substep, exact under gravity alone */
+            double k = w->integrator == TT_SYMPLECTIC_EULER ? 0.0 : w->integrator == TT_EULER ? 1.0 : 0.5;
+            double gx = k * w->gravity.x * h * h, gy = k * w->gravity.y * h * h;
+            for (uint32_t i = 0; i < n; i++) {
+                c->sx0[i] = w->px[i] - w->qx[i] * h + gx;
+                c->sy0[i] = w->py[i] - w->qy[i] * h + gy;
+            }
+        }
+    }
+    return true;
+}
+
+/* The broadphase: the substep's particle pairs, planned into batches when
+ * they are solved from them. True when the particle grid was built. */
+static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
+{
+    bool grid_built = false; /* this substep: its cells can filter the static test */
+    bool ok;
+    c->nrows = 0;
+    const double t0 = tt__now_ms();
+    if (c->bp_step != w->stats.steps) { /* the step's first substep */
+        c->bp_step = w->stats.steps;
+        c->bp_ms = 0.0;
+    }
+    if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
+        ok = tt__brute_pairs(w, c);
+        c->grid.epoch = UINT64_MAX;
+    } else {
+        ok = tt__grid_build(w, &c->grid, c->set.cell_size) && tt__grid_pairs(w, c);
+        c->cells_used = c->grid.ncell;
+        grid_built = ok;
+    }
+    c->bp_ms += tt__now_ms() - t0;
+    if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
+    /* batches pay for their planning from the second sweep on */
+    c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
+                 tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, w->inv_mass, n);
+    return grid_built;
+}
+
+/* Particles against the static index: the substep's shape contacts, and
+ * where the sweeps start from. */
+static void detect_shapes(tt_world *w, tt__collide *c, uint32_t n, bool grid_built)
+{
+    detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
+    const uint8_t *near = grid_built && grid_near_shapes(c) ? c->near : NULL;
+    for (uint32_t i = 0; i < n; i++) {
+        if (w->inv_mass[i] == 0.0) continue; /* pinned or removed: shapes never push them */
+        if (near && !near[c->grid.cell[i] & 0x7FFFFFFFu]) continue; /* its cell is far from every shape */
+        double r = w->radius[i], m = r * TT__CONTACT_MARGIN;
+        d.i = i;
+        d.x = w->px[i];
+        d.y = w->py[i];
+        d.r = r;
+        d.margin = m;
+        /* fast path: no primitive's box near the particle (most particles, most steps) */
+        if (!tt__sgrid_near(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m)) continue;
+        tt__sgrid_query(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m, detect_visit, &d);
+        if (!d.ok) {
+            tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
+            break;
+        }
+    }
+    /* where the sweeps start from, for the guard in sweeps_done */
+    if (n && grow_xy(w, &c->gx0, &c->gy0, &c->gcap, n)) {
+        memcpy(c->gx0, w->px, (size_t)n * sizeof *c->gx0);
+        memcpy(c->gy0, w->py, (size_t)n * sizeof *c->gy0);
+        c->guard = true;
+    }
+}
+
+void tt__contacts_begin(tt_world *w, void *self, double h)
+{
+    tt__collide *c = self;
+    c->npairs = 0;
+    c->nsc = 0;
+    c->batched = false;
+    c->guard = false; /* until this substep's start positions are copied */
+    if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
+    bool pairs = c->set.particles;
+    if (!pairs && c->nprim == 0) return;
+    const uint32_t n = w->ppool.count;
+    if (!substep_start(w, c, h, n)) return;
+    if (c->nbullets && c->nprim) tt__ccd(w, c, h);
+    bool grid_built = pairs && detect_pairs(w, c, n);
+    if (c->nprim) detect_shapes(w, c, n, grid_built);
+}

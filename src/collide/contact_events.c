@@ -1,0 +1,101 @@
+/* tether — contact events: each contact of a step recorded as it is
+ * solved, merged per pair after the step and compared with the previous
+ * step's set, giving BEGIN, PERSIST and END events as arrays. */
+#include "collide_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void tt__record_contact(tt_world *w, tt__collide *c, uint64_t key, uint32_t a, uint32_t b, uint32_t shape, bool sensor,
+                        double nx, double ny, double impulse)
+{
+    if (!tt__grow((void **)&c->rec, &c->reccap, c->nrec + 1, sizeof *c->rec)) return; /* no memory: the event is lost */
+    tt__record *r = &c->rec[c->nrec++];
+    memset(r, 0, sizeof *r);
+    r->key = key;
+    r->ev.sensor = sensor;
+    r->ev.a = (tt_particle){a, w->ppool.gen[a]};
+    if (b != UINT32_MAX) r->ev.b = (tt_particle){b, w->ppool.gen[b]};
+    if (shape != UINT32_MAX) r->ev.shape = (tt_shape){shape, c->spool.gen[shape]};
+    double ra = w->radius[a];
+    r->ev.point = (tt_vec2){w->px[a] - nx * ra, w->py[a] - ny * ra};
+    r->ev.normal = (tt_vec2){nx, ny};
+    r->ev.impulse = impulse;
+}
+
+/* --- events after the step ------------------------------------------------ */
+
+static int cmp_record(const void *x, const void *y)
+{
+    const tt__record *a = x, *b = y;
+    if (a->key != b->key) return a->key < b->key ? -1 : 1;
+    return a < b ? -1 : a > b; /* never equal pointers; keeps the order of the substeps */
+}
+
+static bool push_event(tt__collide *c, const tt_contact_event *ev, uint32_t kind)
+{
+    if (!(c->set.events & kind)) return true;
+    if (!tt__grow((void **)&c->events, &c->evcap, c->nevents + 1, sizeof *c->events)) return false;
+    c->events[c->nevents] = *ev;
+    c->events[c->nevents].kind = kind;
+    if (kind == TT_EVENT_END) c->events[c->nevents].impulse = 0.0;
+    c->nevents++;
+    return true;
+}
+
+void tt__contacts_after_step(tt_world *w, void *self)
+{
+    tt__collide *c = self;
+    if (c->any_moved) {
+        for (uint32_t i = 0; i < c->spool.count; i++) c->shapes[i].moved = false;
+        c->any_moved = false;
+    }
+    /* the step bumps the epoch once after this: end positions stay valid through it, not through a teleport */
+    if (c->s_epoch == w->epoch) c->s_epoch = w->epoch + 1;
+    c->nevents = 0;
+    if (!c->set.events) {
+        c->nrec = 0;
+        c->nprev = 0;
+        return;
+    }
+    /* one record per contact: sorted by key; substeps merged (impulses add up, the last geometry stays) */
+    if (c->nrec > 1) qsort(c->rec, c->nrec, sizeof *c->rec, cmp_record);
+    uint32_t m = 0;
+    for (uint32_t k = 0; k < c->nrec; k++) {
+        if (m && c->rec[m - 1].key == c->rec[k].key) {
+            double imp = c->rec[m - 1].ev.impulse + c->rec[k].ev.impulse;
+            c->rec[m - 1] = c->rec[k];
+            c->rec[m - 1].ev.impulse = imp;
+        } else {
+            c->rec[m++] = c->rec[k];
+        }
+    }
+    c->nrec = m;
+    uint32_t i = 0, j = 0;
+    while (i < c->nrec || j < c->nprev) {
+        if (j == c->nprev || (i < c->nrec && c->rec[i].key < c->prev[j].key)) {
+            push_event(c, &c->rec[i++].ev, TT_EVENT_BEGIN);
+        } else if (i == c->nrec || c->prev[j].key < c->rec[i].key) {
+            push_event(c, &c->prev[j++].ev, TT_EVENT_END);
+        } else {
+            push_event(c, &c->rec[i++].ev, TT_EVENT_PERSIST);
+            j++;
+        }
+    }
+    /* this step's set becomes the previous one */
+    tt__record *t = c->prev;
+    uint32_t tc = c->prevcap;
+    c->prev = c->rec;
+    c->prevcap = c->reccap;
+    c->nprev = c->nrec;
+    c->rec = t;
+    c->reccap = tc;
+    c->nrec = 0;
+}
+
+const tt_contact_event *tt_world_get_contact_events(const tt_world *w, uint32_t *count)
+{
+    const tt__collide *c = w ? tt__collide_peek(w) : NULL;
+    if (count) *count = c ? c->nevents : 0;
+    return c && c->nevents ? c->events : NULL;
+}

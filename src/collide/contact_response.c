@@ -1,0 +1,374 @@
+/* tether — contact response, the group's relax (per sweep) and end (per
+ * substep): projection to the nearest valid position, mass weighted
+ * between particles, through tt__correct; then restitution and Coulomb
+ * friction on velocities (Verlet: by moving x_old; others: v). */
+#include "collide_internal.h"
+
+/* --- friction ------------------------------------------------------------ */
+
+/* Friction against shapes. With Verlet and symplectic Euler, whose
+ * positions move by the velocity they end the substep with, Coulomb
+ * friction is a position constraint solved in the sweeps beside the normal
+ * projection (rub): the tangential slide since the substep began is undone
+ * as far as the friction correction accumulated this substep (lt) stays
+ * within μs·ln, ln the normal correction accumulated. Bounding accumulated
+ * corrections, not one sweep's, lets the load carried through constraints
+ * (the upper rows of a lattice block on a slope) be held by the contact
+ * particles. The sweeps clamp at μs only: a contact dropping to μk mid-
+ * sweep would pass its load to its neighbours and start them slipping in
+ * cascade. A contact still at the bound and slipping when the sweeps end
+ * slides: end gives back the (μs − μk)·ln it was held by too much.
+ * Euler, leapfrog and RK4 move positions by a velocity that lags, so ln
+ * under-measures the load; their friction stays in the velocity pass
+ * (respond) as an impulse bounded by μ·Δvn, as does friction between two
+ * particles: grains that cannot roll would otherwise stand in columns. */
+static inline bool rub_in_sweeps(const tt_world *w)
+{
+    return w->integrator == TT_VERLET || w->integrator == TT_SYMPLECTIC_EULER;
+}
+
+/* slide: relative tangential displacement since the substep began; returns the correction. */
+static inline double rub(double slide, double ln, double mu, double *lt)
+{
+    double want = *lt - slide, lim = mu * ln;
+    want = want > lim ? lim : want < -lim ? -lim : want;
+    double d = want - *lt;
+    *lt = want;
+    return d;
+}
+
+/* The correction that turns the static bound into the kinetic one where
+ * the contact slides: at the bound (float λ: a margin) and still slipping
+ * after the sweeps (slide, the relative tangential displacement left, over
+ * SLIP of what the bound held: a contact at its bound on a body that others
+ * hold does not slip). Else 0. */
+#define SLIP 0.1
+static inline double unrub(double slide, double lt, double ln, double mus, double muk)
+{
+    return muk < mus && fabs(lt) >= 0.999 * mus * ln && fabs(slide) > SLIP * fabs(lt) ? lt * (muk / mus - 1.0) : 0.0;
+}
+
+/* Where each particle began the substep: Verlet's x_old, or the copy begin made. */
+static inline const double *start_x(const tt_world *w, const tt__collide *c) { return w->integrator == TT_VERLET ? w->qx : c->sx0; }
+static inline const double *start_y(const tt_world *w, const tt__collide *c) { return w->integrator == TT_VERLET ? w->qy : c->sy0; }
+
+/* Moves particle i by (dx, dy) after the sweeps, its velocity with it. */
+static inline void shift(tt_world *w, uint32_t i, double dx, double dy, double h)
+{
+    w->px[i] += dx;
+    w->py[i] += dy;
+    if (w->integrator != TT_VERLET) {
+        w->qx[i] += dx / h;
+        w->qy[i] += dy / h;
+    }
+}
+
+/* Velocity-pass static friction: undo the tangential part of the
+ * particle's displacement in this substep (share s of it) and its
+ * tangential velocity vt. Verlet: moving x does both. */
+static inline void unslide(tt_world *w, const tt__collide *c, uint32_t i, double h, double nx, double ny, double s,
+                           double vtx, double vty)
+{
+    if (w->integrator == TT_VERLET) {
+        w->px[i] -= vtx * h * s;
+        w->py[i] -= vty * h * s;
+        return;
+    }
+    double dx = w->px[i] - c->sx0[i], dy = w->py[i] - c->sy0[i], dn = dx * nx + dy * ny;
+    w->px[i] -= (dx - dn * nx) * s;
+    w->py[i] -= (dy - dn * ny) * s;
+    w->qx[i] -= vtx * s;
+    w->qy[i] -= vty * s;
+}
+
+/* --- projection ----------------------------------------------------------- */
+
+/* The normal of a contact has turned round since the contact began: when
+ * another correction carried the centre through the shape (across a
+ * segment or capsule's core, its projection inside it; past the middle of
+ * a polygon), the shape's nearest side is the far one. hit becomes the push
+ * back to the side the contact began on, along that side's normal, until
+ * the particle clears. (Round a segment's end or a circle the normal may
+ * turn legitimately: those are left alone.) */
+static void uncross(const tt__collide *c, const tt__prim *p, double x, double y, double r, const tt__scontact *s,
+                    tt__hit *hit)
+{
+    double far; /* the shape's extent along −n from the centre */
+    if (p->kind == TT__PRIM_CAPSULE) {
+        const double ex = p->bx - p->ax, ey = p->by - p->ay, l2 = ex * ex + ey * ey;
+        const double t = l2 > 0.0 ? ((x - p->ax) * ex + (y - p->ay) * ey) / l2 : -1.0;
+        if (!(t > 0.0 && t < 1.0)) return;
+        const double da = (p->ax - x) * s->nx + (p->ay - y) * s->ny, db = (p->bx - x) * s->nx + (p->by - y) * s->ny;
+        far = p->r + (da > db ? da : db);
+    } else {
+        const tt_vec2 *v = c->verts + p->v0;
+        far = -INFINITY;
+        for (uint32_t k = 0; k < p->nv; k++) {
+            const double d = (v[k].x - x) * s->nx + (v[k].y - y) * s->ny;
+            far = d > far ? d : far;
+        }
+    }
+    hit->nx = s->nx;
+    hit->ny = s->ny;
+    hit->depth = r + far;
+}
+
+/* Moves particle i by (dx, dy) on positions X, Y (stride st): the rows
+ * while the batches keep them, else through tt__correct (Jacobi). */
+static inline void move(tt_world *w, double *X, double *Y, size_t st, uint32_t i, double dx, double dy)
+{
+    if (st == 1) {
+        tt__correct(w, i, dx, dy);
+    } else {
+        X[i * st] += dx;
+        Y[i * st] += dy;
+    }
+}
+
+double tt__contacts_relax(tt_world *w, void *self, double h)
+{
+    (void)h;
+    tt__collide *c = self;
+    double err = 0.0;
+    double *X = w->px, *Y = w->py;
+    size_t st = 1;
+    if (c->batched) { /* Gauss-Seidel, several sweeps */
+        err = tt__batches_sweep(w, &c->bat, w->group_count == 1); /* rows kept while nothing else sweeps */
+        if (c->bat.live) {
+            X = c->bat.xy;
+            Y = c->bat.xy + 1;
+            st = 2;
+        }
+    } else {
+        const double *inv = w->inv_mass;
+        for (uint32_t k = 0; k < c->npairs; k++) {
+            tt__pair *p = &c->pairs[k];
+            const uint32_t a = p->a, b = p->b;
+            const double ia = inv[a], ib = inv[b], ws = ia + ib;
+            if (ws == 0.0) continue;
+            double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
+            if (!tt__pair_push(a, b, p->rs, ws, &dx, &dy, &pen, &t)) continue;
+            tt__correct(w, a, dx * t * ia, dy * t * ia);
+            tt__correct(w, b, -dx * t * ib, -dy * t * ib);
+            p->lambda += (float)pen;
+            if (pen > err) err = pen;
+        }
+    }
+    const double *sx = start_x(w, c), *sy = start_y(w, c);
+    const bool fr = rub_in_sweeps(w);
+    for (uint32_t k = 0; k < c->nsc; k++) {
+        tt__scontact *s = &c->sc[k];
+        const uint32_t a = s->a;
+        tt__hit hit;
+        tt__circle_vs_prim(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], &hit);
+        if (hit.nx * s->nx + hit.ny * s->ny < 0.0) uncross(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], s, &hit);
+        if (hit.depth > 0.0) {
+            move(w, X, Y, st, a, hit.nx * hit.depth, hit.ny * hit.depth);
+            s->nx = hit.nx;
+            s->ny = hit.ny;
+            if (s->lambda == 0.0) s->mu = sqrt(tt__mat(c, a, 1) * c->shapes[c->prims[s->prim].shape].def.friction_static);
+            s->lambda += hit.depth;
+            if (hit.depth > err) err = hit.depth;
+        }
+        if (s->lambda == 0.0 || s->ccd || !fr) continue; /* a sweep's contact gets its friction with its restart, in end */
+        const double tx = -s->ny, ty = s->nx;
+        double f = rub((X[a * st] - sx[a]) * tx + (Y[a * st] - sy[a]) * ty, s->lambda, s->mu, &s->lambda_t);
+        if (f != 0.0) move(w, X, Y, st, a, tx * f, ty * f);
+    }
+    return err;
+}
+
+/* After the last sweep: the positions back from the batches' rows, then
+ * the guard. A particle carried by the corrections (another particle's
+ * push-out, a constraint) into a static shape it had no contact with when
+ * the substep began would stay in it, unresolved, and could cross a thin
+ * one in the next substep (balls spawned into each other in the Galton
+ * demo left through its slanted walls). Its path through the sweeps is
+ * swept against the shapes, and it stops where it would first touch one.
+ * A move within the contact margin cannot reach a shape it had no contact
+ * with; shapes it touched at the start are skipped by the sweep (a contact
+ * keeps it on its side: relax, uncross). */
+void tt__contacts_sweeps_done(tt_world *w, void *self)
+{
+    tt__collide *c = self;
+    tt__batches_release(w, &c->bat);
+    const uint32_t n = w->ppool.count;
+    if (!c->nprim || !c->guard || c->gcap < n) return;
+    for (uint32_t i = 0; i < n; i++) {
+        const double dx = w->px[i] - c->gx0[i], dy = w->py[i] - c->gy0[i], r = w->radius[i];
+        const double m = r * TT__CONTACT_MARGIN;
+        if (dx * dx + dy * dy <= m * m || w->inv_mass[i] == 0.0) continue;
+        const double x0 = c->gx0[i], y0 = c->gy0[i], x1 = w->px[i], y1 = w->py[i];
+        if (!tt__sgrid_near(c, fmin(x0, x1) - r, fmin(y0, y1) - r, fmax(x0, x1) + r, fmax(y0, y1) + r)) continue;
+        double t, nx, ny;
+        if (tt__sweep_static(w, c, i, x0, y0, x1, y1, &t, &nx, &ny) < 0) continue;
+        w->px[i] = x0 + dx * t;
+        w->py[i] = y0 + dy * t;
+    }
+}
+
+/* --- velocity pass -------------------------------------------------------- */
+
+/* Normal target for relative velocity v (pre-solve v0) along n: restitution
+ * for an impact, else no approach. Between two particles the projection's
+ * push gives no separating speed beyond what the pair had before the sweeps
+ * (settled): a deep pile that the sweeps cannot hold in one substep would
+ * otherwise boil, each layer thrown up by the overlap it was pushed out of.
+ * Shapes moved by the script since the last step keep the push: a paddle
+ * moved into a ball throws it.
+ * With μ > 0 also Coulomb friction (particle pairs; shapes with Euler,
+ * leapfrog, RK4; a sweep's contact whose velocity restarts here): static
+ * (tangential v under μs·Δvn) writes the tangential velocity to undo into
+ * stick, kinetic reduces it by μk·Δvn. */
+static inline __attribute__((always_inline)) void respond(double vx, double vy, double v0x, double v0y, double nx,
+                                                         double ny, double e, bool settled, double mus, double muk,
+                                                         double thr, double *dvx, double *dvy, double *stick_x,
+                                                         double *stick_y, double *dvn)
+{
+    const double vn0 = v0x * nx + v0y * ny, vn = vx * nx + vy * ny;
+    /* no approach: vn ≥ 0; settled: nor more separation than before, min(vn, max(vn0, 0)) */
+    const double up = vn > 0.0 ? vn : 0.0, up0 = vn0 > 0.0 ? vn0 : 0.0;
+    const double target = vn0 < -thr ? -e * vn0 : settled && up > up0 ? up0 : up;
+    double change = target - vn0;
+    if (change < 0.0) change = 0.0;
+    *dvn = change;
+    *dvx = (target - vn) * nx;
+    *dvy = (target - vn) * ny;
+    *stick_x = *stick_y = 0.0;
+    if (mus == 0.0 && muk == 0.0) return;
+    const double tx = vx - vn * nx, ty = vy - vn * ny, t2 = tx * tx + ty * ty, lim = mus * change;
+    if (t2 <= lim * lim) { /* squared: no root for the common sticking contact */
+        *stick_x = tx;
+        *stick_y = ty;
+    } else {
+        const double tl = sqrt(t2), f = (muk * change < tl ? muk * change : tl) / tl;
+        *dvx -= tx * f;
+        *dvy -= ty * f;
+    }
+}
+
+/* Velocity pass of a pair that touched this substep; the normal (b to a)
+ * from where the sweeps left the pair. */
+static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b, double h, double thr, bool events)
+{
+    const double *inv = w->inv_mass;
+    double ia = inv[a], ib = inv[b], ws = ia + ib;
+    if (ws == 0.0) return;
+    const double iws = 1.0 / ws, wa = ia * iws, wb = ib * iws;
+    double nx = w->px[a] - w->px[b], ny = w->py[a] - w->py[b], d2 = nx * nx + ny * ny;
+    if (d2 > 0.0) {
+        const double id = 1.0 / sqrt(d2);
+        nx *= id;
+        ny *= id;
+    } else {
+        tt__pair_apart(a, b, &nx, &ny);
+    }
+    double mus = c->mat ? sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1)) : c->set.friction_static;
+    double muk = c->mat ? sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)) : c->set.friction_kinetic;
+    double rvx, rvy; /* velocity of a relative to b; Verlet: the displacements' difference times 1/dt */
+    if (w->integrator == TT_VERLET) {
+        const double idt = 1.0 / w->dt_prev;
+        rvx = ((w->px[a] - w->qx[a]) - (w->px[b] - w->qx[b])) * idt;
+        rvy = ((w->py[a] - w->qy[a]) - (w->py[b] - w->qy[b])) * idt;
+    } else {
+        rvx = w->qx[a] - w->qx[b];
+        rvy = w->qy[a] - w->qy[b];
+    }
+    double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0), e = ea > eb ? ea : eb;
+    double dvx, dvy, sx, sy, dvn;
+    respond(rvx, rvy, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr, &dvx, &dvy, &sx, &sy,
+            &dvn);
+    if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
+        unslide(w, c, a, h, nx, ny, wa, sx, sy);
+        unslide(w, c, b, h, nx, ny, wb, -sx, -sy);
+    }
+    tt__add_velocity(w, a, dvx * wa, dvy * wa);
+    tt__add_velocity(w, b, -dvx * wb, -dvy * wb);
+    if (events)
+        tt__record_contact(w, c, tt__pair_key(a, b), a < b ? a : b, a < b ? b : a, UINT32_MAX, false, a < b ? nx : -nx,
+                           a < b ? ny : -ny, dvn / ws);
+}
+
+typedef struct pair_ctx {
+    tt_world *w;
+    tt__collide *c;
+    double h, thr;
+} pair_ctx;
+
+/* Batch entry k through pair_end (no events: the vector pass runs without them). */
+static void pair_one(void *ctx, uint32_t k)
+{
+    pair_ctx *p = ctx;
+    pair_end(p->w, p->c, p->c->bat.a[k], p->c->bat.b[k], p->h, p->thr, false);
+}
+
+void tt__contacts_end(tt_world *w, void *self, double h)
+{
+    tt__collide *c = self;
+    const double g = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
+    const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
+    const bool events = c->set.events != 0, fr = rub_in_sweeps(w);
+    const double *inv = w->inv_mass;
+    if (c->batched) {
+        tt__batches *B = &c->bat;
+        /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, world materials) */
+        const tt__respond_in in = {c->vx0, c->vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
+        pair_ctx pc = {w, c, h, thr};
+        if (!(w->integrator == TT_VERLET && !c->mat && !events && tt__batches_respond(w, B, &in, pair_one, &pc)))
+            for (uint32_t k = 0; k < B->n; k++)
+                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], h, thr, events);
+    } else {
+        for (uint32_t k = 0; k < c->npairs; k++)
+            if (c->pairs[k].lambda > 0.0f) pair_end(w, c, c->pairs[k].a, c->pairs[k].b, h, thr, events);
+    }
+    for (uint32_t k = 0; k < c->nsc; k++) {
+        const tt__scontact *s = &c->sc[k];
+        if (s->lambda <= 0.0 && !s->ccd) continue;
+        const uint32_t a = s->a;
+        if (inv[a] == 0.0) continue;
+        const tt_shape_def *sd = &c->shapes[c->prims[s->prim].shape].def;
+        double mus = sqrt(tt__mat(c, a, 1) * sd->friction_static), muk = sqrt(tt__mat(c, a, 2) * sd->friction_kinetic);
+        double vx, vy;
+        if (s->ccd) { /* the sweep cut the substep's motion short: restart from the velocity before it */
+            vx = c->vx0[a];
+            vy = c->vy0[a];
+            if (w->integrator == TT_VERLET) {
+                w->qx[a] = w->px[a] - vx * h;
+                w->qy[a] = w->py[a] - vy * h;
+            } else {
+                w->qx[a] = vx;
+                w->qy[a] = vy;
+            }
+        } else {
+            if (fr) {
+                double slide = (w->px[a] - start_x(w, c)[a]) * -s->ny + (w->py[a] - start_y(w, c)[a]) * s->nx;
+                double d = unrub(slide, s->lambda_t, s->lambda, mus, muk);
+                if (d != 0.0) shift(w, a, -s->ny * d, s->nx * d, h);
+                mus = muk = 0.0;
+            }
+            tt_vec2 v = tt__velocity(w, a);
+            vx = v.x;
+            vy = v.y;
+        }
+        double ea = tt__mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
+        double dvx, dvy, sx, sy, dvn;
+        respond(vx, vy, c->vx0[a], c->vy0[a], s->nx, s->ny, e, !c->shapes[c->prims[s->prim].shape].moved, mus, muk, thr, &dvx, &dvy, &sx, &sy, &dvn);
+        if (s->ccd) {
+            dvx -= sx;
+            dvy -= sy;
+        } else if (sx != 0.0 || sy != 0.0) {
+            unslide(w, c, a, h, s->nx, s->ny, 1.0, sx, sy);
+        }
+        tt__add_velocity(w, a, dvx, dvy);
+        if (events) {
+            uint32_t shape = c->prims[s->prim].shape;
+            tt__record_contact(w, c, tt__shape_key(shape, a), a, UINT32_MAX, shape, false, s->nx, s->ny, dvn / inv[a]);
+        }
+    }
+    if (w->integrator != TT_VERLET && c->sx0 && c->scap >= w->ppool.count) {
+        tt__copy(c->sx0, w->px, (size_t)w->ppool.count * sizeof *c->sx0);
+        tt__copy(c->sy0, w->py, (size_t)w->ppool.count * sizeof *c->sy0);
+        c->s_count = w->ppool.count;
+        c->s_epoch = w->epoch; /* after_step moves it past the step's own bump */
+    }
+}
