@@ -156,7 +156,7 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
 }
 
 #ifdef TT_SIMD_X86
-/* One batch in "pair form" (as constraints.c: a ymm holds (x, y) of lanes
+/* One batch in "pair form" (as distance_sweep.c: a ymm holds (x, y) of lanes
  * 0 and 2, or of 1 and 3). Returns false, touching nothing, when an active
  * lane has two particles on one centre: the scalar code takes that batch. */
 TT_AVX2 TT_INLINE bool batch(double *xy, const tt__batches *B, uint32_t k, __m256d *err)

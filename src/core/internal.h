@@ -174,7 +174,7 @@ double *tt__scratch(tt_world *w, int which);
 /* Springs. */
 void tt__springs_detach(tt_world *w, uint32_t particle);
 double tt__springs_energy(const tt_world *w);
-double tt__constraints_energy(const tt_world *w); /* constraints.c: Σ ½ C²/α over compliant constraints */
+double tt__constraints_energy(const tt_world *w); /* constraint_access.c: Σ ½ C²/α over compliant constraints */
 void tt__springs_free(tt_world *w);
 
 /* Solver (solver.c). */
@@ -207,7 +207,7 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
         w->py[i] += dy;
     }
 }
-/* Constraints (constraints.c): true when a constraint joining particle slots
+/* Constraints (constraint_pairs.c): true when a constraint joining particle slots
  * a and b says they must not collide (O(1); the collision stage asks). */
 bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
 /* Whether any constraint keeps its particles from colliding (else the test above is always false). */

@@ -1,4 +1,4 @@
-/* tether — what the SIMD sweeps share (constraints.c, contact_batch.c):
+/* tether — what the SIMD sweeps share (distance_sweep.c, contact_batch.c):
  * the runtime choice of vector width, and "rows": a packed copy of x, y and
  * inverse mass, one 32-byte row (x, y, w, w) per particle, so a particle is
  * one vector load and one store; or "xy rows", (x, y) alone in 16 bytes,
