@@ -54,6 +54,7 @@ typedef struct tt_distance_def {
     double compliance;      ///< XPBD compliance, m/N, ≥ 0; default 0 (rigid by stiffness)
     double break_strain;    ///< breaks when |xa − xb| > length·(1 + break_strain) after a substep; ≥ 0; default 0 = never
     bool collide;           ///< may a and b collide with each other? default false
+    double max_rate;        ///< winch: m/s a length change proceeds at, at most, ≥ 0; default 0 = no limit (see tt_constraint_set_max_rate)
 } tt_distance_def;
 
 /// A pin: the particle is pulled to `anchor`. Start from tt_pin_def_default().
@@ -63,6 +64,7 @@ typedef struct tt_pin_def {
     tt_vec2 anchor;         ///< m, used when anchor_here is false; default (0, 0)
     double stiffness;       ///< [0, 1]; default 1
     double compliance;      ///< m/N, ≥ 0; default 0
+    double max_rate;        ///< m/s the anchor travels at, at most, ≥ 0; default 0 = no limit (see tt_constraint_set_max_rate)
 } tt_pin_def;
 
 /// Bounds: each particle's disc (its radius) kept inside, or outside, the box
@@ -145,12 +147,27 @@ TT_API tt_result tt_constraint_get_particles(const tt_world *w, tt_constraint c,
 TT_API tt_result tt_constraint_set_stiffness(tt_world *w, tt_constraint c, double stiffness);
 /// ≥ 0 (0 = use stiffness); not for bounds.
 TT_API tt_result tt_constraint_set_compliance(tt_world *w, tt_constraint c, double compliance);
-/// Distance constraints: rest length, m, ≥ 0.
+/// Distance constraints: rest length, m, ≥ 0. A new length is not a jump:
+/// the length the solver uses goes linearly from the old one to the new one
+/// across the substeps of the next step (substep s of S: old + (new − old)·(s+1)/S,
+/// exactly the new one in the last), so reeling a rope in at v m/s moves its
+/// load at v m/s in every substep, whatever the substep count. With a
+/// max_rate the change takes as many steps as that rate needs. The getter
+/// returns the length set, at once.
 TT_API tt_result tt_distance_set_length(tt_world *w, tt_constraint c, double length);
 TT_API tt_result tt_distance_get_length(const tt_world *w, tt_constraint c, double *out);
-/// Pins: move the anchor (drag with the mouse), m.
+/// Pins: move the anchor (drag with the mouse), m. Like a distance's length,
+/// the anchor travels there across the substeps of the next step (or at
+/// max_rate); the getter returns the anchor set, at once.
 TT_API tt_result tt_pin_set_anchor(tt_world *w, tt_constraint c, tt_vec2 anchor);
 TT_API tt_result tt_pin_get_anchor(const tt_world *w, tt_constraint c, tt_vec2 *out);
+/// A winch: distance constraints and pins only. A change of length
+/// (tt_distance_set_length) or anchor (tt_pin_set_anchor) then proceeds at
+/// most `rate` m/s (of length, or of anchor travel), carried over as many
+/// steps as it needs; ≥ 0, default 0 = no limit (the whole change in the next
+/// step). A new rate applies from the next step, to a change under way too.
+TT_API tt_result tt_constraint_set_max_rate(tt_world *w, tt_constraint c, double rate);
+TT_API tt_result tt_constraint_get_max_rate(const tt_world *w, tt_constraint c, double *out);
 /// Bounds: move or resize the box, m (min < max).
 TT_API tt_result tt_bounds_set_box(tt_world *w, tt_constraint c, tt_vec2 min, tt_vec2 max);
 

@@ -190,11 +190,9 @@ tt_result tt_distance_set_length(tt_world *w, tt_constraint c, double length)
     if (!tt__in_range(length, 0.0, TT_MAX_VALUE))
         return tt__fail(w, TT_EINVAL, "%s: length must be in [0, %g], got %g", fn, TT_MAX_VALUE, length);
     tt__cgroup *g = (tt__cgroup *)cg;
-    uint32_t d = g->slots[c.index].dense;
-    g->dx[d].rest = length;
-    g->dist[d].lo = g->dx[d].mode == TT_DISTANCE_MAX ? 0.0 : length;
-    g->dist[d].hi = g->dx[d].mode == TT_DISTANCE_MIN ? INFINITY : length;
-    tt__distance_hot_sync(g, d);
+    const double to[2] = {length, 0.0};
+    if (!tt__target_move(g, c.index, to)) return tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
+    g->dx[g->slots[c.index].dense].rest = length; /* the solver's length follows in the next step (constraint_relax.c) */
     return TT_OK;
 }
 
@@ -216,9 +214,8 @@ tt_result tt_pin_set_anchor(tt_world *w, tt_constraint c, tt_vec2 anchor)
     tt_result r = kind_check(w, c, TT_CONSTRAINT_PIN, fn, &g);
     if (r != TT_OK) return r;
     if (!tt__vec_ok(anchor)) return tt__fail(w, TT_EINVAL, "%s: anchor must be finite, |x| <= %g", fn, TT_MAX_VALUE);
-    tt__gcon *p = &((tt__cgroup *)g)->gen[g->slots[c.index].dense];
-    p->v[0] = anchor.x;
-    p->v[1] = anchor.y;
+    const double to[2] = {anchor.x, anchor.y};
+    if (!tt__target_move((tt__cgroup *)g, c.index, to)) return tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
     return TT_OK;
 }
 
@@ -229,8 +226,45 @@ tt_result tt_pin_get_anchor(const tt_world *w, tt_constraint c, tt_vec2 *out)
     tt_result r = kind_check(w, c, TT_CONSTRAINT_PIN, fn, &g);
     if (r != TT_OK) return r;
     if (!out) return tt__fail(w, TT_EINVAL, "%s: out is NULL", fn);
+    uint32_t k = g->slots[c.index].mover;
     const tt__gcon *p = &g->gen[g->slots[c.index].dense];
-    *out = (tt_vec2){p->v[0], p->v[1]};
+    /* the anchor set, not the one the solver is on its way through */
+    *out = k ? (tt_vec2){g->moving[k - 1].to[0], g->moving[k - 1].to[1]} : (tt_vec2){p->v[0], p->v[1]};
+    return TT_OK;
+}
+
+/* Distance constraints and pins: the field that holds the rate; NULL (and the error set) for other kinds. */
+static double *rate_of(const tt_world *w, const tt__cgroup *g, tt_constraint c, const char *fn)
+{
+    const tt__cslot *s = &g->slots[c.index];
+    if (s->kind == TT_CONSTRAINT_DISTANCE || s->kind == TT_CONSTRAINT_PIN) return &((tt__cgroup *)g)->slots[c.index].max_rate;
+    tt__fail(w, TT_EINVAL, "%s: max_rate is for distance constraints and pins", fn);
+    return NULL;
+}
+
+tt_result tt_constraint_set_max_rate(tt_world *w, tt_constraint c, double rate)
+{
+    const char *fn = "tt_constraint_set_max_rate";
+    const tt__cgroup *g;
+    tt_result r = con_check(w, c, fn, &g);
+    if (r != TT_OK) return r;
+    if ((r = tt__constraint_check_rate(w, rate, fn)) != TT_OK) return r;
+    double *field = rate_of(w, g, c, fn);
+    if (!field) return TT_EINVAL;
+    *field = rate;
+    return TT_OK;
+}
+
+tt_result tt_constraint_get_max_rate(const tt_world *w, tt_constraint c, double *out)
+{
+    const char *fn = "tt_constraint_get_max_rate";
+    const tt__cgroup *g;
+    tt_result r = con_check(w, c, fn, &g);
+    if (r != TT_OK) return r;
+    if (!out) return tt__fail(w, TT_EINVAL, "%s: out is NULL", fn);
+    const double *field = rate_of(w, g, c, fn);
+    if (!field) return TT_EINVAL;
+    *out = *field;
     return TT_OK;
 }
 

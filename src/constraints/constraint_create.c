@@ -116,6 +116,7 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
         tt__fail(w, TT_EINVAL, "%s: break_strain must be in [0, %g] (0 = never), got %g", fn, TT_MAX_VALUE, d->break_strain);
         return NONE;
     }
+    if (tt__constraint_check_rate(w, d->max_rate, fn) != TT_OK) return NONE;
     const bool had = tt__cgroup_peek(w) != NULL; /* a group made here goes again if this fails */
     tt__cgroup *g = tt__cgroup_get(w, true);
     if (!g || !tt__cgroup_refs_reserve(w, g) ||
@@ -137,6 +138,7 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     c->k = d->stiffness;
     c->alpha = d->compliance;
     g->dx[g->ndist] = (tt__dist_x){0.0, len, d->break_strain, slot, (uint8_t)d->mode, d->collide};
+    g->slots[slot].max_rate = d->max_rate;
     g->ndist++;
     g->plan_ok = false;
     g->refs[c->a]++;
@@ -182,6 +184,7 @@ tt_constraint tt_pin_create(tt_world *w, const tt_pin_def *d)
         return NONE;
     }
     if (check_soft(w, d->stiffness, d->compliance, fn) != TT_OK) return NONE;
+    if (tt__constraint_check_rate(w, d->max_rate, fn) != TT_OK) return NONE;
     tt_constraint h;
     tt__gcon *c = gen_new(w, TT_CONSTRAINT_PIN, &h, fn);
     if (!c) return NONE;
@@ -192,8 +195,17 @@ tt_constraint tt_pin_create(tt_world *w, const tt_pin_def *d)
     c->alpha = d->compliance;
     c->v[0] = d->anchor_here ? w->px[i] : d->anchor.x;
     c->v[1] = d->anchor_here ? w->py[i] : d->anchor.y;
-    tt__cgroup_gen_refs(tt__cgroup_get(w, false), c, +1);
+    tt__cgroup *g = tt__cgroup_get(w, false);
+    g->slots[c->slot].max_rate = d->max_rate;
+    tt__cgroup_gen_refs(g, c, +1);
     return h;
+}
+
+tt_result tt__constraint_check_rate(const tt_world *w, double rate, const char *fn)
+{
+    if (!tt__in_range(rate, 0.0, TT_MAX_VALUE))
+        return tt__fail(w, TT_EINVAL, "%s: max_rate must be in [0, %g] m/s (0 = no limit), got %g", fn, TT_MAX_VALUE, rate);
+    return TT_OK;
 }
 
 tt_result tt__constraint_check_box(const tt_world *w, tt_vec2 lo, tt_vec2 hi, const char *fn)

@@ -13,6 +13,8 @@ uint64_t tt__cgroup_hash(const tt_world *w, const void *self, uint64_t h)
         h = tt__fnv(h, &g->dx[i].slot, sizeof(uint32_t));
         h = tt__fnv(h, &g->dx[i].break_strain, sizeof(double));
         h = tt__fnv(h, &g->dx[i].collide, sizeof(bool));
+        const double rate = g->slots[g->dx[i].slot].max_rate;
+        if (rate > 0) h = tt__fnv(h, &rate, sizeof rate); /* unset: the hash of before max_rate */
     }
     h = tt__fnv(h, &g->ngen, sizeof g->ngen);
     for (uint32_t i = 0; i < g->ngen; i++) {
@@ -27,6 +29,7 @@ uint64_t tt__cgroup_hash(const tt_world *w, const void *self, uint64_t h)
         h = tt__fnv(h, c->v, sizeof c->v);
         h = tt__fnv(h, &c->friction, sizeof c->friction);
         h = tt__fnv(h, &c->outside, sizeof c->outside);
+        if (g->slots[c->slot].max_rate > 0) h = tt__fnv(h, &g->slots[c->slot].max_rate, sizeof(double));
     }
-    return tt__composites_hash(g, h);
+    return tt__composites_hash(g, tt__targets_hash(g, h));
 }

@@ -1,7 +1,7 @@
 /* tether — private storage of the constraints feature, and what its files
  * share: constraints.c (the group, slots, removal), constraint_pairs.c,
- * constraint_create.c, constraint_access.c, constraint_relax.c,
- * distance_sweep.c, constraint_breaks.c, constraint_hash.c; composites.c
+ * constraint_create.c, constraint_access.c, constraint_relax.c (with the
+ * targets the script moves), distance_sweep.c, constraint_breaks.c, constraint_hash.c; composites.c
  * (handles, queries), composite_builder.c, composite_kinds.c. */
 #ifndef TETHER_CONSTRAINT_INTERNAL_H
 #define TETHER_CONSTRAINT_INTERNAL_H
@@ -45,7 +45,21 @@ typedef struct tt__gcon {
 typedef struct tt__cslot {
     uint8_t kind;      /* 0: free */
     uint32_t dense;    /* index into dist or gen */
+    uint32_t mover;    /* 1 + its index in the group's moving list; 0: its target is where the script put it */
+    double max_rate;   /* distance, pin: m/s a length or anchor change proceeds at; 0 = no limit. Here, not in
+                        * dist_x or gcon, which the sweeps stride through, so nothing they read grows */
 } tt__cslot;
+
+/* A constraint whose target (a length, an anchor) the script moved and the
+ * solver has not reached yet: the effective target, which the sweeps use,
+ * goes from `at` to `end` across the substeps of the next step, so the
+ * particles it drives move smoothly instead of jumping in the first. */
+typedef struct tt__mover {
+    uint32_t slot;
+    double at[2];      /* the effective target when the coming step starts */
+    double to[2];      /* where the script put it (what the getters return) */
+    double end[2];     /* where this step ends: `to`, or as far toward it as max_rate allows */
+} tt__mover;
 
 typedef struct tt__composite {
     bool alive;
@@ -97,6 +111,9 @@ typedef struct tt__cgroup {
     uint32_t *refs;    /* per particle slot: how many constraint entries name it (0: removal skips the scan) */
     uint32_t refs_cap;
 
+    tt__mover *moving; /* only the constraints whose target moves: nothing else pays */
+    uint32_t nmoving, moving_cap;
+
     double *grad;      /* scratch gradients for area constraints */
     uint32_t grad_cap;
 
@@ -136,6 +153,7 @@ void tt__constraint_pair_remove(tt__cgroup *g, uint32_t a, uint32_t b);
 
 /* ---- checks the setters share with the creating calls (constraint_create.c) */
 tt_result tt__constraint_check_compliance(const tt_world *w, double alpha, const char *fn);
+tt_result tt__constraint_check_rate(const tt_world *w, double rate, const char *fn);
 tt_result tt__constraint_check_box(const tt_world *w, tt_vec2 lo, tt_vec2 hi, const char *fn);
 
 /* ---- geometry (constraint_relax.c, beside the sweeps that use it most) ----- */
@@ -164,6 +182,16 @@ bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
 void tt__distance_hot_sync(tt__cgroup *g, uint32_t i);
 double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h);
 double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, double h);
+
+/* ---- targets the script moves (constraint_relax.c) ----------------------- */
+/* Moves slot's target (a distance's length in to[0], a pin's anchor) to `to`
+ * over the next step(s); false on no memory (nothing changed). */
+bool tt__target_move(tt__cgroup *g, uint32_t slot, const double to[2]);
+/* Once per substep from begin: sets every moving target's effective value. */
+void tt__targets_substep(tt_world *w, tt__cgroup *g, double h);
+/* The slot's constraint goes: forget its move. */
+void tt__target_forget(tt__cgroup *g, uint32_t slot);
+uint64_t tt__targets_hash(const tt__cgroup *g, uint64_t h);
 
 /* ---- breaking (constraint_breaks.c) ---------------------------------------- */
 void tt__cgroup_break_links(tt_world *w, tt__cgroup *g);

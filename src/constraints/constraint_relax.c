@@ -3,7 +3,8 @@
  * works too: begin, one sweep over every kind (the distance links through
  * distance_sweep.c), and the end of the substep (bounds friction, then
  * breaking). The geometry the kinds are measured with is here as well, next
- * to its hottest users. */
+ * to its hottest users, and the targets the script moves, which begin
+ * advances each substep. */
 #include "constraint_internal.h"
 
 /* ---- geometry ------------------------------------------------------------- */
@@ -63,13 +64,131 @@ double tt__constraint_bounds_violation(const tt_world *w, const tt__gcon *c, uin
     return m;
 }
 
+/* ---- targets the script moves ---------------------------------------------
+ * A distance's length (reeling a rope) and a pin's anchor (dragging).
+ * Corrected all at once, a moved target is a jump the first substep pays
+ * alone: the particle moves S times too fast in it and stands still in the
+ * others, so at 8 substeps a rope reeled in at 1 m/s throws its load at
+ * 8 m/s. Instead the effective target goes linearly from where it was to
+ * where the script put it across the substeps of the next step, and with a
+ * max_rate (a winch) at most that far per second, over as many steps as it
+ * takes. Only the constraints in the moving list pay: a world where nothing
+ * moves runs as before, bit for bit. */
+
+/* The effective target the sweeps use now. */
+static void effective(const tt__cgroup *g, uint32_t slot, double out[2])
+{
+    const tt__cslot *s = &g->slots[slot];
+    if (s->kind == TT_CONSTRAINT_DISTANCE) {
+        const tt__dist *d = &g->dist[s->dense];
+        out[0] = g->dx[s->dense].mode == TT_DISTANCE_MIN ? d->lo : d->hi;
+        out[1] = 0.0;
+    } else {
+        out[0] = g->gen[s->dense].v[0];
+        out[1] = g->gen[s->dense].v[1];
+    }
+}
+
+static void set_effective(tt__cgroup *g, uint32_t slot, const double v[2])
+{
+    const tt__cslot *s = &g->slots[slot];
+    if (s->kind == TT_CONSTRAINT_DISTANCE) {
+        tt__dist *d = &g->dist[s->dense];
+        uint8_t mode = g->dx[s->dense].mode;
+        d->lo = mode == TT_DISTANCE_MAX ? 0.0 : v[0];
+        d->hi = mode == TT_DISTANCE_MIN ? INFINITY : v[0];
+        tt__distance_hot_sync(g, s->dense);
+    } else {
+        g->gen[s->dense].v[0] = v[0];
+        g->gen[s->dense].v[1] = v[1];
+    }
+}
+
+static void drop(tt__cgroup *g, uint32_t k)
+{
+    g->slots[g->moving[k].slot].mover = 0;
+    uint32_t last = --g->nmoving;
+    if (k != last) {
+        g->moving[k] = g->moving[last];
+        g->slots[g->moving[k].slot].mover = k + 1;
+    }
+}
+
+bool tt__target_move(tt__cgroup *g, uint32_t slot, const double to[2])
+{
+    uint32_t k = g->slots[slot].mover;
+    if (k) {
+        g->moving[k - 1].to[0] = to[0];
+        g->moving[k - 1].to[1] = to[1];
+        return true;
+    }
+    double now[2];
+    effective(g, slot, now);
+    if (now[0] == to[0] && now[1] == to[1]) return true; /* set where it is: nothing to move */
+    if (!tt__constraints_grow((void **)&g->moving, sizeof *g->moving, &g->moving_cap, g->nmoving + 1)) return false;
+    g->moving[g->nmoving] = (tt__mover){slot, {now[0], now[1]}, {to[0], to[1]}, {now[0], now[1]}};
+    g->slots[slot].mover = ++g->nmoving;
+    return true;
+}
+
+void tt__target_forget(tt__cgroup *g, uint32_t slot)
+{
+    if (g->slots[slot].mover) drop(g, g->slots[slot].mover - 1);
+}
+
+/* Where this step of dt ends: the target itself, assigned (not reached by
+ * adding, which would leave rounding), unless max_rate holds it back. */
+static void plan(const tt__cgroup *g, tt__mover *m, double dt)
+{
+    double rate = g->slots[m->slot].max_rate;
+    double dx = m->to[0] - m->at[0], dy = m->to[1] - m->at[1], far = hypot(dx, dy), reach = rate * dt;
+    if (rate == 0.0 || far <= reach) {
+        m->end[0] = m->to[0];
+        m->end[1] = m->to[1];
+    } else {
+        m->end[0] = m->at[0] + dx * (reach / far);
+        m->end[1] = m->at[1] + dy * (reach / far);
+    }
+}
+
+void tt__targets_substep(tt_world *w, tt__cgroup *g, double h)
+{
+    const uint32_t s = w->substep, n = w->substeps;
+    const bool last = s + 1 == n;
+    const double f = (double)(s + 1) / n;
+    for (uint32_t k = g->nmoving; k-- > 0;) { /* backwards: an arrived one is swapped out */
+        tt__mover *m = &g->moving[k];
+        if (s == 0) plan(g, m, h * n);
+        if (!last) {
+            double v[2] = {m->at[0] + (m->end[0] - m->at[0]) * f, m->at[1] + (m->end[1] - m->at[1]) * f};
+            set_effective(g, m->slot, v);
+            continue;
+        }
+        set_effective(g, m->slot, m->end); /* exactly the end: the substeps' fractions do not add up to it */
+        m->at[0] = m->end[0];
+        m->at[1] = m->end[1];
+        if (m->end[0] == m->to[0] && m->end[1] == m->to[1]) drop(g, k);
+    }
+}
+
+uint64_t tt__targets_hash(const tt__cgroup *g, uint64_t h)
+{
+    /* hashed only while something moves, so worlds that never move a target keep their hashes */
+    for (uint32_t k = 0; k < g->nmoving; k++) {
+        const tt__mover *m = &g->moving[k];
+        h = tt__fnv(h, &m->slot, sizeof m->slot);
+        h = tt__fnv(h, m->at, sizeof m->at);
+        h = tt__fnv(h, m->to, sizeof m->to);
+    }
+    return h;
+}
+
 /* ---- the relaxation group -------------------------------------------------- */
 
 void tt__cgroup_begin(tt_world *w, void *self, double h)
 {
-    (void)w;
-    (void)h;
     tt__cgroup *g = self;
+    if (g->nmoving) tt__targets_substep(w, g, h);
     if (g->nxpbd)
         for (uint32_t i = 0; i < g->ndist; i++) g->dx[i].lambda = 0.0;
     for (uint32_t i = 0; i < g->ngen; i++) g->gen[i].lambda = 0.0;

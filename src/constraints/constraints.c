@@ -74,7 +74,7 @@ bool tt__cgroup_slot_new(tt__cgroup *g, uint8_t kind, uint32_t dense, uint32_t *
     bool grew;
     uint32_t s = tt_pool_alloc(&g->pool, UINT32_MAX - 1, &grew);
     if (s == UINT32_MAX) return false;
-    g->slots[s] = (tt__cslot){kind, dense};
+    g->slots[s] = (tt__cslot){kind, dense, 0, 0.0};
     g->alive++;
     *out = s;
     return true;
@@ -110,6 +110,7 @@ void tt__cgroup_dist_remove(tt__cgroup *g, uint32_t d)
     g->refs[c->b]--;
     if (x->break_strain > 0) g->nbreakable--;
     if (c->alpha > 0) g->nxpbd--;
+    tt__target_forget(g, x->slot);
     g->slots[x->slot].kind = 0;
     tt_pool_free(&g->pool, x->slot);
     g->alive--;
@@ -127,6 +128,7 @@ static void gen_remove(tt__cgroup *g, uint32_t d)
     tt__gcon *c = &g->gen[d];
     tt__cgroup_gen_refs(g, c, -1);
     free(c->list);
+    tt__target_forget(g, c->slot);
     g->slots[c->slot].kind = 0;
     tt_pool_free(&g->pool, c->slot);
     g->alive--;
@@ -188,6 +190,7 @@ static size_t group_memory(const tt_world *w, const void *self)
     b += (size_t)g->grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
     b += ((size_t)g->plan_cap + g->stamp_cap) * sizeof(uint32_t) + (size_t)g->pk_cap * 4 * sizeof(double);
     b += (size_t)g->hot_cap * (4 * sizeof(double) + 2 * sizeof(uint32_t));
+    b += (size_t)g->moving_cap * sizeof(tt__mover);
     return b + tt__composites_memory(g);
 }
 
@@ -205,6 +208,7 @@ static void group_destroy(tt_world *w, void *self)
     free(g->ev_new);
     free(g->ev_pub);
     free(g->grad);
+    free(g->moving);
     free(g->refs);
     free(g->plan);
     free(g->stamp);

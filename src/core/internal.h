@@ -101,6 +101,7 @@ struct tt_world {
 
     /* relaxation solver (solver.c) */
     uint32_t substeps, iterations;
+    uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
     double tolerance;
     tt_solver_order order;
     tt__group groups[TT_MAX_GROUPS];

@@ -157,6 +157,7 @@ tt_result tt_world_step(tt_world *w, double dt)
 
     const double h = dt / w->substeps;
     for (uint32_t s = 0; s < w->substeps; s++) {
+        w->substep = s;
         tt__integrate(w, h); /* forces are evaluated inside, as often as the integrator needs */
         w->dt_prev = h;      /* from here on x − x_old spans h: velocity reads inside the solve are exact */
         tt__solve(w, h);     /* detect → relax → velocity pass; nothing when no group is registered */

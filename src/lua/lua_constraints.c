@@ -77,9 +77,9 @@ static void soft_opts(lua_State *L, int arg, double *k, double *alpha)
 
 /* --- constraints ------------------------------------------------------------- */
 
-static const char *const distance_opts[] = {"length", "mode", "stiffness", "compliance", "break_strain", "collide", NULL};
+static const char *const distance_opts[] = {"length", "mode", "stiffness", "compliance", "break_strain", "collide", "max_rate", NULL};
 
-/* w:distance(a, b [, {length, mode, stiffness, compliance, break_strain, collide}]) → constraint */
+/* w:distance(a, b [, {length, mode, stiffness, compliance, break_strain, collide, max_rate}]) → constraint */
 static int c_distance(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -94,13 +94,14 @@ static int c_distance(lua_State *L)
     soft_opts(L, 4, &d.stiffness, &d.compliance);
     d.break_strain = tl_optfield_number(L, 4, "break_strain", &TL_R_NONNEG, 0.0);
     d.collide = tl_optfield_boolean(L, 4, "collide", false);
+    d.max_rate = tl_optfield_number(L, 4, "max_rate", &TL_R_NONNEG, 0.0);
     push_constraint(L, w, tt_distance_create(w, &d));
     return 1;
 }
 
-static const char *const pin_opts[] = {"anchor", "stiffness", "compliance", NULL};
+static const char *const pin_opts[] = {"anchor", "stiffness", "compliance", "max_rate", NULL};
 
-/* w:pin(p [, {anchor = {x, y}, stiffness, compliance}]) → constraint */
+/* w:pin(p [, {anchor = {x, y}, stiffness, compliance, max_rate}]) → constraint */
 static int c_pin(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -114,6 +115,7 @@ static int c_pin(lua_State *L)
         d.anchor = tl_optfield_vec2(L, 3, "anchor", &TL_R_COORD, d.anchor);
     }
     soft_opts(L, 3, &d.stiffness, &d.compliance);
+    d.max_rate = tl_optfield_number(L, 3, "max_rate", &TL_R_NONNEG, 0.0);
     push_constraint(L, w, tt_pin_create(w, &d));
     return 1;
 }
@@ -258,9 +260,9 @@ static int c_constraint_particles(lua_State *L)
     return 1;
 }
 
-static const char *const set_opts[] = {"stiffness", "compliance", "length", "anchor", "box", NULL};
+static const char *const set_opts[] = {"stiffness", "compliance", "length", "anchor", "box", "max_rate", NULL};
 
-/* w:set_constraint(c, {stiffness, compliance, length, anchor = {x, y}, box = {xmin, ymin, xmax, ymax}})
+/* w:set_constraint(c, {stiffness, compliance, length, anchor = {x, y}, box = {xmin, ymin, xmax, ymax}, max_rate})
  * — every field is checked (value and kind) before anything changes. */
 static int c_set_constraint(lua_State *L)
 {
@@ -273,6 +275,7 @@ static int c_set_constraint(lua_State *L)
     tt_constraint_get_kind(w, c, &kind);
     double k = tl_optfield_number(L, 3, "stiffness", &R_UNIT, -1), a = tl_optfield_number(L, 3, "compliance", &TL_R_NONNEG, -1);
     double len = tl_optfield_number(L, 3, "length", &TL_R_NONNEG, -1);
+    double rate = tl_optfield_number(L, 3, "max_rate", &TL_R_NONNEG, -1);
     bool has_anchor = tl_getopt(L, 3, "anchor");
     if (has_anchor) lua_pop(L, 1);
     tt_vec2 anchor = tl_optfield_vec2(L, 3, "anchor", &TL_R_COORD, (tt_vec2){0, 0});
@@ -294,6 +297,9 @@ static int c_set_constraint(lua_State *L)
     if (len >= 0 && kind != TT_CONSTRAINT_DISTANCE) tl_error(L, "'length' is for distance constraints");
     if (has_anchor && kind != TT_CONSTRAINT_PIN) tl_error(L, "'anchor' is for pins");
     if (has_box && kind != TT_CONSTRAINT_BOUNDS) tl_error(L, "'box' is for bounds");
+    if (rate >= 0 && kind != TT_CONSTRAINT_DISTANCE && kind != TT_CONSTRAINT_PIN)
+        tl_error(L, "'max_rate' is for distance constraints and pins");
+    if (rate >= 0) tl_check_result(L, w, tt_constraint_set_max_rate(w, c, rate));
     if (k >= 0) tl_check_result(L, w, tt_constraint_set_stiffness(w, c, k));
     if (a >= 0) tl_check_result(L, w, tt_constraint_set_compliance(w, c, a));
     if (len >= 0) tl_check_result(L, w, tt_distance_set_length(w, c, len));

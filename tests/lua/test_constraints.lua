@@ -165,4 +165,39 @@ T.test("the same torn cloth twice gives the same hash", function()
   T.eq(hashes[1], hashes[2], "deterministic")
 end)
 
+T.test("a rope reeled in moves its load at the reel speed; max_rate makes a winch", function()
+  for _, n in ipairs { 1, 4, 8 } do
+    local w = tether.world { substeps = n }
+    local top = w:particle(0, 0, { pinned = true })
+    local bob = w:particle(0, -5)
+    local c = w:distance(top, bob, { mode = "max" })
+    local len = 5
+    for _ = 1, 30 do -- reeled in at 1 m/s: 1 m/s after every step, whatever the substeps
+      len = len - 1 / 60
+      w:set_constraint(c, { length = len })
+      w:step(1 / 60)
+      local vx, vy = w:velocity(bob)
+      T.near(math.sqrt(vx * vx + vy * vy), 1, 0.02, n .. " substeps: reel speed")
+    end
+    -- a winch: 2 m shorter at once, at most 1 m/s: 2 s (120 steps ± 1), never faster
+    w:set_constraint(c, { length = len - 2, max_rate = 1 })
+    T.eq(w:rest_length(c), len - 2, "the length set, at once")
+    local steps, fastest = nil, 0
+    for s = 1, 150 do
+      w:step(1 / 60)
+      local vx, vy = w:velocity(bob)
+      fastest = math.max(fastest, math.sqrt(vx * vx + vy * vy))
+      local x, y = w:position(bob)
+      if not steps and math.sqrt(x * x + y * y) <= len - 2 + 1e-9 then steps = s end
+    end
+    T.ok(steps and steps >= 119 and steps <= 121, n .. " substeps: 2 m at 1 m/s in 2 s, took " .. tostring(steps))
+    T.ok(fastest <= 1.02, n .. " substeps: never faster than the winch, got " .. fastest)
+  end
+  local w = tether.world()
+  local b = w:bounds(-1, -1, 1, 1)
+  T.checkerror("set_constraint: 'max_rate' is for distance constraints and pins", w.set_constraint, w, b, { max_rate = 1 })
+  local p = w:pin(w:particle(0, 0), { max_rate = 2 })
+  T.checkerror("max_rate", w.set_constraint, w, p, { max_rate = -1 })
+end)
+
 T.done()
