@@ -66,6 +66,28 @@ end
 ]], seed))
 local names = {}
 local calls = 0
+local learn
+
+-- What each argument of each function wants, learnt from the errors it
+-- raises ("bad argument #3 to 'particle' (number expected, got table)"), so
+-- later calls get past the checks more often and reach deeper: into the
+-- option tables (where the hostile reads wait), the steps and the events.
+local wants = {}
+local KINDS = { { "tether.world", "world" }, { "tether.image", "image" }, { "handle", "handle" },
+                { "integer", "integer" }, { "number", "number" }, { "table", "table" },
+                { "string", "string" }, { "boolean", "boolean" } }
+learn = function(name, msg)
+  if type(msg) ~= "string" then return end
+  local i, what = msg:match("bad argument #(%d+) to '[^']*' %(([^)]*) expected")
+  if not i then return end
+  for _, k in ipairs(KINDS) do
+    if what:find(k[1], 1, true) then
+      wants[name] = wants[name] or {}
+      wants[name][tonumber(i)] = k[2]
+      return
+    end
+  end
+end
 local phase = "U(0, function() "
 -- Writes the call's replay line (flushed: a crash leaves it) and makes it.
 local function emit(name, n, args, srcs)
@@ -74,9 +96,9 @@ local function emit(name, n, args, srcs)
   replay:write(string.format("%sF.call(%q%s%s) end) -- %d\n", phase, name, n > 0 and ", " or "",
                              table.concat(srcs, ", ", 1, n), calls))
   replay:flush()
-  if not keep_going then return F.call(name, table.unpack(args, 1, n)) end
+  if not keep_going then return learn(name, F.call(name, table.unpack(args, 1, n))) end
   local ok, msg = pcall(F.call, name, table.unpack(args, 1, n))
-  if not ok then
+  if ok then learn(name, msg) else
     local kind = tostring(msg):gsub("[%d%.e+-]+", "#"):sub(1, 160)
     if not found[kind] then
       found[kind] = calls
@@ -184,13 +206,37 @@ function value(depth)
 end
 
 -- One random call of a function under prefix; self is usually right.
+local function wanted(kind)
+  if kind == "number" then local v = number(); return v, num_src(v)
+  elseif kind == "integer" then local v = rand(8) - 1; return v, tostring(v)
+  elseif kind == "handle" then return handle()
+  elseif kind == "world" then return world_src()
+  elseif kind == "image" and #F.IMG > 0 then local i = rand(#F.IMG); return F.IMG[i], "IMG[" .. i .. "]"
+  elseif kind == "table" and rand(3) == 1 then -- an option table whose reads act on a world
+    local w, ws = world_src()
+    local what = pick(ACTIONS)
+    local v, vs = value(1)
+    return F.hostile_index(w, what, v), string.format("F.hostile_index(%s, %q, %s)", ws, what, vs)
+  elseif kind == "table" then return plain_table(1)
+  elseif kind == "string" then local v = pick(STRINGS); return v, string.format("%q", v)
+  elseif kind == "boolean" then local b = rand(2) == 1; return b, tostring(b)
+  end
+  return value()
+end
+
 local function one_call(prefix, self, self_src)
   local list = names[prefix]
   local name = pick(list)
   local args, srcs = {}, {}
   local n = rand(7) - 1
   if self ~= nil and rand(12) > 1 then args[1], srcs[1] = self, self_src; n = n + 1 end
-  for i = #args + 1, n do args[i], srcs[i] = value() end
+  local want = wants[name] or {}
+  local most = 0
+  for i in pairs(want) do if i > most then most = i end end
+  if most > n and rand(4) > 1 then n = most + rand(2) - 1 end
+  for i = #args + 1, n do
+    if want[i] and rand(4) > 1 then args[i], srcs[i] = wanted(want[i]) else args[i], srcs[i] = value() end
+  end
   emit(name, n, args, srcs)
 end
 

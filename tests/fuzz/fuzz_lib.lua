@@ -112,7 +112,7 @@ function F.call(name, ...)
       if ok and now ~= h then changed = changed or i end
     end
     if changed and F.callbacks == cb then F.fail("%s failed (%s) yet world %d changed", name, msg, changed) end
-    return
+    return msg
   end
   -- a table the caller passed in comes back refilled ("a given table is
   -- reused"): what the call did not write there is the caller's own
