@@ -43,11 +43,13 @@ static int w_particle(lua_State *L)
     def.pinned = tl_optfield_boolean(L, 4, "pinned", def.pinned);
     def.category = (uint16_t)tl_optfield_integer(L, 4, "category", 0, 0xFFFF, def.category);
     def.mask = (uint16_t)tl_optfield_integer(L, 4, "mask", 0, 0xFFFF, def.mask);
+    /* read before the particle is made: a read that raises must leave no particle behind */
+    bool has_user = tl_getopt(L, 4, "user");
 
     p = tt_particle_create(w, &def);
     if (p.gen == 0)
         tl_check_result(L, w, TT_ENOMEM);
-    if (tl_getopt(L, 4, "user")) {
+    if (has_user) {
         push_users(L);
         lua_insert(L, -2);
         lua_rawseti(L, -2, (lua_Integer)tt_particle_to_u64(p));

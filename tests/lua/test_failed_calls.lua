@@ -117,4 +117,10 @@ T.test("constraints, springs and settings that raise change nothing", function()
   fails_cleanly("set_collision", function(w) w:set_collision { friction = 0.2, events = { "begin", "never" } } end)
 end)
 
+T.test("an option that raises when read leaves no particle behind", function()
+  -- the 'user' option was read after the particle was made
+  local raising = setmetatable({}, { __index = function(_, k) if k == "user" then error("no user today") end end })
+  fails_cleanly("particle with a raising option", function(w) w:particle(0, 0, raising) end)
+end)
+
 T.done()
