@@ -682,7 +682,7 @@ function tether.gfx.layer(name) end
 ---Sets the camera (world point at the centre, zoom in px per world unit); without arguments returns it.
 ---@param x? number
 ---@param y? number
----@param zoom? number in (0, 1e9]
+---@param zoom? number in [1e-9, 1e9] px per world unit
 ---@return number? x, number? y, number? zoom
 function tether.gfx.camera(x, y, zoom) end
 

@@ -69,7 +69,7 @@ TT_API void tt_canvas_size(const tt_canvas *c, int *width, int *height);
 /// Starts a frame: empties every batch and sets the background colour. Keeps camera, colour, layer, line width.
 TT_API void tt_canvas_clear(tt_canvas *c, tt_color background);
 /// Camera: the world point at the centre of the canvas, and the zoom in
-/// pixels per world unit (> 0, ≤ 1e9). Default centre (0, 0), zoom 30.
+/// pixels per world unit (1e-9 … 1e9). Default centre (0, 0), zoom 30.
 TT_API tt_result tt_canvas_set_camera(tt_canvas *c, tt_vec2 center, double zoom);
 TT_API void tt_canvas_get_camera(const tt_canvas *c, tt_vec2 *center, double *zoom);
 /// Sets the camera so the world rectangle [lo, hi] fits inside the canvas with `margin_px` around it.

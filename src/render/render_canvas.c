@@ -111,7 +111,8 @@ tt_result tt_canvas_set_camera(tt_canvas *c, tt_vec2 center, double zoom)
 {
     if (!c) return TT_EINVAL;
     if (!vok(center)) return fail(c, TT_EINVAL, "tt_canvas_set_camera: centre must be finite, |x| <= %g", TT_MAX_VALUE);
-    if (!(zoom > 0.0 && zoom <= 1e9)) return fail(c, TT_EINVAL, "tt_canvas_set_camera: zoom must be in (0, 1e9] px per unit, got %g", zoom);
+    /* a floor as well as a ceiling: pixel ↔ world conversions of any legal value stay finite */
+    if (!(zoom >= 1e-9 && zoom <= 1e9)) return fail(c, TT_EINVAL, "tt_canvas_set_camera: zoom must be in [1e-09, 1e+09] px per unit, got %g", zoom);
     c->center = center;
     c->zoom = zoom;
     return TT_OK;
@@ -133,6 +134,7 @@ tt_result tt_canvas_fit(tt_canvas *c, tt_vec2 lo, tt_vec2 hi, double margin_px)
     double zx = (c->width - 2 * margin_px) / (hi.x - lo.x), zy = (c->height - 2 * margin_px) / (hi.y - lo.y);
     double z = zx < zy ? zx : zy;
     if (z > 1e9) z = 1e9;
+    if (z < 1e-9) z = 1e-9;
     return tt_canvas_set_camera(c, (tt_vec2){0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)}, z);
 }
 

@@ -78,6 +78,29 @@ TEST(canvas_refuses_bad_input_with_a_message)
     tt_canvas_destroy(c);
 }
 
+/* Found by the fuzzer: a denormal zoom was accepted, and g.to_world
+ * divided a pixel by it into -Inf. The smallest zoom is 1e-9 px per unit,
+ * so every conversion of a legal coordinate stays finite, and fit clamps to it. */
+TEST(canvas_zoom_has_a_floor_and_conversions_stay_finite)
+{
+    tt_canvas *c = tt_canvas_create(64, 64);
+    ENSURE(c != NULL);
+    ENSURE(tt_canvas_set_camera(c, (tt_vec2){0, 0}, 5e-324) == TT_EINVAL);
+    ENSURE(tt_canvas_set_camera(c, (tt_vec2){0, 0}, 0.5e-9) == TT_EINVAL);
+    ENSURE_OK(tt_canvas_set_camera(c, (tt_vec2){-TT_MAX_VALUE, TT_MAX_VALUE}, 1e-9));
+    tt_vec2 w = tt_canvas_to_world(c, (tt_vec2){-TT_MAX_VALUE, TT_MAX_VALUE});
+    ENSURE(isfinite(w.x) && isfinite(w.y));
+    ENSURE_OK(tt_canvas_set_camera(c, (tt_vec2){-TT_MAX_VALUE, TT_MAX_VALUE}, 1e9));
+    tt_vec2 px = tt_canvas_to_pixels(c, (tt_vec2){TT_MAX_VALUE, -TT_MAX_VALUE});
+    ENSURE(isfinite(px.x) && isfinite(px.y));
+    /* a huge rectangle in a sliver of frame: the zoom stops at the floor */
+    ENSURE_OK(tt_canvas_fit(c, (tt_vec2){-TT_MAX_VALUE, -TT_MAX_VALUE}, (tt_vec2){TT_MAX_VALUE, TT_MAX_VALUE}, 31.9999));
+    double z;
+    tt_canvas_get_camera(c, NULL, &z);
+    ENSURE(z == 1e-9);
+    tt_canvas_destroy(c);
+}
+
 TEST(canvas_batches_by_kind)
 {
     tt_canvas *c = tt_canvas_create(64, 64);
