@@ -39,8 +39,8 @@ PC_LIBS   = $(shell pkg-config --libs $(1) 2>/dev/null)
 lazy = $(eval $(1) := $(2))$($(1))
 LUA_CFLAGS = $(call lazy,LUA_CFLAGS,$(call PC_CFLAGS,lua5.4))
 LUA_LIBS   = $(call lazy,LUA_LIBS,$(call PC_LIBS,lua5.4))
-BOX2D_CFLAGS = $(call lazy,BOX2D_CFLAGS,$(BOX2D_CFLAGS))
-BOX2D_LIBS   = $(call lazy,BOX2D_LIBS,$(BOX2D_LIBS))
+BOX2D_CFLAGS = $(call lazy,BOX2D_CFLAGS,$(call PC_CFLAGS,box2d))
+BOX2D_LIBS   = $(call lazy,BOX2D_LIBS,$(call PC_LIBS,box2d))
 
 # Sources by part (one folder each under src/, see README "Layout"). The
 # engine is core + constraints + collide; the Lua module adds lua/ and the
