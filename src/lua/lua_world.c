@@ -31,11 +31,20 @@ _Static_assert(TT_INTEGRATOR_COUNT == 5, "tl_integrator_names lists every tt_int
 /* --- checkers --------------------------------------------------------------- */
 
 /* The one checker of the class: a live world at arg. */
+/* Raises "tether.world expected"; a method (its name has no module prefix)
+ * called as w.step(dt) gets dt as its world, so it adds the likely cause. */
+static int not_a_world(lua_State *L, int arg)
+{
+    if (arg != 1 || strchr(tl_fname(L), '.')) return tl_typeerror(L, arg, TL_WORLD_CLASS);
+    const char *got = tl_pushtypename(L, arg);
+    return tl_argerror(L, arg, "%s expected, got %s; did you call it with '.' instead of ':'?", TL_WORLD_CLASS, got);
+}
+
 tt_world *tl_check_world(lua_State *L, int arg)
 {
     tl_world_ud *u = luaL_testudata(L, arg, TL_WORLD_CLASS);
     if (u == NULL)
-        tl_typeerror(L, arg, TL_WORLD_CLASS);
+        not_a_world(L, arg);
     if (u->dead)
         tl_argerror(L, arg, "attempt to use a destroyed world");
     return u->w;
@@ -161,7 +170,7 @@ static int w_destroy(lua_State *L)
 {
     tl_world_ud *u = luaL_testudata(L, 1, TL_WORLD_CLASS);
     if (u == NULL)
-        tl_typeerror(L, 1, TL_WORLD_CLASS);
+        not_a_world(L, 1);
     u->dead = true;
     if (u->pins == 0)
         release(L, 1);

@@ -480,10 +480,18 @@ T.test("wrong self for every method", function()
                          { other, "not.a.world" }, { fn, "function" } } do
       local args, n = good_args(spec)
       expect_fail(name .. " self = " .. show(s[1]),
-        { ("bad argument #1 to '%s' (tether.world expected, got %s)"):format(name, s[2]) },
+        { ("bad argument #1 to '%s' (tether.world expected, got %s; did you call it with '.' instead of ':'?)"):format(name, s[2]) },
         W[name], s[1] ~= NIL and s[1] or nil, unpack_args(args, n))
     end
   end
+end)
+
+T.test("a method called with '.' says so", function()
+  local w = tether.world()
+  T.checkerror_plain("bad argument #1 to 'step' (tether.world expected, got number; did you call it with '.' instead of ':'?)",
+    w.step, 1 / 60)
+  T.checkerror_plain("bad argument #1 to 'particle' (tether.world expected, got number; did you call it with '.' instead of ':'?)",
+    w.particle, 0, 0)
 end)
 
 T.test("a destroyed world refuses every method but destroy", function()
