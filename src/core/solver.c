@@ -110,12 +110,26 @@ static inline int64_t bits_of(double d)
     return b;
 }
 
+/* The limit on the velocity state: Verlet's |x − x_old| is |v|·h. */
+static inline double velocity_limit(const tt_world *w, double h)
+{
+    return w->integrator == TT_VERLET ? TT_DIVERGED * h : TT_DIVERGED;
+}
+
+/* Particle i, one at a time: the scan's tail and the stopping pass. */
+static inline bool past_guard(const tt_world *w, uint32_t i, bool verlet, double vmax)
+{
+    double x = w->px[i], y = w->py[i];
+    double vx = verlet ? x - w->qx[i] : w->qx[i], vy = verlet ? y - w->qy[i] : w->qy[i];
+    return !(fabs(x) <= TT_DIVERGED && fabs(y) <= TT_DIVERGED && fabs(vx) <= vmax && fabs(vy) <= vmax);
+}
+
 static bool any_past_guard(const tt_world *w, double h)
 {
     const uint32_t n = w->ppool.count;
     const double *px = w->px, *py = w->py, *qx = w->qx, *qy = w->qy;
     const bool verlet = w->integrator == TT_VERLET;
-    const double vmax = verlet ? TT_DIVERGED * h : TT_DIVERGED;
+    const double vmax = velocity_limit(w, h);
     const tt__v2l L = {bits_of(TT_DIVERGED), bits_of(TT_DIVERGED)}, V = {bits_of(vmax), bits_of(vmax)};
     tt__v2l acc = {0, 0};
     uint32_t i = 0;
@@ -130,10 +144,7 @@ static bool any_past_guard(const tt_world *w, double h)
                    excess(load2(qy + i), V);
     }
     bool any = (acc[0] | acc[1]) < 0;
-    for (; i < n; i++) {
-        double vx = verlet ? px[i] - qx[i] : qx[i], vy = verlet ? py[i] - qy[i] : qy[i];
-        any |= !(fabs(px[i]) <= TT_DIVERGED) | !(fabs(py[i]) <= TT_DIVERGED) | !(fabs(vx) <= vmax) | !(fabs(vy) <= vmax);
-    }
+    for (; i < n; i++) any |= past_guard(w, i, verlet, vmax);
     return any;
 }
 
@@ -147,12 +158,10 @@ static void guard(tt_world *w, double h, bool have_start)
     if (!any_past_guard(w, h)) return;
     const uint32_t n = w->ppool.count;
     const bool verlet = w->integrator == TT_VERLET;
-    const double vmax = verlet ? TT_DIVERGED * h : TT_DIVERGED;
+    const double vmax = velocity_limit(w, h);
     for (uint32_t i = 0; i < n; i++) {
-        if (w->inv_mass[i] == 0.0) continue;
-        double x = w->px[i], y = w->py[i];
-        double vx = verlet ? x - w->qx[i] : w->qx[i], vy = verlet ? y - w->qy[i] : w->qy[i];
-        if (fabs(x) <= TT_DIVERGED && fabs(y) <= TT_DIVERGED && fabs(vx) <= vmax && fabs(vy) <= vmax) continue;
+        if (w->inv_mass[i] == 0.0 || !past_guard(w, i, verlet, vmax)) continue;
+        const double x = w->px[i], y = w->py[i];
         if (verlet) {
             w->px[i] = w->qx[i];
             w->py[i] = w->qy[i];
