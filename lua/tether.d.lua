@@ -379,8 +379,9 @@ function world:destroy() end
 ---@field length? number m, ≥ 0; default the distance now
 ---@field mode? "rigid"|"max"|"min" default "rigid"
 ---@field stiffness? number [0, 1]; default 1
----@field compliance? number m/N, ≥ 0; default 0
+---@field compliance? number m/N, 0 or in [1e-12, 1e12]; default 0
 ---@field break_strain? number ≥ 0; default 0 = never
+---@field max_rate? number m/s, ≥ 0: a winch, length changes proceed at most this fast; default 0 = no limit
 ---@field collide? boolean default false
 
 ---@class tether.composite_options
@@ -396,7 +397,7 @@ function world:destroy() end
 ---@param opts? tether.distance_options
 ---@return tether.constraint
 function world:distance(a, b, opts) end
----Pins p to an anchor (default where it is). opts: anchor {x, y}, stiffness, compliance.
+---Pins p to an anchor (default where it is). opts: anchor {x, y}, stiffness, compliance, max_rate (m/s of anchor travel, 0 = no limit).
 ---@param p tether.particle
 ---@param opts? table
 ---@return tether.constraint
@@ -425,7 +426,8 @@ function world:constraint_kind(c) end
 function world:constraint_error(c) end
 ---@return tether.particle[]
 function world:constraint_particles(c) end
----fields: stiffness, compliance, length, anchor {x, y}, box {xmin, ymin, xmax, ymax}.
+---fields: stiffness, compliance, length, anchor {x, y}, box {xmin, ymin, xmax, ymax}, max_rate (m/s, distance and pin).
+---A new length or anchor is reached across the substeps of the next step (at most max_rate m/s when set).
 function world:set_constraint(c, fields) end
 ---@return number x, number y
 function world:pin_anchor(c) end
