@@ -6,8 +6,9 @@
 -- (`w:position(p)`: p is argument #2). Numbers must be numbers (no numeric
 -- strings), finite, and inside the documented ranges, or the call raises.
 
----A particle handle: a Lua integer (index in the low 32 bits, generation in
----the high 32 bits). It goes stale when its particle is removed.
+---A particle handle: a Lua integer below 2^53 that carries its kind (bits
+---52…50), world tag, reuse counter and slot index (tether/base.h). It goes
+---stale when its particle is removed; a handle of another kind is refused.
 ---@alias tether.particle integer
 
 ---A spring handle: a Lua integer, like a particle handle.

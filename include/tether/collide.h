@@ -23,15 +23,6 @@
 extern "C" {
 #endif
 
-/// A static or kinematic collision shape (generational handle; zero = null).
-typedef struct tt_shape {
-    uint32_t index;
-    uint32_t gen;
-} tt_shape;
-
-static inline uint64_t tt_shape_to_u64(tt_shape s) { return ((uint64_t)s.gen << 32) | s.index; }
-static inline tt_shape tt_shape_from_u64(uint64_t u) { tt_shape s; s.index = (uint32_t)u; s.gen = (uint32_t)(u >> 32); return s; }
-
 /// Kinds of shape. Geometry is given in the shape's local frame and placed
 /// by position + angle (world = position + R(angle)·local).
 typedef enum tt_shape_type {

@@ -10,15 +10,6 @@
 extern "C" {
 #endif
 
-/// A composite (generational handle; all-zero is null).
-typedef struct tt_composite {
-    uint32_t index;
-    uint32_t gen;
-} tt_composite;
-
-static inline uint64_t tt_composite_to_u64(tt_composite c) { return ((uint64_t)c.gen << 32) | c.index; }
-static inline tt_composite tt_composite_from_u64(uint64_t u) { tt_composite c; c.index = (uint32_t)u; c.gen = (uint32_t)(u >> 32); return c; }
-
 /// What every composite shares: its particles and its links.
 typedef struct tt_composite_common {
     double mass;        ///< kg per particle, > 0; default 1

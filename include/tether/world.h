@@ -27,7 +27,7 @@ typedef struct tt_world_def {
     double dt_hint;           ///< the step you expect to use, s; default 1/60. Verlet turns a velocity set
                               ///< before the first step into x_old with it (any later dt is still exact)
     uint32_t capacity;        ///< particles to reserve up front; default 0 (grows on demand)
-    uint32_t max_particles;   ///< hard limit on live + removed-slot particles; default 16 777 216
+    uint32_t max_particles;   ///< hard limit on live + removed-slot particles, ≤ 2^24 (the handle budget); default 2^24 = 16 777 216
     uint32_t substeps;        ///< each step runs this many substeps of dt/substeps; default 1; 1…1000
     uint32_t iterations;      ///< most relaxation sweeps per substep; default 10; 1…10 000
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0

@@ -145,7 +145,7 @@ static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
         g->h_hi[j] = d->hi;
         g->h_k[j] = d->k;
         g->h_alpha[j] = d->alpha;
-        g->h_ra[j] = 4 * a; /* indices < 2^30 (max_particles): no overflow */
+        g->h_ra[j] = 4 * a; /* indices < 2^24 (TT_HANDLE_MAX_SLOTS): no overflow */
         g->h_rb[j] = 4 * b;
         const uint32_t lim = s - r >= (D - 1) * W ? s - (D - 1) * W : r; /* j must share no particle with [lim, j) */
         uint32_t k1 = stamp[a] > stamp[b] ? stamp[a] : stamp[b];

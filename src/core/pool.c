@@ -7,7 +7,7 @@ uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew)
 {
     *grew = false;
     if (p->free_count > 0) return p->free_list[--p->free_count];
-    if (p->count >= limit || p->count == UINT32_MAX) return UINT32_MAX;
+    if (p->count >= limit || p->count >= TT_HANDLE_MAX_SLOTS) return UINT32_MAX;
     if (p->count == p->cap) {
         uint32_t cap = p->cap ? (p->cap > UINT32_MAX / 2 ? UINT32_MAX : p->cap * 2) : 64;
         uint32_t *gen = realloc(p->gen, (size_t)cap * sizeof *gen);

@@ -10,15 +10,13 @@ static const tl_range R_POS = {0.0, TT_MAX_VALUE, true};
 
 static tt_composite check_composite(lua_State *L, tt_world *w, int arg)
 {
-    tt_composite c = tt_composite_from_u64(tl_checkhandle(L, arg, "composite"));
-    if (!tt_composite_is_valid(w, c)) tl_argerror(L, arg, "stale composite handle");
-    return c;
+    return tt_composite_from_u64(tl_checkhandle(L, w, arg, TT_KIND_COMPOSITE));
 }
 
 static void push_composite(lua_State *L, tt_world *w, tt_composite c)
 {
     if (c.gen == 0) tl_check_result(L, w, TT_EINVAL);
-    lua_pushinteger(L, (lua_Integer)tt_composite_to_u64(c));
+    tl_push_composite(L, c);
 }
 
 #define COMMON_KEYS "mass", "radius", "stiffness", "compliance", "collide"
@@ -166,7 +164,7 @@ static int c_remove_composite(lua_State *L)
 static int c_composite_is_valid(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    lua_pushboolean(L, tt_composite_is_valid(w, tt_composite_from_u64(tl_checkhandle(L, 2, "composite"))));
+    lua_pushboolean(L, tl_handle_is_live(L, w, 2, TT_KIND_COMPOSITE));
     return 1;
 }
 
@@ -198,7 +196,7 @@ static int c_composite_constraints(lua_State *L)
     tt_composite_get_constraints(w, c, cs, n, &n);
     lua_createtable(L, (int)n, 0);
     for (uint32_t i = 0; i < n; i++) {
-        lua_pushinteger(L, (lua_Integer)tt_constraint_to_u64(cs[i]));
+        tl_push_constraint(L, cs[i]);
         lua_rawseti(L, -2, (lua_Integer)i + 1);
     }
     return 1;

@@ -268,8 +268,8 @@ static tt_world *lived_in(bool constraints, uint32_t max_particles)
     return w;
 }
 
-/* A handle without its world's tag (a generation's high byte): twins hand out the same. */
-static uint64_t untagged(uint32_t index, uint32_t gen) { return (uint64_t)(gen & 0xFFFFFFu) << 32 | index; }
+/* A handle without its world's tag (the generation's bits above TT_HANDLE_GEN_BITS): twins hand out the same. */
+static uint64_t untagged(uint32_t index, uint32_t gen) { return (uint64_t)(gen & ((1u << TT_HANDLE_GEN_BITS) - 1)) << 32 | index; }
 
 static bool same_pairs_excluded(const tt_world *a, const tt_world *b)
 {
