@@ -443,7 +443,7 @@ function world:constraint_lines(t) end
 ---Constraints broken in the last step.
 ---@return {constraint: tether.constraint, a: tether.particle, b: tether.particle, length: number, strain: number}[]
 function world:break_events() end
----opts: start, finish, segments, pin_start, pin_end, slack, break_strain + composite options.
+---opts: start, finish, segments, pin_start, pin_finish, slack, break_strain + composite options.
 ---@return tether.composite
 function world:rope(opts) end
 ---opts: origin, width, height, columns, rows, shear_stiffness, bend_stiffness, pin_top_corners, pin_top_row, break_strain + composite options.
@@ -452,7 +452,7 @@ function world:cloth(opts) end
 ---opts: position, height, limits + composite options.
 ---@return tether.composite
 function world:ragdoll(opts) end
----opts: center, size, segments, pressure, area_stiffness, area_compliance + composite options.
+---opts: center, ring_radius (m; radius is each particle's), segments, pressure, area_stiffness, area_compliance + composite options.
 ---@return tether.composite
 function world:soft_body(opts) end
 ---opts: center, width, height, angle, columns, rows or points {x1, y1, …} (no point repeated, no three consecutive on a line) + composite options.

@@ -30,9 +30,9 @@ static void common_opts(lua_State *L, int arg, tt_composite_common *k)
     k->collide = tl_optfield_boolean(L, arg, "collide", k->collide);
 }
 
-static const char *const rope_opts[] = {COMMON_KEYS, "start", "finish", "segments", "pin_start", "pin_end", "slack", "break_strain", NULL};
+static const char *const rope_opts[] = {COMMON_KEYS, "start", "finish", "segments", "pin_start", "pin_finish", "slack", "break_strain", NULL};
 
-/* w:rope({start = {x, y}, finish = {x, y}, segments, pin_start, pin_end, slack, break_strain, …common}) → composite */
+/* w:rope({start = {x, y}, finish = {x, y}, segments, pin_start, pin_finish, slack, break_strain, …common}) → composite */
 static int c_rope(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -41,10 +41,10 @@ static int c_rope(lua_State *L)
     tl_checkopts(L, 2, rope_opts);
     common_opts(L, 2, &d.common);
     d.start = tl_optfield_vec2(L, 2, "start", &TL_R_COORD, d.start);
-    d.end = tl_optfield_vec2(L, 2, "finish", &TL_R_COORD, d.end);
+    d.finish = tl_optfield_vec2(L, 2, "finish", &TL_R_COORD, d.finish);
     d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 1, 100000, d.segments);
     d.pin_start = tl_optfield_boolean(L, 2, "pin_start", d.pin_start);
-    d.pin_end = tl_optfield_boolean(L, 2, "pin_end", d.pin_end);
+    d.pin_finish = tl_optfield_boolean(L, 2, "pin_finish", d.pin_finish);
     d.slack = tl_optfield_boolean(L, 2, "slack", d.slack);
     d.break_strain = tl_optfield_number(L, 2, "break_strain", &TL_R_NONNEG, d.break_strain);
     push_composite(L, w, tt_rope_create(w, &d));
@@ -94,7 +94,7 @@ static int c_ragdoll(lua_State *L)
     return 1;
 }
 
-static const char *const soft_body_opts[] = {COMMON_KEYS, "center", "size", "segments", "pressure", "area_stiffness",
+static const char *const soft_body_opts[] = {COMMON_KEYS, "center", "ring_radius", "segments", "pressure", "area_stiffness",
                                              "area_compliance", NULL};
 
 /* w:soft_body({center = {x, y}, size (ring radius), segments, pressure, area_stiffness, area_compliance, …common}) */
@@ -106,7 +106,7 @@ static int c_soft_body(lua_State *L)
     tl_checkopts(L, 2, soft_body_opts);
     common_opts(L, 2, &d.common);
     d.center = tl_optfield_vec2(L, 2, "center", &TL_R_COORD, d.center);
-    d.radius = tl_optfield_number(L, 2, "size", &R_POS, d.radius);
+    d.ring_radius = tl_optfield_number(L, 2, "ring_radius", &R_POS, d.ring_radius);
     d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 3, 65536, d.segments);
     d.pressure = tl_optfield_number(L, 2, "pressure", &R_POS, d.pressure);
     d.area_stiffness = tl_optfield_number(L, 2, "area_stiffness", &R_UNIT, d.area_stiffness);

@@ -76,7 +76,7 @@ end)
 
 T.test("a ragdoll, soft body, lattice or rope past it raises and changes nothing", function()
   fails_cleanly("ragdoll", function(w) w:ragdoll { position = { EDGE, 0 } } end)
-  fails_cleanly("soft body", function(w) w:soft_body { center = { 0, EDGE - 0.5 }, size = 1, segments = 8 } end)
+  fails_cleanly("soft body", function(w) w:soft_body { center = { 0, EDGE - 0.5 }, ring_radius = 1, segments = 8 } end)
   fails_cleanly("lattice", function(w) w:lattice { center = { EDGE - 0.5, 0 }, width = 2, columns = 3 } end)
   -- both ends fit, but start + (finish - start)·1 rounds 1.2e-4 past the edge
   fails_cleanly("rope", function(w) w:rope { start = { -152580229995.33337, 0 }, finish = { EDGE, 0 }, segments = 9 } end)
