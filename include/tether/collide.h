@@ -128,7 +128,11 @@ TT_API tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def);
 TT_API tt_result tt_shape_destroy(tt_world *w, tt_shape s);
 /// True if s names a live shape of w.
 TT_API bool tt_shape_is_valid(const tt_world *w, tt_shape s);
-/// Kinematic move: new position (m) and angle (rad). The static index is rebuilt at the next step.
+/// Kinematic move: new position (m) and angle (rad). The shape travels
+/// there across the substeps of the next step, at the speed that takes, so
+/// what rests on it is carried (friction) and what it meets is pushed at
+/// that speed, not thrown by a jump. Calls between two steps keep the first
+/// starting point; the getter returns the target at once.
 TT_API tt_result tt_shape_set_transform(tt_world *w, tt_shape s, tt_vec2 position, double angle);
 TT_API tt_result tt_shape_get_transform(const tt_world *w, tt_shape s, tt_vec2 *position, double *angle);
 /// Restitution 0…1, μs ≥ 0, μk ≥ 0.

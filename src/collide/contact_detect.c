@@ -35,7 +35,9 @@ static void detect_visit(void *ctx, uint32_t k)
         d->ok = false;
         return;
     }
-    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0};
+    double cx, cy; /* the shape's motion where it meets the particle */
+    tt__shape_carry(&c->shapes[p->shape], d->x - hit.nx * d->r, d->y - hit.ny * d->r, &cx, &cy);
+    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, cx, cy, 0};
 }
 
 /* Marks the cells of the particle grid, just built, (c->near) a particle
@@ -185,6 +187,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     c->batched = false;
     c->guard = false; /* until this substep's start positions are copied */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
+    tt__shapes_place_moved(w, c);
     bool pairs = c->set.particles;
     if (!pairs && c->nprim == 0) return;
     const uint32_t n = w->ppool.count;

@@ -46,10 +46,7 @@ static bool push_event(tt__collide *c, const tt_contact_event *ev, uint32_t kind
 void tt__contacts_after_step(tt_world *w, void *self)
 {
     tt__collide *c = self;
-    if (c->any_moved) {
-        for (uint32_t i = 0; i < c->spool.count; i++) c->shapes[i].moved = false;
-        c->any_moved = false;
-    }
+    if (c->any_moved) tt__shapes_arrived(c);
     /* the step bumps the epoch once after this: end positions stay valid through it, not through a teleport */
     if (c->s_epoch == w->epoch) c->s_epoch = w->epoch + 1;
     c->nevents = 0;
