@@ -122,6 +122,8 @@ typedef struct tt__batches {
  * rows, pairs [runs[y·TT__PARTS + k], runs[y·TT__PARTS + k + 1]); runs NULL:
  * TT__PARTS equal parts. inv: the particles' inverse masses, which stay
  * as they are until the substep ends. False on no memory. */
+/* Room for the stamps of np particles (the rest follows the pairs). */
+bool tt__batches_reserve(tt__batches *B, uint32_t np);
 bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
                       const double *inv, uint32_t np);
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
@@ -248,6 +250,7 @@ bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem);
 /* The stages of the contacts group (contacts.c registers them): detection
  * (contact_detect.c), projection and the velocity pass
  * (contact_response.c), events after the step (contact_events.c). */
+bool tt__contacts_reserve(tt_world *w, void *self);
 void tt__contacts_begin(tt_world *w, void *self, double h);
 double tt__contacts_relax(tt_world *w, void *self, double h);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
@@ -293,6 +296,10 @@ static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, ui
 
 /* Grid (grid.c). */
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell);
+/* Room for a build over n particles, whatever their spread (the cells are
+ * bounded by tt__grid_max_cells); false on no memory. */
+bool tt__grid_reserve(tt__grid *g, uint32_t n);
+uint32_t tt__grid_max_cells(uint32_t n);
 /* Appends candidate pairs (gap < margin) to c->pairs; false on no memory. */
 bool tt__grid_pairs(tt_world *w, tt__collide *c);
 void tt__grid_free(tt__grid *g);

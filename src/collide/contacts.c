@@ -107,6 +107,7 @@ static void destroy(tt_world *w, void *self)
 const tt__group_ops tt__contacts_ops = {
     .name = "contacts", .rank = TT__RANK_CONTACTS,
     .begin_stage = TT_STAGE_COLLIDE,
+    .reserve = tt__contacts_reserve,
     .begin = tt__contacts_begin,
     .relax = tt__contacts_relax,
     .sweeps_done = tt__contacts_sweeps_done,

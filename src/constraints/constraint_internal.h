@@ -174,12 +174,14 @@ double tt__cgroup_relax(tt_world *w, void *self, double h);                /* co
 void tt__cgroup_sweeps_done(tt_world *w, void *self);                       /* distance_sweep.c */
 void tt__cgroup_end(tt_world *w, void *self, double h);                    /* constraint_relax.c */
 void tt__cgroup_after_step(tt_world *w, void *self);                        /* constraint_breaks.c */
+bool tt__cgroup_reserve(tt_world *w, void *self);                           /* constraint_breaks.c */
 uint64_t tt__cgroup_hash(const tt_world *w, const void *self, uint64_t h); /* constraint_hash.c */
 
 /* ---- the distance links' sweep (distance_sweep.c) -------------------------- */
 /* Sets w's mode; false (and no change) when this build or processor lacks it. */
 bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
 void tt__distance_hot_sync(tt__cgroup *g, uint32_t i);
+bool tt__distance_plan_reserve(tt_world *w, tt__cgroup *g);
 double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h);
 double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, double h);
 

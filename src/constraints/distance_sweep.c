@@ -370,6 +370,15 @@ static void rows_release(tt_world *w, tt__cgroup *g)
 
 void tt__cgroup_sweeps_done(tt_world *w, void *self) { rows_release(w, self); }
 
+/* The plan wanted at the next sweep, before a step: its arrays are then in
+ * place, so a plan redone inside the step (links broke: fewer of them)
+ * allocates nothing. */
+bool tt__distance_plan_reserve(tt_world *w, tt__cgroup *g)
+{
+    if (w->order != TT_GAUSS_SEIDEL || tt__simd_kind(g->simd) == TT__SIMD_SCALAR || g->ndist < 8) return true;
+    return (g->plan_ok && g->plan_w == 4) || plan_build(g, 4, 2);
+}
+
 double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h)
 {
     uint8_t kind = tt__simd_kind(g->simd);

@@ -33,6 +33,10 @@ typedef struct tt_pool {
  * must size its arrays to count). */
 uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew);
 void tt_pool_free(tt_pool *p, uint32_t index);
+/* Room in the free list for `more` slots freed from now on, so that removals
+ * that must not fail half way (a step's breaking links, a composite's
+ * parts) can reserve it before changing anything. False on no memory. */
+bool tt_pool_reserve_free(tt_pool *p, uint32_t more);
 
 /* Where a pool stood before a call that allocates many slots, so that a
  * failure half way can put it back: the same handles then come next, as if

@@ -148,6 +148,10 @@ tt_result tt_world_step(tt_world *w, double dt)
     TT_CHECK_WORLD(w, "tt_world_step");
     tt_result r = check_dt(w, dt, "tt_world_step");
     if (r != TT_OK) return r;
+    /* Everything the step's counts call for, before anything changes. */
+    if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
+        return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
+    w->step_oom = NULL;
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
@@ -174,10 +178,17 @@ tt_result tt_world_step(tt_world *w, double dt)
     w->stats.time += dt;
     w->epoch++;
     w->stats.step_ms = tt__now_ms() - t0;
+    if (w->step_oom)
+        return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory for %s; the step ran without it", w->step_oom);
     if (w->stats.diverged)
         tt__fail(w, TT_OK, "tt_world_step: %u particle(s) passed |x| or |v| > %g and were stopped",
                  w->stats.diverged, TT_DIVERGED);
     return TT_OK;
+}
+
+void tt__step_oom(tt_world *w, const char *what)
+{
+    if (!w->step_oom) w->step_oom = what; /* the first says the most */
 }
 
 tt_result tt_world_set_gravity(tt_world *w, tt_vec2 g)
