@@ -55,7 +55,42 @@ local tether = {}
 
 ---Makes a new world. Unknown option keys raise ("tether.world: unknown option 'gravty' ...").
 ---@param opts? tether.world_options
----@return tether.world
+---@---A fixed-step clock: real frame time in, steps of dt out (tether/clock.h).
+---@class tether.clock
+local clock = {}
+---Feeds `real` seconds (>= 0) of the frame; returns the steps to take now.
+---@param real number
+---@return integer
+function clock:advance(real) end
+---How far from the last step to the next, [0, 1): blend the drawn states by it.
+---@return number
+function clock:alpha() end
+---@return number
+function clock:dt() end
+---@return number
+function clock:scale() end
+---@param s number virtual seconds per real one, [0, 1000]
+function clock:set_scale(s) end
+---@return boolean
+function clock:paused() end
+---@param paused boolean
+function clock:set_paused(paused) end
+---One step at the next advance, even while paused.
+function clock:step_once() end
+---@return {dt: number, max_steps: integer, scale: number, paused: boolean, time: number, steps: integer, acc: number, dropped: number, capped: boolean}
+function clock:info() end
+
+---@class tether.clock_options
+---@field dt? number s, default 1/60
+---@field max_steps? integer most steps per frame, default 8
+---@field scale? number virtual seconds per real one, [0, 1000], default 1
+
+---A new clock.
+---@param opts? tether.clock_options
+---@return tether.clock
+function tether.clock(opts) end
+
+return tether.world
 function tether.world(opts) end
 
 ---Runner only (the `tether` executable): ends the update loop after the current call.
