@@ -1,8 +1,8 @@
 /* Stability at the extremes, on whole scenes (collisions and constraints
  * on): steps from 1e-5 to 0.1 s, compliance from soft to rigid, mass ratios
  * of 1:10 000 on a link and in a stack, a chain of 1 000 links, 1e4 m/s into
- * a thin wall, coordinates near 1e6 and 1e9 m, a million steps of an
- * undamped oscillator, and degenerate input. Each case asserts what must
+ * a thin wall, coordinates near 1e6 and 1e9 m, and degenerate input (a
+ * million steps of an undamped oscillator: test_extremes.c). Each case asserts what must
  * survive (no NaN, no energy made, errors under a stated bound) at the
  * settings named; it prints what it measured at the others, which the
  * README's table quotes ("extremes:" lines of `make test`). */
@@ -313,54 +313,6 @@ TEST(extremes_far_from_the_origin)
     ENSURE_NEAR(here, 0.25, 1e-9);
     ENSURE_NEAR(far6, 0.25, 1e-6);
     ENSURE_NEAR(far9, 0.25, 1e-3);
-}
-
-/* --- a million steps of an undamped oscillator ------------------------------------- */
-
-/* A unit mass on a spring (ω = 1, ω·dt = 0.1) for 10⁶ steps: the symplectic
- * integrators keep the energy within O(ω·dt) of its start for ever; RK4
- * loses it slowly; explicit Euler gains until the guard stops it. */
-static double oscillator_drift(tt_integrator in, bool *finite)
-{
-    tt_world *w = world(in, 1, 1, (tt_vec2){0, 0});
-    tt_particle_def pd = tt_particle_def_default();
-    pd.pinned = true;
-    tt_particle anchor = tt_particle_create(w, &pd);
-    tt_particle p = ball(w, 1, 0, 0, 1);
-    tt_spring_def sd = tt_spring_def_default();
-    sd.a = p;
-    sd.b = anchor;
-    sd.stiffness = 1;
-    sd.rest_length = 0;
-    tt_spring_create(w, &sd);
-    tt_energy e0, e;
-    tt_world_get_energy(w, &e0);
-    double worst = 0;
-    for (long k = 0; k < 1000000; k++) {
-        tt_world_step(w, 0.1);
-        if (k % 1000 == 999) {
-            tt_world_get_energy(w, &e);
-            worst = fmax(worst, fabs(e.total / e0.total - 1));
-        }
-    }
-    tt_vec2 x;
-    tt_particle_get_position(w, p, &x);
-    *finite = isfinite(x.x) && isfinite(x.y) && isfinite(e.total);
-    tt_world_destroy(w);
-    return worst;
-}
-
-TEST(extremes_a_million_steps_of_an_undamped_oscillator)
-{
-    for (int in = 0; in < TT_INTEGRATOR_COUNT; in++) {
-        bool finite;
-        double drift = oscillator_drift((tt_integrator)in, &finite);
-        printf("    extremes: oscillator, 1e6 steps at ω·dt 0.1, %-16s largest energy error %9.2e%s\n",
-               tt_integrator_name((tt_integrator)in), drift, finite ? "" : "  NOT FINITE");
-        ENSURE(finite);
-        if (in == TT_VERLET || in == TT_LEAPFROG || in == TT_SYMPLECTIC_EULER) ENSURE(drift < 0.06);
-        if (in == TT_RK4) ENSURE(drift < 0.02); /* 1 − (ω·dt)⁶/72 a step in energy: 1.4 % in 10⁶ */
-    }
 }
 
 /* --- degenerate input ---------------------------------------------------------------- */
