@@ -41,11 +41,14 @@ LUA_CFLAGS = $(call lazy,LUA_CFLAGS,$(call PC_CFLAGS,lua5.4))
 LUA_LIBS   = $(call lazy,LUA_LIBS,$(call PC_LIBS,lua5.4))
 BOX2D_CFLAGS = $(call lazy,BOX2D_CFLAGS,$(call PC_CFLAGS,box2d))
 BOX2D_LIBS   = $(call lazy,BOX2D_LIBS,$(call PC_LIBS,box2d))
+PNG_CFLAGS = $(call lazy,PNG_CFLAGS,$(call PC_CFLAGS,libpng))
+PNG_LIBS   = $(call lazy,PNG_LIBS,$(call PC_LIBS,libpng))
 
 # Sources by part (one folder each under src/, see README "Layout"). The
-# engine is core + constraints + collide; the Lua module adds lua/ and the
+# engine is core + constraints + collide + mask (mask needs libpng for its
+# PNG files, so the shared library and the Lua module link it); the Lua module adds lua/ and the
 # plain-C canvas of render/; the GL back ends need OSMesa, SDL2 and libpng.
-ENGINE_SRC := $(wildcard src/core/*.c src/constraints/*.c src/collide/*.c)
+ENGINE_SRC := $(wildcard src/core/*.c src/constraints/*.c src/collide/*.c src/mask/*.c)
 LUA_SRC    := $(wildcard src/lua/*.c)
 CANVAS_SRC := src/render/render_canvas.c src/render/render_font.c src/render/render_debug.c
 RENDER_SRC := $(wildcard src/render/*.c)
@@ -111,6 +114,10 @@ $(BUILD)/obj/runner/%.o: src/runner/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
+$(BUILD)/obj/mask/%.o: src/mask/%.c $(HEADERS) | deps
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_ALL) $(PNG_CFLAGS) -MMD -c $< -o $@
+
 $(BUILD)/obj/render/%.o: src/render/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -MMD -c $< -o $@
@@ -123,7 +130,7 @@ $(LIB_A): $(CORE_OBJ)
 	rm -f $@; ar rcs $@ $^
 
 $(LIB_SO): $(CORE_OBJ)
-	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 # The Lua module is not linked against liblua: the host (lua5.4 or our runner)
 # provides the Lua API, and a second copy of Lua in one process breaks it.
@@ -131,7 +138,7 @@ $(RENDER_A): $(RENDER_OBJ)
 	rm -f $@; ar rcs $@ $^
 
 $(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
-	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 $(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) $(RENDER_LIBS) -lm
@@ -217,7 +224,7 @@ install: all
 	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
 	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lm\nCflags: -I$${includedir}\n' \
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lpng16 -lm\nCflags: -I$${includedir}\n' \
 	  '$(PREFIX)' '$(VERSION)' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
 
 uninstall:

@@ -1,0 +1,174 @@
+/* tether — overlap of mask B placed at (dx, dy) on mask A: whether (and
+ * where first), how many pixels, which pixels, and the push-out normal.
+ *
+ * Each row of A meets B's row as whole 64-bit words: B's two words that
+ * straddle A's word are shifted together (tt__mask_bword), so a 1024-pixel
+ * row is 16 word operations whatever the offset. The word loops are built
+ * twice, for AVX2 processors and for any x86-64 (target_clones picks one
+ * when the library loads); both give the same integers. */
+#include "mask_internal.h"
+
+#include <math.h>
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(TT_NO_SIMD)
+/* gcc -O2 vectorizes only loops it need not peel; these need a scalar tail. */
+#define TT__MASK_KERNEL __attribute__((target_clones("arch=haswell", "default"), optimize("vect-cost-model=dynamic")))
+#else
+#define TT__MASK_KERNEL
+#endif
+
+static int floor_div64(int v)
+{
+    return v >= 0 ? v / 64 : -((-v + 63) / 64);
+}
+
+bool tt__mask_shift_of(tt__mask_shift *s, const tt_mask *a, const tt_mask *b, int dx, int dy)
+{
+    if (dx >= a->w || dy >= a->h || dx + b->w <= 0 || dy + b->h <= 0) return false;
+    s->q = floor_div64(dx);
+    s->r = (unsigned)(dx - 64 * s->q);
+    s->k0 = s->q > 0 ? s->q : 0;
+    s->k1 = floor_div64(dx + b->w - 1);
+    if (s->k1 > a->stride - 1) s->k1 = a->stride - 1;
+    s->ki0 = s->q + (s->r ? 1 : 0);
+    s->ki1 = s->q + b->stride - 1;
+    if (s->ki0 < s->k0) s->ki0 = s->k0;
+    if (s->ki1 > s->k1) s->ki1 = s->k1;
+    s->dy = dy;
+    s->y0 = dy > 0 ? dy : 0;
+    s->y1 = dy + b->h < a->h ? dy + b->h : a->h;
+    return true;
+}
+
+enum { OP_ANY, OP_COUNT, OP_AND };
+
+/* One row: A's words k0…k1 against B's row placed by s. OP_ANY returns the
+ * OR of the ANDed words, OP_COUNT their pixel count, OP_AND stores them in
+ * out (A's frame) and returns their OR. Inlined into each caller with op
+ * constant, so each gets its own loop. */
+static inline __attribute__((always_inline)) uint64_t row_op(int op, const uint64_t *restrict a,
+                                                             const uint64_t *restrict b, uint64_t *restrict out,
+                                                             int sb, const tt__mask_shift *s)
+{
+    uint64_t acc = 0;
+    const int q = s->q;
+    const unsigned r = s->r, l = 64 - r;
+    for (int k = s->k0; k <= s->k1; k++) { /* the edge words before the interior */
+        if (k == s->ki0 && s->ki0 <= s->ki1) break;
+        uint64_t v = a[k] & tt__mask_bword(b, sb, s, k);
+        if (op == OP_COUNT) acc += (uint64_t)__builtin_popcountll(v); else acc |= v;
+        if (op == OP_AND) out[k] = v;
+    }
+    if (s->ki0 <= s->ki1) {
+        const uint64_t *bj = b - q; /* bj[k] = B's word k − q */
+        if (r == 0) {
+            for (int k = s->ki0; k <= s->ki1; k++) {
+                uint64_t v = a[k] & bj[k];
+                if (op == OP_COUNT) acc += (uint64_t)__builtin_popcountll(v); else acc |= v;
+                if (op == OP_AND) out[k] = v;
+            }
+        } else {
+            for (int k = s->ki0; k <= s->ki1; k++) {
+                uint64_t v = a[k] & ((bj[k - 1] >> l) | (bj[k] << r));
+                if (op == OP_COUNT) acc += (uint64_t)__builtin_popcountll(v); else acc |= v;
+                if (op == OP_AND) out[k] = v;
+            }
+        }
+        for (int k = s->ki1 + 1; k <= s->k1; k++) { /* the edge word after it */
+            uint64_t v = a[k] & tt__mask_bword(b, sb, s, k);
+            if (op == OP_COUNT) acc += (uint64_t)__builtin_popcountll(v); else acc |= v;
+            if (op == OP_AND) out[k] = v;
+        }
+    }
+    return acc;
+}
+
+TT__MASK_KERNEL
+static int first_row(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)
+{
+    for (int y = s->y0; y < s->y1; y++)
+        if (row_op(OP_ANY, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s)) return y;
+    return -1;
+}
+
+TT__MASK_KERNEL
+static int64_t count_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)
+{
+    uint64_t n = 0;
+    for (int y = s->y0; y < s->y1; y++)
+        n += row_op(OP_COUNT, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s);
+    return (int64_t)n;
+}
+
+TT__MASK_KERNEL
+static void and_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s, tt_mask *out)
+{
+    for (int y = s->y0; y < s->y1; y++)
+        row_op(OP_AND, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), tt__mask_row(out, y), b->stride, s);
+}
+
+static tt_result check_pair(const char *fn, const tt_mask *a, const tt_mask *b, int dx, int dy)
+{
+    if (!a || !b) return tt__mask_fail(TT_EINVAL, "%s: mask %s is NULL", fn, a ? "b" : "a");
+    return tt__mask_check_offset(fn, dx, dy);
+}
+
+bool tt_mask_overlap(const tt_mask *a, const tt_mask *b, int dx, int dy, int *x, int *y)
+{
+    tt__mask_shift s;
+    if (check_pair("tt_mask_overlap", a, b, dx, dy) != TT_OK) return false;
+    if (!tt__mask_shift_of(&s, a, b, dx, dy)) return false;
+    int row = first_row(a, b, &s);
+    if (row < 0) return false;
+    if (x || y) {
+        const uint64_t *ar = tt__mask_row(a, row), *br = tt__mask_row(b, row - dy);
+        for (int k = s.k0; k <= s.k1; k++) {
+            uint64_t v = ar[k] & tt__mask_bword(br, b->stride, &s, k);
+            if (!v) continue;
+            if (x) *x = k * 64 + __builtin_ctzll(v);
+            if (y) *y = row;
+            break;
+        }
+    }
+    return true;
+}
+
+int64_t tt_mask_overlap_area(const tt_mask *a, const tt_mask *b, int dx, int dy)
+{
+    tt__mask_shift s;
+    if (check_pair("tt_mask_overlap_area", a, b, dx, dy) != TT_OK) return -1;
+    return tt__mask_shift_of(&s, a, b, dx, dy) ? count_all(a, b, &s) : 0;
+}
+
+tt_mask *tt_mask_overlap_mask(const tt_mask *a, const tt_mask *b, int dx, int dy)
+{
+    tt__mask_shift s;
+    if (check_pair("tt_mask_overlap_mask", a, b, dx, dy) != TT_OK) return NULL;
+    tt_mask *out = tt__mask_alloc("tt_mask_overlap_mask", a->w, a->h);
+    if (out && tt__mask_shift_of(&s, a, b, dx, dy)) and_all(a, b, &s, out);
+    return out;
+}
+
+/* Area at an offset that may step one past the documented limit. */
+static int64_t area_at(const tt_mask *a, const tt_mask *b, int64_t dx, int64_t dy)
+{
+    tt__mask_shift s;
+    if (dx > TT_MASK_MAX_OFFSET || dx < -TT_MASK_MAX_OFFSET || dy > TT_MASK_MAX_OFFSET || dy < -TT_MASK_MAX_OFFSET)
+        return 0; /* that far out nothing overlaps */
+    return tt__mask_shift_of(&s, a, b, (int)dx, (int)dy) ? count_all(a, b, &s) : 0;
+}
+
+tt_result tt_mask_overlap_normal(const tt_mask *a, const tt_mask *b, int dx, int dy, tt_vec2 *out)
+{
+    tt_result r = check_pair("tt_mask_overlap_normal", a, b, dx, dy);
+    if (r != TT_OK) return r;
+    if (!out) return tt__mask_fail(TT_EINVAL, "tt_mask_overlap_normal: out is NULL");
+    *out = (tt_vec2){ 0, 0 };
+    if (area_at(a, b, dx, dy) == 0) return TT_OK;
+    /* moving B towards +x adds overlap where A lies to B's right: push it the other way */
+    double gx = (double)(area_at(a, b, (int64_t)dx + 1, dy) - area_at(a, b, (int64_t)dx - 1, dy));
+    double gy = (double)(area_at(a, b, dx, (int64_t)dy + 1) - area_at(a, b, dx, (int64_t)dy - 1));
+    double len = sqrt(gx * gx + gy * gy);
+    if (len > 0) *out = (tt_vec2){ -gx / len, -gy / len };
+    return TT_OK;
+}
