@@ -50,7 +50,7 @@ PNG_LIBS   = $(call lazy,PNG_LIBS,$(call PC_LIBS,libpng))
 # plain-C canvas of render/; the GL back ends need OSMesa, SDL2 and libpng.
 ENGINE_SRC := $(wildcard src/core/*.c src/constraints/*.c src/collide/*.c src/mask/*.c)
 LUA_SRC    := $(wildcard src/lua/*.c)
-CANVAS_SRC := src/render/render_canvas.c src/render/render_font.c src/render/render_debug.c
+CANVAS_SRC := src/render/render_canvas.c src/render/render_font.c src/render/render_debug.c src/render/render_mask.c
 RENDER_SRC := $(wildcard src/render/*.c)
 RUNNER_SRC := $(wildcard src/runner/*.c)
 obj_of = $(patsubst src/%.c,$(BUILD)/obj/%.o,$(1))
