@@ -62,7 +62,8 @@ RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
-TEST_SRC := $(wildcard tests/*.c tests/*/*.c)
+# tests/fuzz/ holds fuzzers with their own main, built on their own
+TEST_SRC := $(filter-out tests/fuzz/%,$(wildcard tests/*.c tests/*/*.c))
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
 
@@ -149,6 +150,11 @@ TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc
 $(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(TEST_WRAP) $(RENDER_LIBS) -lm
 
+# The PNG loader's fuzzer (tests/fuzz/fuzz_png.c), run by `make fuzz`.
+FUZZ_PNG := $(BUILD)/fuzz_png
+$(FUZZ_PNG): tests/fuzz/fuzz_png.c $(LIB_A) | deps
+	$(CC) $(CFLAGS_ALL) $(PNG_CFLAGS) -o $@ $< $(LIB_A) $(LDFLAGS_ALL) $(PNG_LIBS) -lm
+
 # Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
 BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
 $(BOX2D_OBJ): bench/box2d_scene.cpp | deps
@@ -203,8 +209,8 @@ memcheck: all $(TEST_C)
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
 # (tests/fuzz/); on a failure it prints the seed and a replay script and
-# shortens it.
-fuzz: all
+# shortens it. Then the PNG loader's fuzzer for half as long.
+fuzz: all $(FUZZ_PNG)
 	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 bench: deps $(BENCH) $(RUNNER)

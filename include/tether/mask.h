@@ -28,6 +28,7 @@ extern "C" {
 
 #define TT_MASK_MAX_SIDE 16384 ///< largest width or height of a mask, pixels
 #define TT_MASK_MAX_OFFSET 1000000000 ///< largest |dx|, |dy| of an offset between masks
+#define TT_MASK_MAX_CONVOLVE 1e9 ///< most word operations of one tt_mask_convolve (about a second)
 
 /// A bit mask (opaque). Made by a tt_mask_create… call, freed by tt_mask_destroy.
 typedef struct tt_mask tt_mask;
@@ -125,7 +126,8 @@ TT_API tt_mask *tt_mask_overlap_mask(const tt_mask *a, const tt_mask *b, int dx,
 /// overlap or the gradient is flat.
 TT_API tt_result tt_mask_overlap_normal(const tt_mask *a, const tt_mask *b, int dx, int dy, tt_vec2 *out);
 /// pygame's convolve: a new (wa + wb − 1) × (ha + hb − 1) mask whose pixel (x, y) is set when B placed at
-/// (x − wb + 1, y − hb + 1) overlaps A; where that pixel is clear, B fits.
+/// (x − wb + 1, y − hb + 1) overlaps A; where that pixel is clear, B fits. It costs count(B) × ha × (wa/64 + 1)
+/// word operations; over TT_MASK_MAX_CONVOLVE it is refused (NULL).
 TT_API tt_mask *tt_mask_convolve(const tt_mask *a, const tt_mask *b);
 
 /* --- shape of the set pixels --------------------------------------------- */

@@ -171,17 +171,29 @@ tt_result tt_mask_outline(const tt_mask *m, int *xy, uint32_t cap, uint32_t *cou
     return TT_OK;
 }
 
+/* A dilation: every set pixel (bx, by) of B puts a copy of A at
+ * (wb − 1 − bx, hb − 1 − by), a word at a time. Its cost is count(B) rows
+ * of A, hence the documented limit. */
 tt_mask *tt_mask_convolve(const tt_mask *a, const tt_mask *b)
 {
     const char *fn = "tt_mask_convolve";
     if (tt__mask_check(fn, "a", a) != TT_OK || tt__mask_check(fn, "b", b) != TT_OK) return NULL;
     int w = a->w + b->w - 1, h = a->h + b->h - 1;
     if (tt__mask_check_size(fn, w, h) != TT_OK) return NULL;
+    double work = (double)tt_mask_count(b) * a->h * (a->stride + 1);
+    if (work > TT_MASK_MAX_CONVOLVE) {
+        tt__mask_fail(TT_EINVAL, "%s: %.3g word operations (set pixels of b × rows × words of a), more than %g", fn,
+                      work, (double)TT_MASK_MAX_CONVOLVE);
+        return NULL;
+    }
     tt_mask *out = tt__mask_alloc(fn, w, h);
     if (!out) return NULL;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++)
-            if (tt_mask_overlap(a, b, x - b->w + 1, y - b->h + 1, NULL, NULL)) tt__mask_put(out, x, y, true);
+    for (int by = 0; by < b->h; by++)
+        for (int k = 0; k < b->stride; k++)
+            for (uint64_t bits = tt__mask_row(b, by)[k]; bits; bits &= bits - 1) {
+                int bx = k * 64 + __builtin_ctzll(bits);
+                tt_mask_draw(out, a, b->w - 1 - bx, b->h - 1 - by);
+            }
     tt__mask_ok();
     return out;
 }

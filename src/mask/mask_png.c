@@ -17,21 +17,24 @@ static tt_mask *finish(const char *fn, const char *what, png_image *im, int thre
         png_image_free(im);
         return NULL;
     }
-    im->format = PNG_FORMAT_RGBA;
-    size_t stride = (size_t)im->width * 4;
-    uint8_t *rgba = malloc(stride * im->height);
-    if (!rgba) {
+    /* grey + alpha is all a mask needs: half the memory of RGBA */
+    im->format = PNG_FORMAT_GA;
+    size_t stride = (size_t)im->width * 2;
+    uint8_t *ga = malloc(stride * im->height);
+    if (!ga) {
         tt__mask_fail(TT_ENOMEM, "%s: out of memory for %s", fn, what);
         png_image_free(im);
         return NULL;
     }
     tt_mask *m = NULL;
-    if (!png_image_finish_read(im, NULL, rgba, (png_int_32)stride, NULL))
+    if (!png_image_finish_read(im, NULL, ga, (png_int_32)stride, NULL))
         tt__mask_fail(TT_EINVAL, "%s: %s: %s", fn, what, im->message);
-    else if ((m = tt_mask_from_rgba(rgba, (int)im->width, (int)im->height, stride, threshold)) != NULL)
-        tt__mask_ok();
+    else if ((m = tt__mask_alloc(fn, (int)im->width, (int)im->height)) != NULL)
+        for (int y = 0; y < m->h; y++)
+            for (int x = 0; x < m->w; x++)
+                if (ga[(size_t)y * stride + 2 * (size_t)x + 1] > threshold) tt__mask_put(m, x, y, true);
     png_image_free(im);
-    free(rgba);
+    free(ga);
     return m;
 }
 

@@ -174,3 +174,30 @@ TEST(mask_overlap_refuses_bad_arguments)
     ENSURE(tt_mask_overlap_area(a, a, 3, 4) == 42);
     tt_mask_destroy(a);
 }
+
+TEST(mask_convolve_matches_overlap_at_every_offset)
+{
+    int done = 0;
+    for (int it = 0; it < 300; it++) {
+        pair_mask a = make(), b = make();
+        if (a.w > 80 || a.h > 80 || b.w > 80 || b.h > 80) { drop(&a); drop(&b); continue; }
+        tt_mask *c = tt_mask_convolve(a.m, b.m);
+        ENSURE(c != NULL);
+        for (int y = 0; y < a.h + b.h - 1; y++)
+            for (int x = 0; x < a.w + b.w - 1; x++)
+                if (tt_mask_get(c, x, y) != (int)tt_mask_overlap(a.m, b.m, x - b.w + 1, y - b.h + 1, NULL, NULL)) {
+                    tt_test_fail(__FILE__, __LINE__, "pair %d: pixel (%d, %d) differs", it, x, y);
+                    return;
+                }
+        tt_mask_destroy(c);
+        drop(&a);
+        drop(&b);
+        done++;
+    }
+    ENSURE(done > 20);
+    tt_mask *big = tt_mask_create(8192, 8192, true), *small = tt_mask_create(40, 40, true);
+    ENSURE(tt_mask_convolve(small, big) == NULL); /* 67 M pixels of B, each 40 rows of A: refused */
+    ENSURE(strstr(tt_mask_last_error(), "word operations") != NULL);
+    tt_mask_destroy(big);
+    tt_mask_destroy(small);
+}
