@@ -213,9 +213,19 @@ memcheck: all $(TEST_C)
 fuzz: all $(FUZZ_PNG)
 	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
-bench: deps $(BENCH) $(RUNNER)
+# The mask section compares with Debian's python3-pygame (pygame.mask): installed
+# here when run as root, otherwise the table says it is absent.
+bench: deps $(BENCH) $(RUNNER) $(LUA_MOD)
 	@mkdir -p $(BUILD)/bench-out
 	$(BENCH) $(BUILD)/bench-out
+	@if ! /usr/bin/python3 -c 'import pygame' >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "bench: installing python3-pygame (pygame.mask, the comparison)"; \
+	    { apt-get install -y -q python3-pygame || { apt-get update -q && apt-get install -y -q python3-pygame; }; } >/dev/null 2>&1 || \
+	      echo "bench: python3-pygame could not be installed"; \
+	  else echo "bench: python3-pygame is absent (as root, make bench installs it)"; fi; \
+	fi
+	LUA_CPATH='$(BUILD)/?.so' lua5.4 bench/mask_bench.lua $(BUILD)/bench-out
 	@if command -v gnuplot >/dev/null 2>&1; then \
 	  for g in bench/*.gp; do gnuplot -e "dir='$(BUILD)/bench-out'" $$g; done; \
 	  echo "plots: $(BUILD)/bench-out/*.png"; \

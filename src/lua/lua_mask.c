@@ -39,6 +39,13 @@ void tl_mask_own(lua_State *L, tl_mask_ud *u, tt_mask *m)
 {
     if (!m) tl_mask_error(L);
     u->m = m;
+    /* The collector sees a few bytes of userdata, not the bits behind it: told
+     * nothing, it lets masks made in a loop (m:overlap_mask every frame) pile
+     * up by the hundred megabytes, each new one on cold memory. A step as
+     * large as the bits keeps it collecting at the pace they are made. */
+    int w, h;
+    tt_mask_size(m, &w, &h);
+    lua_gc(L, LUA_GCSTEP, (int)((((size_t)w + 63) / 64 * 8 * (size_t)h) >> 10));
 }
 
 int tl_mask_error(lua_State *L)

@@ -69,7 +69,7 @@ typedef struct tt__mask_shift {
 bool tt__mask_shift_of(tt__mask_shift *s, const tt_mask *a, const tt_mask *b, int dx, int dy);
 
 /* B's bits landing on A's word k, with bounds checks (for the edge words). */
-static inline uint64_t tt__mask_bword(const uint64_t *b, int sb, const tt__mask_shift *s, int k)
+static inline __attribute__((always_inline)) uint64_t tt__mask_bword(const uint64_t *b, int sb, const tt__mask_shift *s, int k)
 {
     int j = k - s->q;
     uint64_t lo = (j >= 1 && j - 1 < sb) ? b[j - 1] : 0, hi = (j >= 0 && j < sb) ? b[j] : 0;

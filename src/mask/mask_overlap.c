@@ -4,17 +4,18 @@
  * Each row of A meets B's row as whole 64-bit words: B's two words that
  * straddle A's word are shifted together (tt__mask_bword), so a 1024-pixel
  * row is 16 word operations whatever the offset. The word loops are built
- * twice, for AVX2 processors and for any x86-64 (target_clones picks one
- * when the library loads); both give the same integers. */
+ * twice, for processors with AVX2 and POPCNT and for any other (chosen on
+ * first use by what the processor reports); both give the same integers. */
 #include "mask_internal.h"
 
 #include <math.h>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(TT_NO_SIMD)
-/* gcc -O2 vectorizes only loops it need not peel; these need a scalar tail. */
-#define TT__MASK_KERNEL __attribute__((target_clones("arch=haswell", "default"), optimize("vect-cost-model=dynamic")))
-#else
-#define TT__MASK_KERNEL
+#define TT__MASK_X86 1
+/* gcc -O2 vectorizes only loops it need not peel; these need a scalar tail.
+ * (target_clones("arch=haswell") is no use: its resolver asks whether the
+ * processor IS a Haswell, so every later one got the slow clone.) */
+#define TT__MASK_FAST __attribute__((target("avx2,popcnt,bmi2"), optimize("vect-cost-model=dynamic")))
 #endif
 
 static int floor_div64(int v)
@@ -83,29 +84,106 @@ static inline __attribute__((always_inline)) uint64_t row_op(int op, const uint6
     return acc;
 }
 
-TT__MASK_KERNEL
-static int first_row(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)
+#ifdef TT__MASK_X86
+#include <immintrin.h>
+
+/* Pixel counts of each 64-bit lane (Mula's nibble table: AVX2 has no popcount). */
+TT__MASK_FAST static inline __attribute__((always_inline)) __m256i popcount4(__m256i v)
 {
-    for (int y = s->y0; y < s->y1; y++)
-        if (row_op(OP_ANY, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s)) return y;
-    return -1;
+    const __m256i lut = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3,
+                                         2, 3, 3, 4);
+    const __m256i nib = _mm256_set1_epi8(0x0f);
+    __m256i lo = _mm256_shuffle_epi8(lut, _mm256_and_si256(v, nib));
+    __m256i hi = _mm256_shuffle_epi8(lut, _mm256_and_si256(_mm256_srli_epi16(v, 4), nib));
+    return _mm256_sad_epu8(_mm256_add_epi8(lo, hi), _mm256_setzero_si256());
 }
 
-TT__MASK_KERNEL
-static int64_t count_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)
+/* row_op with the interior four words at a time. */
+TT__MASK_FAST static inline __attribute__((always_inline)) uint64_t row_op_avx2(int op, const uint64_t *restrict a,
+                                                                               const uint64_t *restrict b,
+                                                                               uint64_t *restrict out, int sb,
+                                                                               const tt__mask_shift *s)
 {
-    uint64_t n = 0;
-    for (int y = s->y0; y < s->y1; y++)
-        n += row_op(OP_COUNT, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s);
-    return (int64_t)n;
+    if (s->ki0 > s->ki1 || s->ki1 - s->ki0 < 3) return row_op(op, a, b, out, sb, s);
+    uint64_t acc = 0;
+    const unsigned r = s->r;
+    const uint64_t *bj = b - s->q;
+    for (int k = s->k0; k < s->ki0; k++) { /* the edge word before the interior */
+        uint64_t v = a[k] & tt__mask_bword(b, sb, s, k);
+        if (op == OP_COUNT) acc += (uint64_t)__builtin_popcountll(v); else acc |= v;
+        if (op == OP_AND) out[k] = v;
+    }
+    const __m128i cr = _mm_cvtsi32_si128((int)r), cl = _mm_cvtsi32_si128((int)(64 - r));
+    __m256i vacc = _mm256_setzero_si256();
+    int k = s->ki0;
+    for (; k + 3 <= s->ki1; k += 4) {
+        __m256i hi = _mm256_loadu_si256((const __m256i *)(bj + k)), bw = hi;
+        if (r) bw = _mm256_or_si256(_mm256_srl_epi64(_mm256_loadu_si256((const __m256i *)(bj + k - 1)), cl),
+                                    _mm256_sll_epi64(hi, cr));
+        __m256i v = _mm256_and_si256(_mm256_loadu_si256((const __m256i *)(a + k)), bw);
+        if (op == OP_COUNT) vacc = _mm256_add_epi64(vacc, popcount4(v));
+        else vacc = _mm256_or_si256(vacc, v);
+        if (op == OP_AND) _mm256_storeu_si256((__m256i *)(out + k), v);
+    }
+    uint64_t lanes[4];
+    _mm256_storeu_si256((__m256i *)lanes, vacc);
+    acc = op == OP_COUNT ? acc + lanes[0] + lanes[1] + lanes[2] + lanes[3] : acc | lanes[0] | lanes[1] | lanes[2] | lanes[3];
+    for (; k <= s->k1; k++) { /* the interior's last words and the edge word after it */
+        uint64_t v = a[k] & (k <= s->ki1 ? (r ? (bj[k - 1] >> (64 - r)) | (bj[k] << r) : bj[k]) : tt__mask_bword(b, sb, s, k));
+        if (op == OP_COUNT) acc += (uint64_t)__builtin_popcountll(v); else acc |= v;
+        if (op == OP_AND) out[k] = v;
+    }
+    return acc;
+}
+#endif
+
+/* The three whole-overlap loops, built once per target by KERNELS(suffix, attributes). */
+#define KERNELS(sfx, ATTR, ROW)                                                                                      \
+    ATTR static int first_row_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)                \
+    {                                                                                                            \
+        for (int y = s->y0; y < s->y1; y++)                                                                      \
+            if (ROW(OP_ANY, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s)) return y;  \
+        return -1;                                                                                               \
+    }                                                                                                            \
+    ATTR static int64_t count_all_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)            \
+    {                                                                                                            \
+        uint64_t n = 0;                                                                                          \
+        for (int y = s->y0; y < s->y1; y++)                                                                      \
+            n += ROW(OP_COUNT, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s);         \
+        return (int64_t)n;                                                                                       \
+    }                                                                                                            \
+    ATTR static void and_all_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s, tt_mask *out)   \
+    {                                                                                                            \
+        for (int y = s->y0; y < s->y1; y++)                                                                      \
+            ROW(OP_AND, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), tt__mask_row(out, y), b->stride, s);    \
+    }
+
+KERNELS(any, , row_op)
+#ifdef TT__MASK_X86
+KERNELS(fast, TT__MASK_FAST, row_op_avx2)
+#endif
+
+/* Whether the fast loops run here: asked once (the answer never changes). */
+static bool fast(void)
+{
+#ifdef TT__MASK_X86
+    static int known = -1;
+    if (known < 0) known = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi2");
+    return known;
+#else
+    return false;
+#endif
 }
 
-TT__MASK_KERNEL
-static void and_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s, tt_mask *out)
-{
-    for (int y = s->y0; y < s->y1; y++)
-        row_op(OP_AND, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), tt__mask_row(out, y), b->stride, s);
-}
+#ifdef TT__MASK_X86
+#define PICK(fn) (fast() ? fn##_fast : fn##_any)
+#else
+#define PICK(fn) fn##_any
+#endif
+
+static int first_row(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s) { return PICK(first_row)(a, b, s); }
+static int64_t count_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s) { return PICK(count_all)(a, b, s); }
+static void and_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s, tt_mask *out) { PICK(and_all)(a, b, s, out); }
 
 static tt_result check_pair(const char *fn, const tt_mask *a, const tt_mask *b, int dx, int dy)
 {

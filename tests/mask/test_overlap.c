@@ -1,6 +1,7 @@
 /* Overlap, first point, area and overlap mask against a plain per-pixel
- * reference, on thousands of random pairs (sizes 1…200, widths around the
- * 64-bit word, offsets across word boundaries and wholly outside); draw
+ * reference, on thousands of random pairs (sizes 1…200 and widths up to 513,
+ * widths around the 64-bit word, offsets across word boundaries and wholly
+ * outside); draw
  * and erase likewise; the push-out normal on known shapes. */
 #include "test.h"
 #include "tether.h"
@@ -34,7 +35,8 @@ static int pick_side(void)
 static pair_mask make(void)
 {
     pair_mask p;
-    p.w = pick_side();
+    /* wide ones too: rows of five words and more take the four-words-at-a-time loop */
+    p.w = rnd(6) == 0 ? (int[]){ 256, 257, 319, 320, 321, 513 }[rnd(6)] : pick_side();
     p.h = pick_side();
     p.m = tt_mask_create(p.w, p.h, false);
     p.px = calloc((size_t)p.w * p.h, 1);
