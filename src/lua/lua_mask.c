@@ -45,7 +45,8 @@ void tl_mask_own(lua_State *L, tl_mask_ud *u, tt_mask *m)
      * large as the bits keeps it collecting at the pace they are made. */
     int w, h;
     tt_mask_size(m, &w, &h);
-    lua_gc(L, LUA_GCSTEP, (int)((((size_t)w + 63) / 64 * 8 * (size_t)h) >> 10));
+    size_t kb = (((size_t)w + 63) / 64 * 8 * (size_t)h) >> 10;
+    if (kb >= 16) lua_gc(L, LUA_GCSTEP, (int)kb); /* small ones: the collector's own pace is near enough */
 }
 
 int tl_mask_error(lua_State *L)

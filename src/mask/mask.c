@@ -52,23 +52,35 @@ tt_result tt__mask_check_offset(const char *fn, int dx, int dy)
     return TT_OK;
 }
 
-tt_mask *tt__mask_alloc(const char *fn, int w, int h)
+/* The struct and its bits in one block: one allocation per mask, which is
+ * what a mask made per call (an overlap mask) costs. Sizes are checked by
+ * the callers (≤ TT_MASK_MAX_SIDE), so nothing here overflows. */
+static tt_mask *alloc_block(const char *fn, int w, int h, bool zero)
 {
-    tt_mask *m = malloc(sizeof *m);
     int stride = (w + 63) >> 6;
-    uint64_t *bits = calloc((size_t)stride * (size_t)h, sizeof *bits);
-    if (!m || !bits) {
-        free(m);
-        free(bits);
+    size_t words = (size_t)stride * (size_t)h, head = (sizeof(tt_mask) + 63) / 64 * 64;
+    unsigned char *block = zero ? calloc(1, head + words * sizeof(uint64_t)) : malloc(head + words * sizeof(uint64_t));
+    if (!block) {
         tt__mask_fail(TT_ENOMEM, "%s: out of memory for a %d x %d mask", fn, w, h);
         return NULL;
     }
+    tt_mask *m = (tt_mask *)block;
     m->w = w;
     m->h = h;
     m->stride = stride;
-    m->bits = bits;
+    m->bits = (uint64_t *)(block + head);
     tt__mask_ok();
     return m;
+}
+
+tt_mask *tt__mask_alloc(const char *fn, int w, int h)
+{
+    return alloc_block(fn, w, h, true);
+}
+
+tt_mask *tt__mask_alloc_raw(const char *fn, int w, int h)
+{
+    return alloc_block(fn, w, h, false);
 }
 
 void tt__mask_clear_tail(tt_mask *m)
@@ -88,9 +100,7 @@ tt_mask *tt_mask_create(int w, int h, bool filled)
 
 void tt_mask_destroy(tt_mask *m)
 {
-    if (!m) return;
-    free(m->bits);
-    free(m);
+    free(m); /* the bits are in the same block */
 }
 
 tt_mask *tt_mask_copy(const tt_mask *m)

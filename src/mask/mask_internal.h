@@ -13,7 +13,7 @@
 struct tt_mask {
     int w, h;
     int stride;     /* words per row */
-    uint64_t *bits; /* h·stride words */
+    uint64_t *bits; /* h·stride words, in the same allocation after the struct */
 };
 
 #define TT__MASK_PRINTF(a, b) __attribute__((format(printf, a, b)))
@@ -25,6 +25,8 @@ void tt__mask_ok(void);
 
 /* A mask with every bit clear, no checks but the allocation (NULL with a message). */
 tt_mask *tt__mask_alloc(const char *fn, int w, int h);
+/* The same with its bits unset: the caller writes every word. */
+tt_mask *tt__mask_alloc_raw(const char *fn, int w, int h);
 /* Checks w, h as the public calls document (1…TT_MASK_MAX_SIDE). */
 tt_result tt__mask_check_size(const char *fn, int w, int h);
 /* Checks a mask argument (not NULL). */

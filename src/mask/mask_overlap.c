@@ -9,6 +9,7 @@
 #include "mask_internal.h"
 
 #include <math.h>
+#include <string.h>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(TT_NO_SIMD)
 #define TT__MASK_X86 1
@@ -137,6 +138,13 @@ TT__MASK_FAST static inline __attribute__((always_inline)) uint64_t row_op_avx2(
 }
 #endif
 
+/* Masks at most 64 pixels wide, the usual sprite: one word per row each, so
+ * B's row lands on A's one word as B's word shifted (dx in −63…63 here). */
+static inline uint64_t narrow_word(uint64_t b, int dx)
+{
+    return dx >= 0 ? b << dx : b >> -dx;
+}
+
 /* The three whole-overlap loops, built once per target by KERNELS(suffix, attributes). */
 #define KERNELS(sfx, ATTR, ROW)                                                                                      \
     ATTR static int first_row_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)                \
@@ -148,6 +156,12 @@ TT__MASK_FAST static inline __attribute__((always_inline)) uint64_t row_op_avx2(
     ATTR static int64_t count_all_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)            \
     {                                                                                                            \
         uint64_t n = 0;                                                                                          \
+        if (a->stride == 1 && b->stride == 1) { /* narrow masks: see narrow_word */                             \
+            int dx = s->q * 64 + (int)s->r;                                                                      \
+            for (int y = s->y0; y < s->y1; y++)                                                                  \
+                n += (uint64_t)__builtin_popcountll(a->bits[y] & narrow_word(b->bits[y - s->dy], dx));          \
+            return (int64_t)n;                                                                                   \
+        }                                                                                                        \
         for (int y = s->y0; y < s->y1; y++)                                                                      \
             n += ROW(OP_COUNT, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s);         \
         return (int64_t)n;                                                                                       \
@@ -181,8 +195,27 @@ static bool fast(void)
 #define PICK(fn) fn##_any
 #endif
 
-static int first_row(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s) { return PICK(first_row)(a, b, s); }
-static int64_t count_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s) { return PICK(count_all)(a, b, s); }
+static bool narrow(const tt_mask *a, const tt_mask *b)
+{
+    return a->stride == 1 && b->stride == 1;
+}
+
+static int first_row(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)
+{
+    if (narrow(a, b)) {
+        int dx = s->q * 64 + (int)s->r;
+        for (int y = s->y0; y < s->y1; y++)
+            if (a->bits[y] & narrow_word(b->bits[y - s->dy], dx)) return y;
+        return -1;
+    }
+    return PICK(first_row)(a, b, s);
+}
+
+static int64_t count_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)
+{
+    return PICK(count_all)(a, b, s);
+}
+
 static void and_all(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s, tt_mask *out) { PICK(and_all)(a, b, s, out); }
 
 static tt_result check_pair(const char *fn, const tt_mask *a, const tt_mask *b, int dx, int dy)
@@ -222,8 +255,19 @@ tt_mask *tt_mask_overlap_mask(const tt_mask *a, const tt_mask *b, int dx, int dy
 {
     tt__mask_shift s;
     if (check_pair("tt_mask_overlap_mask", a, b, dx, dy) != TT_OK) return NULL;
-    tt_mask *out = tt__mask_alloc("tt_mask_overlap_mask", a->w, a->h);
-    if (out && tt__mask_shift_of(&s, a, b, dx, dy)) and_all(a, b, &s, out);
+    if (!tt__mask_shift_of(&s, a, b, dx, dy)) return tt__mask_alloc("tt_mask_overlap_mask", a->w, a->h);
+    /* every word written once, not cleared first and then written */
+    tt_mask *out = tt__mask_alloc_raw("tt_mask_overlap_mask", a->w, a->h);
+    if (!out) return NULL;
+    size_t row = (size_t)a->stride * sizeof(uint64_t);
+    memset(out->bits, 0, (size_t)s.y0 * row);
+    memset(tt__mask_row(out, s.y1), 0, (size_t)(a->h - s.y1) * row);
+    for (int y = s.y0; y < s.y1; y++) {
+        uint64_t *o = tt__mask_row(out, y);
+        for (int k = 0; k < s.k0; k++) o[k] = 0;
+        for (int k = s.k1 + 1; k < a->stride; k++) o[k] = 0;
+    }
+    and_all(a, b, &s, out);
     return out;
 }
 
