@@ -64,6 +64,14 @@ TT_API tt_mask *tt_mask_create(int w, int h, bool filled);
 TT_API void tt_mask_destroy(tt_mask *m);
 /// A copy of m, or NULL.
 TT_API tt_mask *tt_mask_copy(const tt_mask *m);
+/// Bytes a w×h mask takes (0 for a bad size): for tt_mask_init, when the caller owns the memory.
+TT_API size_t tt_mask_footprint(int w, int h);
+/// A w×h mask, every pixel clear, laid out in mem (at least tt_mask_footprint(w, h) bytes, 8-byte aligned). The
+/// caller frees mem; never pass the mask to tt_mask_destroy. NULL on bad arguments. (The Lua binding keeps each
+/// mask inside its userdata this way, so the collector knows its true size.)
+TT_API tt_mask *tt_mask_init(void *mem, size_t size, int w, int h);
+/// Copies src's pixels into dst, which must be of the same size.
+TT_API tt_result tt_mask_copy_into(tt_mask *dst, const tt_mask *src);
 /// A mask of an RGBA image (rows top to bottom, stride bytes apart, ≥ 4·w): a pixel is set when its
 /// alpha is > threshold (0…254; pygame's from_surface uses 127).
 TT_API tt_mask *tt_mask_from_rgba(const uint8_t *rgba, int w, int h, size_t stride, int threshold);
@@ -121,6 +129,8 @@ TT_API bool tt_mask_overlap(const tt_mask *a, const tt_mask *b, int dx, int dy, 
 TT_API int64_t tt_mask_overlap_area(const tt_mask *a, const tt_mask *b, int dx, int dy);
 /// A new mask of A's size holding the overlapping pixels, or NULL.
 TT_API tt_mask *tt_mask_overlap_mask(const tt_mask *a, const tt_mask *b, int dx, int dy);
+/// The same into out, a mask of A's size (every pixel of it written; out may not be A or B).
+TT_API tt_result tt_mask_overlap_mask_into(tt_mask *out, const tt_mask *a, const tt_mask *b, int dx, int dy);
 /// The direction to push B out of A, in A's image frame (y down), from the overlap area's gradient
 /// (area at dx ± 1 and dy ± 1, as pygame's examples do): a unit vector, or (0, 0) when they do not
 /// overlap or the gradient is flat.

@@ -25,28 +25,52 @@ tt_mask *tl_check_mask(lua_State *L, int arg)
     return tl_check_mask_ud(L, arg)->m;
 }
 
-tl_mask_ud *tl_new_mask_ud(lua_State *L)
+/* Where a mask lies in its userdata: after the header, 16-byte aligned as Lua aligns the block. */
+#define HEAD ((sizeof(tl_mask_ud) + 15) / 16 * 16)
+
+tl_mask_ud *tl_push_mask(lua_State *L, int w, int h)
 {
-    tl_mask_ud *u = lua_newuserdatauv(L, sizeof *u, 1);
+    size_t bytes = tt_mask_footprint(w, h);
+    tl_mask_ud *u = lua_newuserdatauv(L, HEAD + bytes, 1);
     u->m = NULL;
     u->version = 0;
     u->painted = 0;
     luaL_setmetatable(L, TL_MASK_CLASS);
+    u->m = tt_mask_init((unsigned char *)u + HEAD, bytes, w, h);
+    if (!u->m) tl_mask_error(L);
     return u;
 }
 
-void tl_mask_own(lua_State *L, tl_mask_ud *u, tt_mask *m)
+#define HOLDER_CLASS "tether.mask.holder"
+
+/* __gc of a holder: the C mask it still holds when a call raised */
+static int holder_gc(lua_State *L)
 {
+    tt_mask **slot = lua_touserdata(L, 1);
+    tt_mask_destroy(*slot);
+    *slot = NULL;
+    return 0;
+}
+
+tt_mask **tl_new_mask_ud(lua_State *L)
+{
+    tt_mask **slot = lua_newuserdatauv(L, sizeof *slot, 0);
+    *slot = NULL;
+    luaL_setmetatable(L, HOLDER_CLASS);
+    return slot;
+}
+
+tl_mask_ud *tl_mask_own(lua_State *L, tt_mask **slot, tt_mask *m)
+{
+    *slot = m;
     if (!m) tl_mask_error(L);
-    u->m = m;
-    /* The collector sees a few bytes of userdata, not the bits behind it: told
-     * nothing, it lets masks made in a loop (m:overlap_mask every frame) pile
-     * up by the hundred megabytes, each new one on cold memory. A step as
-     * large as the bits keeps it collecting at the pace they are made. */
     int w, h;
     tt_mask_size(m, &w, &h);
-    size_t kb = (((size_t)w + 63) / 64 * 8 * (size_t)h) >> 10;
-    if (kb >= 16) lua_gc(L, LUA_GCSTEP, (int)kb); /* small ones: the collector's own pace is near enough */
+    tl_mask_ud *u = tl_push_mask(L, w, h);
+    tt_mask_copy_into(u->m, m);
+    tt_mask_destroy(m);
+    *slot = NULL;
+    return u;
 }
 
 int tl_mask_error(lua_State *L)
@@ -73,16 +97,6 @@ static void check_r(lua_State *L, tt_result r)
     if (r != TT_OK) tl_mask_error(L);
 }
 
-static int m_gc(lua_State *L)
-{
-    tl_mask_ud *u = luaL_testudata(L, 1, TL_MASK_CLASS);
-    if (u) {
-        tt_mask_destroy(u->m);
-        u->m = NULL;
-    }
-    return 0;
-}
-
 static int m_tostring(lua_State *L)
 {
     tl_mask_ud *u = tl_check_mask_ud(L, 1);
@@ -97,7 +111,8 @@ static int f_new(lua_State *L)
 {
     int w = (int)tl_checkinteger(L, 1, 1, TT_MASK_MAX_SIDE), h = (int)tl_checkinteger(L, 2, 1, TT_MASK_MAX_SIDE);
     bool filled = lua_isnoneornil(L, 3) ? false : tl_checkboolean(L, 3);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_create(w, h, filled));
+    tl_mask_ud *u = tl_push_mask(L, w, h);
+    if (filled) tt_mask_fill(u->m);
     return 1;
 }
 
@@ -132,8 +147,7 @@ static int f_from_string(lua_State *L)
     else if (col != w) tl_argerror(L, 1, "row %d has %d pixels, row 1 has %d", (int)h, (int)col, (int)w);
     if (w < 1 || w > TT_MASK_MAX_SIDE || h > TT_MASK_MAX_SIDE)
         tl_argerror(L, 1, "a mask of %d x %d pixels: each side must be 1…%d", (int)w, (int)h, TT_MASK_MAX_SIDE);
-    tl_mask_ud *u = tl_new_mask_ud(L);
-    tl_mask_own(L, u, tt_mask_create((int)w, (int)h, false));
+    tl_mask_ud *u = tl_push_mask(L, (int)w, (int)h);
     for (size_t i = 0, x = 0, y = 0; i < n; i++) {
         if (s[i] == '\n') { y++; x = 0; continue; }
         if (pixel_char(s[i])) tt_mask_set(u->m, (int)x, (int)y, true);
@@ -147,7 +161,8 @@ static int f_load(lua_State *L)
 {
     const char *path = tl_checkstring(L, 1);
     int t = (int)tl_optinteger(L, 2, 0, 254, 127);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_load_png(path, t));
+    tt_mask **slot = tl_new_mask_ud(L);
+    tl_mask_own(L, slot, tt_mask_load_png(path, t));
     return 1;
 }
 
@@ -156,8 +171,7 @@ static int f_circle(lua_State *L)
 {
     double r = tl_checknumber(L, 1, &(tl_range){ 0.5, TT_MASK_MAX_SIDE / 2, false });
     int side = 2 * (int)ceil(r);
-    tl_mask_ud *u = tl_new_mask_ud(L);
-    tl_mask_own(L, u, tt_mask_create(side, side, false));
+    tl_mask_ud *u = tl_push_mask(L, side, side);
     check_r(L, tt_mask_fill_circle(u->m, side / 2.0, side / 2.0, r, true));
     return 1;
 }
@@ -166,7 +180,7 @@ static int f_circle(lua_State *L)
 static int f_rect(lua_State *L)
 {
     int w = (int)tl_checkinteger(L, 1, 1, TT_MASK_MAX_SIDE), h = (int)tl_checkinteger(L, 2, 1, TT_MASK_MAX_SIDE);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_create(w, h, true));
+    tt_mask_fill(tl_push_mask(L, w, h)->m);
     return 1;
 }
 
@@ -202,8 +216,7 @@ static int f_polygon(lua_State *L)
     int w = (int)ceil(mx), h = (int)ceil(my);
     if (w < 1 || h < 1 || w > TT_MASK_MAX_SIDE || h > TT_MASK_MAX_SIDE)
         tl_argerror(L, 1, "the points span %d x %d pixels: each side must be 1…%d", w, h, TT_MASK_MAX_SIDE);
-    tl_mask_ud *u = tl_new_mask_ud(L);
-    tl_mask_own(L, u, tt_mask_create(w, h, false));
+    tl_mask_ud *u = tl_push_mask(L, w, h);
     check_r(L, tt_mask_fill_polygon(u->m, p, n, true));
     return 1;
 }
@@ -284,7 +297,9 @@ static int m_centroid(lua_State *L)
 static int m_copy(lua_State *L)
 {
     tt_mask *m = tl_check_mask(L, 1);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_copy(m));
+    int w, h;
+    tt_mask_size(m, &w, &h);
+    tt_mask_copy_into(tl_push_mask(L, w, h)->m, m);
     return 1;
 }
 
@@ -293,7 +308,8 @@ static int m_rotated(lua_State *L)
 {
     tt_mask *m = tl_check_mask(L, 1);
     double a = tl_checknumber(L, 2, &R_ANGLE);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_rotated(m, a));
+    tt_mask **slot = tl_new_mask_ud(L);
+    tl_mask_own(L, slot, tt_mask_rotated(m, a));
     return 1;
 }
 
@@ -302,7 +318,8 @@ static int m_scaled(lua_State *L)
 {
     tt_mask *m = tl_check_mask(L, 1);
     int w = (int)tl_checkinteger(L, 2, 1, TT_MASK_MAX_SIDE), h = (int)tl_checkinteger(L, 3, 1, TT_MASK_MAX_SIDE);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_scaled(m, w, h));
+    tt_mask **slot = tl_new_mask_ud(L);
+    tl_mask_own(L, slot, tt_mask_scaled(m, w, h));
     return 1;
 }
 
@@ -374,7 +391,7 @@ static const luaL_Reg mask_methods[] = {
     { "to_string", m_to_string }, { "save", m_save },       { "fill_circle", m_fill_circle },
     { "fill_rect", m_fill_rect }, { "fill_polygon", m_fill_polygon }, { NULL, NULL }
 };
-static const luaL_Reg mask_meta[] = { { "__gc", m_gc }, { "__tostring", m_tostring }, { NULL, NULL } };
+static const luaL_Reg mask_meta[] = { { "__tostring", m_tostring }, { NULL, NULL } };
 static const luaL_Reg mask_funcs[] = { { "new", f_new },       { "from_string", f_from_string }, { "load", f_load },
                                        { "circle", f_circle }, { "rect", f_rect },               { "polygon", f_polygon },
                                        { NULL, NULL } };
@@ -386,6 +403,11 @@ void tl_mask_register(lua_State *L)
         lua_createtable(L, 0, 48);
         tl_setfuncs(L, mask_methods, "");
         lua_setfield(L, -2, "__index");
+    }
+    lua_pop(L, 1);
+    if (luaL_newmetatable(L, HOLDER_CLASS)) {
+        lua_pushcfunction(L, holder_gc);
+        lua_setfield(L, -2, "__gc");
     }
     lua_pop(L, 1);
     lua_createtable(L, 0, 8);

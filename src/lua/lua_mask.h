@@ -8,12 +8,13 @@
 
 #define TL_MASK_CLASS "tether.mask"
 
-/* The userdata: m is NULL only while a constructor has not finished (an
- * error there leaves a harmless empty userdata for the collector). version
- * counts changes, so g.mask repaints its cached image only when needed. The
- * user value 1 holds that image. A mask has no close or destroy method, so
- * nothing a call runs (an option table's __index, a finalizer) can free a
- * mask another call is using. */
+/* The userdata: the mask itself lies inside it, after this header
+ * (tt_mask_init), so the collector knows what a mask weighs and frees it
+ * with no finalizer; m is NULL only while the userdata is being made.
+ * version counts changes, so g.mask repaints its cached image only when
+ * needed; the user value 1 holds that image. A mask has no close or destroy
+ * method, so nothing a call runs (an option table's __index, a finalizer)
+ * can free a mask another call is using. */
 typedef struct tl_mask_ud {
     tt_mask *m;
     uint64_t version;
@@ -23,11 +24,15 @@ typedef struct tl_mask_ud {
 /* The mask at arg (raises "tether.mask expected, got …"). */
 tl_mask_ud *tl_check_mask_ud(lua_State *L, int arg);
 tt_mask *tl_check_mask(lua_State *L, int arg);
-/* Pushes a new mask userdata that will own the mask made by make(arg) — the
- * userdata first, so an allocation error cannot leak the mask. Raises
- * "fname: <tt_mask_last_error()>" when m is NULL. */
-tl_mask_ud *tl_new_mask_ud(lua_State *L);
-void tl_mask_own(lua_State *L, tl_mask_ud *u, tt_mask *m);
+/* Pushes a new mask userdata holding a clear w×h mask (w, h already checked). */
+tl_mask_ud *tl_push_mask(lua_State *L, int w, int h);
+/* For masks whose size only the C call knows: pushes a holder (call it
+ * before the C call, so that no allocation error can come between the
+ * C mask's making and its owner), then tl_mask_own pushes the mask userdata
+ * with a copy of m and frees m (the holder's finalizer frees it if a call
+ * raises in between). Raises "fname: <tt_mask_last_error()>" when m is NULL. */
+tt_mask **tl_new_mask_ud(lua_State *L);
+tl_mask_ud *tl_mask_own(lua_State *L, tt_mask **slot, tt_mask *m);
 /* Raises "fname: <tt_mask_last_error() without its C function's name>". */
 int tl_mask_error(lua_State *L);
 /* An offset coordinate at arg (integer within ±TT_MASK_MAX_OFFSET). */

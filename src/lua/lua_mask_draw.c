@@ -22,7 +22,8 @@ static int f_from_image(lua_State *L)
     double t = tl_optnumber(L, 2, &(tl_range){ 0.0, 254.0 / 255.0, false }, 0.5);
     int w, h;
     tt_image_size(img, &w, &h);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_from_rgba(tt_image_pixels(img), w, h, (size_t)w * 4, (int)(t * 255.0)));
+    tt_mask **slot = tl_new_mask_ud(L);
+    tl_mask_own(L, slot, tt_mask_from_rgba(tt_image_pixels(img), w, h, (size_t)w * 4, (int)(t * 255.0)));
     return 1;
 }
 
@@ -37,7 +38,8 @@ static int f_from_color(lua_State *L)
     bool invert = lua_isnoneornil(L, 6) ? false : tl_checkboolean(L, 6);
     int w, h;
     tt_image_size(img, &w, &h);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_from_color(tt_image_pixels(img), w, h, (size_t)w * 4, key, tol, invert));
+    tt_mask **slot = tl_new_mask_ud(L);
+    tl_mask_own(L, slot, tt_mask_from_color(tt_image_pixels(img), w, h, (size_t)w * 4, key, tol, invert));
     return 1;
 }
 

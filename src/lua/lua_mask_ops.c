@@ -77,7 +77,10 @@ static int m_overlap_mask(lua_State *L)
     tt_mask *a = tl_check_mask(L, 1);
     int dx, dy;
     tt_mask *b = other_at(L, &dx, &dy);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_overlap_mask(a, b, dx, dy));
+    int w, h;
+    tt_mask_size(a, &w, &h);
+    tl_mask_ud *u = tl_push_mask(L, w, h); /* inside the userdata: no allocation of its own, no finalizer */
+    tt_mask_overlap_mask_into(u->m, a, b, dx, dy);
     return 1;
 }
 
@@ -98,7 +101,8 @@ static int m_overlap_normal(lua_State *L)
 static int m_convolve(lua_State *L)
 {
     tt_mask *a = tl_check_mask(L, 1), *b = tl_check_mask(L, 2);
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_convolve(a, b));
+    tt_mask **slot = tl_new_mask_ud(L);
+    tl_mask_own(L, slot, tt_mask_convolve(a, b));
     return 1;
 }
 
@@ -122,7 +126,8 @@ static int m_component(lua_State *L)
         x = (int)tl_checkinteger(L, 2, 0, w - 1);
         y = (int)tl_checkinteger(L, 3, 0, h - 1);
     }
-    tl_mask_own(L, tl_new_mask_ud(L), tt_mask_component(m, x, y));
+    tt_mask **slot = tl_new_mask_ud(L);
+    tl_mask_own(L, slot, tt_mask_component(m, x, y));
     return 1;
 }
 

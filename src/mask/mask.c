@@ -55,22 +55,61 @@ tt_result tt__mask_check_offset(const char *fn, int dx, int dy)
 /* The struct and its bits in one block: one allocation per mask, which is
  * what a mask made per call (an overlap mask) costs. Sizes are checked by
  * the callers (≤ TT_MASK_MAX_SIDE), so nothing here overflows. */
+#define HEAD ((sizeof(tt_mask) + 63) / 64 * 64)
+
+static size_t block_size(int w, int h)
+{
+    return HEAD + (size_t)((w + 63) >> 6) * (size_t)h * sizeof(uint64_t);
+}
+
+static tt_mask *lay_out(unsigned char *block, int w, int h)
+{
+    tt_mask *m = (tt_mask *)block;
+    m->w = w;
+    m->h = h;
+    m->stride = (w + 63) >> 6;
+    m->bits = (uint64_t *)(block + HEAD);
+    return m;
+}
+
 static tt_mask *alloc_block(const char *fn, int w, int h, bool zero)
 {
-    int stride = (w + 63) >> 6;
-    size_t words = (size_t)stride * (size_t)h, head = (sizeof(tt_mask) + 63) / 64 * 64;
-    unsigned char *block = zero ? calloc(1, head + words * sizeof(uint64_t)) : malloc(head + words * sizeof(uint64_t));
+    unsigned char *block = zero ? calloc(1, block_size(w, h)) : malloc(block_size(w, h));
     if (!block) {
         tt__mask_fail(TT_ENOMEM, "%s: out of memory for a %d x %d mask", fn, w, h);
         return NULL;
     }
-    tt_mask *m = (tt_mask *)block;
-    m->w = w;
-    m->h = h;
-    m->stride = stride;
-    m->bits = (uint64_t *)(block + head);
+    tt__mask_ok();
+    return lay_out(block, w, h);
+}
+
+size_t tt_mask_footprint(int w, int h)
+{
+    if (tt__mask_check_size("tt_mask_footprint", w, h) != TT_OK) return 0;
+    return block_size(w, h);
+}
+
+tt_mask *tt_mask_init(void *mem, size_t size, int w, int h)
+{
+    const char *fn = "tt_mask_init";
+    if (tt__mask_check_size(fn, w, h) != TT_OK) return NULL;
+    if (!mem || size < block_size(w, h) || ((uintptr_t)mem & 7u)) {
+        tt__mask_fail(TT_EINVAL, "%s: %s", fn, !mem ? "mem is NULL" : size < block_size(w, h) ? "size below tt_mask_footprint" : "mem not aligned to 8 bytes");
+        return NULL;
+    }
+    tt_mask *m = lay_out(mem, w, h);
+    memset(m->bits, 0, block_size(w, h) - HEAD);
     tt__mask_ok();
     return m;
+}
+
+tt_result tt_mask_copy_into(tt_mask *dst, const tt_mask *src)
+{
+    if (!dst || !src) return tt__mask_fail(TT_EINVAL, "tt_mask_copy_into: %s is NULL", dst ? "src" : "dst");
+    if (dst->w != src->w || dst->h != src->h)
+        return tt__mask_fail(TT_EINVAL, "tt_mask_copy_into: sizes differ (%d x %d, %d x %d)", dst->w, dst->h, src->w, src->h);
+    if (dst != src) memcpy(dst->bits, src->bits, (size_t)src->stride * (size_t)src->h * sizeof *src->bits);
+    return TT_OK;
 }
 
 tt_mask *tt__mask_alloc(const char *fn, int w, int h)

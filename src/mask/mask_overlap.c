@@ -145,6 +145,18 @@ static inline uint64_t narrow_word(uint64_t b, int dx)
     return dx >= 0 ? b << dx : b >> -dx;
 }
 
+/* With dx = 0 and rows of the same width, the rows B covers are one run of
+ * words in each mask: one "row" of them all, with none of the per-row
+ * set-up that dominates narrow masks. Fills f for it. */
+static inline bool contiguous(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s, tt__mask_shift *f)
+{
+    if (s->q != 0 || s->r != 0 || a->stride != b->stride) return false;
+    *f = *s;
+    f->k0 = f->ki0 = 0;
+    f->k1 = f->ki1 = (s->y1 - s->y0) * a->stride - 1;
+    return true;
+}
+
 /* The three whole-overlap loops, built once per target by KERNELS(suffix, attributes). */
 #define KERNELS(sfx, ATTR, ROW)                                                                                      \
     ATTR static int first_row_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)                \
@@ -162,12 +174,20 @@ static inline uint64_t narrow_word(uint64_t b, int dx)
                 n += (uint64_t)__builtin_popcountll(a->bits[y] & narrow_word(b->bits[y - s->dy], dx));          \
             return (int64_t)n;                                                                                   \
         }                                                                                                        \
+        tt__mask_shift f;                                                                                        \
+        if (contiguous(a, b, s, &f))                                                                             \
+            return (int64_t)ROW(OP_COUNT, tt__mask_row(a, s->y0), tt__mask_row(b, s->y0 - s->dy), NULL, f.k1 + 1, &f); \
         for (int y = s->y0; y < s->y1; y++)                                                                      \
             n += ROW(OP_COUNT, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s);         \
         return (int64_t)n;                                                                                       \
     }                                                                                                            \
     ATTR static void and_all_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s, tt_mask *out)   \
     {                                                                                                            \
+        tt__mask_shift f;                                                                                        \
+        if (contiguous(a, b, s, &f)) {                                                                           \
+            ROW(OP_AND, tt__mask_row(a, s->y0), tt__mask_row(b, s->y0 - s->dy), tt__mask_row(out, s->y0), f.k1 + 1, &f); \
+            return;                                                                                              \
+        }                                                                                                        \
         for (int y = s->y0; y < s->y1; y++)                                                                      \
             ROW(OP_AND, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), tt__mask_row(out, y), b->stride, s);    \
     }
@@ -251,15 +271,15 @@ int64_t tt_mask_overlap_area(const tt_mask *a, const tt_mask *b, int dx, int dy)
     return tt__mask_shift_of(&s, a, b, dx, dy) ? count_all(a, b, &s) : 0;
 }
 
-tt_mask *tt_mask_overlap_mask(const tt_mask *a, const tt_mask *b, int dx, int dy)
+/* Writes every word of out (A's size): zero where B does not reach. */
+static void overlap_into(tt_mask *out, const tt_mask *a, const tt_mask *b, int dx, int dy)
 {
     tt__mask_shift s;
-    if (check_pair("tt_mask_overlap_mask", a, b, dx, dy) != TT_OK) return NULL;
-    if (!tt__mask_shift_of(&s, a, b, dx, dy)) return tt__mask_alloc("tt_mask_overlap_mask", a->w, a->h);
-    /* every word written once, not cleared first and then written */
-    tt_mask *out = tt__mask_alloc_raw("tt_mask_overlap_mask", a->w, a->h);
-    if (!out) return NULL;
     size_t row = (size_t)a->stride * sizeof(uint64_t);
+    if (!tt__mask_shift_of(&s, a, b, dx, dy)) {
+        memset(out->bits, 0, (size_t)a->h * row);
+        return;
+    }
     memset(out->bits, 0, (size_t)s.y0 * row);
     memset(tt__mask_row(out, s.y1), 0, (size_t)(a->h - s.y1) * row);
     for (int y = s.y0; y < s.y1; y++) {
@@ -268,7 +288,28 @@ tt_mask *tt_mask_overlap_mask(const tt_mask *a, const tt_mask *b, int dx, int dy
         for (int k = s.k1 + 1; k < a->stride; k++) o[k] = 0;
     }
     and_all(a, b, &s, out);
+}
+
+tt_mask *tt_mask_overlap_mask(const tt_mask *a, const tt_mask *b, int dx, int dy)
+{
+    if (check_pair("tt_mask_overlap_mask", a, b, dx, dy) != TT_OK) return NULL;
+    /* every word written once, not cleared first and then written */
+    tt_mask *out = tt__mask_alloc_raw("tt_mask_overlap_mask", a->w, a->h);
+    if (out) overlap_into(out, a, b, dx, dy);
     return out;
+}
+
+tt_result tt_mask_overlap_mask_into(tt_mask *out, const tt_mask *a, const tt_mask *b, int dx, int dy)
+{
+    const char *fn = "tt_mask_overlap_mask_into";
+    tt_result r = check_pair(fn, a, b, dx, dy);
+    if (r != TT_OK) return r;
+    if (!out) return tt__mask_fail(TT_EINVAL, "%s: out is NULL", fn);
+    if (out == a || out == b) return tt__mask_fail(TT_EINVAL, "%s: out is one of the masks", fn);
+    if (out->w != a->w || out->h != a->h)
+        return tt__mask_fail(TT_EINVAL, "%s: out is %d x %d, a is %d x %d", fn, out->w, out->h, a->w, a->h);
+    overlap_into(out, a, b, dx, dy);
+    return TT_OK;
 }
 
 /* Area at an offset that may step one past the documented limit. */
