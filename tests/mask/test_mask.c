@@ -166,3 +166,30 @@ TEST(mask_components_outline_and_convolve)
     tt_mask_destroy(b);
     tt_mask_destroy(m);
 }
+
+TEST(mask_in_caller_memory)
+{
+    size_t n = tt_mask_footprint(70, 3);
+    ENSURE(n > 0 && tt_mask_footprint(0, 3) == 0 && tt_mask_footprint(3, TT_MASK_MAX_SIDE + 1) == 0);
+    uint64_t *mem = malloc(n);
+    memset(mem, 0xff, n);
+    ENSURE(tt_mask_init(mem, n - 1, 70, 3) == NULL);
+    ENSURE(tt_mask_init(NULL, n, 70, 3) == NULL);
+    ENSURE(tt_mask_init((char *)mem + 1, n, 70, 3) == NULL); /* misaligned */
+    tt_mask *m = tt_mask_init(mem, n, 70, 3);
+    ENSURE(m && tt_mask_count(m) == 0); /* cleared, whatever the memory held */
+    tt_mask *a = tt_mask_create(70, 3, true), *b = tt_mask_create(5, 5, true);
+    ENSURE_OK(tt_mask_copy_into(m, a));
+    ENSURE(tt_mask_count(m) == 210);
+    ENSURE(tt_mask_copy_into(m, b) == TT_EINVAL);
+    ENSURE_OK(tt_mask_overlap_mask_into(m, a, b, 66, 1)); /* every pixel written: the old ones go */
+    ENSURE(tt_mask_count(m) == 8 && tt_mask_get(m, 66, 1) == 1 && tt_mask_get(m, 0, 0) == 0);
+    ENSURE(tt_mask_overlap_mask_into(m, b, a, 0, 0) == TT_EINVAL); /* not b's size */
+    ENSURE(tt_mask_overlap_mask_into(a, a, b, 0, 0) == TT_EINVAL); /* out is a */
+    ENSURE(tt_mask_overlap_mask_into(NULL, a, b, 0, 0) == TT_EINVAL);
+    ENSURE_OK(tt_mask_overlap_mask_into(m, a, b, 500, 0));
+    ENSURE(tt_mask_count(m) == 0);
+    tt_mask_destroy(a);
+    tt_mask_destroy(b);
+    free(mem);
+}
