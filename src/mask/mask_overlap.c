@@ -157,6 +157,37 @@ static inline bool contiguous(const tt_mask *a, const tt_mask *b, const tt__mask
     return true;
 }
 
+/* Rows of at most four words, the same width in both masks, B shifted by
+ * less than a word (q = 0 or −1): the covered rows again as one run, each
+ * word taking its neighbour's bits except across a row's edge (the masks
+ * m0, m1 drop those), so narrow masks pay no per-row set-up. op as row_op. */
+static inline __attribute__((always_inline)) uint64_t stream_op(int op, const uint64_t *restrict a,
+                                                                const uint64_t *restrict b, uint64_t *restrict out,
+                                                                int n, int S, const tt__mask_shift *s)
+{
+    const unsigned r = s->r, l = 64 - r;
+    uint64_t acc = 0;
+    for (int i = 0, k = 0; i < n; i++) {
+        uint64_t v;
+        if (s->q == 0) { /* B's words k − 1 and k; none before the row's first */
+            uint64_t prev = k ? b[i - 1] : 0;
+            v = a[i] & ((b[i] << r) | (prev >> l));
+        } else { /* B's words k and k + 1; none after the row's last */
+            uint64_t next = k + 1 < S ? b[i + 1] : 0;
+            v = a[i] & ((b[i] >> l) | (next << r));
+        }
+        if (op == OP_COUNT) acc += (uint64_t)__builtin_popcountll(v); else acc |= v;
+        if (op == OP_AND) out[i] = v;
+        k = k + 1 == S ? 0 : k + 1;
+    }
+    return acc;
+}
+
+static inline bool streamable(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)
+{
+    return a->stride == b->stride && a->stride <= 4 && s->r != 0 && (s->q == 0 || s->q == -1);
+}
+
 /* The three whole-overlap loops, built once per target by KERNELS(suffix, attributes). */
 #define KERNELS(sfx, ATTR, ROW)                                                                                      \
     ATTR static int first_row_##sfx(const tt_mask *a, const tt_mask *b, const tt__mask_shift *s)                \
@@ -177,6 +208,9 @@ static inline bool contiguous(const tt_mask *a, const tt_mask *b, const tt__mask
         tt__mask_shift f;                                                                                        \
         if (contiguous(a, b, s, &f))                                                                             \
             return (int64_t)ROW(OP_COUNT, tt__mask_row(a, s->y0), tt__mask_row(b, s->y0 - s->dy), NULL, f.k1 + 1, &f); \
+        if (streamable(a, b, s))                                                                                 \
+            return (int64_t)stream_op(OP_COUNT, tt__mask_row(a, s->y0), tt__mask_row(b, s->y0 - s->dy), NULL,   \
+                                      (s->y1 - s->y0) * a->stride, a->stride, s);                                \
         for (int y = s->y0; y < s->y1; y++)                                                                      \
             n += ROW(OP_COUNT, tt__mask_row(a, y), tt__mask_row(b, y - s->dy), NULL, b->stride, s);         \
         return (int64_t)n;                                                                                       \
@@ -186,6 +220,11 @@ static inline bool contiguous(const tt_mask *a, const tt_mask *b, const tt__mask
         tt__mask_shift f;                                                                                        \
         if (contiguous(a, b, s, &f)) {                                                                           \
             ROW(OP_AND, tt__mask_row(a, s->y0), tt__mask_row(b, s->y0 - s->dy), tt__mask_row(out, s->y0), f.k1 + 1, &f); \
+            return;                                                                                              \
+        }                                                                                                        \
+        if (streamable(a, b, s)) {                                                                               \
+            stream_op(OP_AND, tt__mask_row(a, s->y0), tt__mask_row(b, s->y0 - s->dy), tt__mask_row(out, s->y0),  \
+                      (s->y1 - s->y0) * a->stride, a->stride, s);                                                \
             return;                                                                                              \
         }                                                                                                        \
         for (int y = s->y0; y < s->y1; y++)                                                                      \
