@@ -24,10 +24,12 @@ local w, island, sprites, time, hits, emitted = nil, nil, {}, 0, 0, 0
 
 -- Writes a mask to a PNG file and reads it back: the sprites come from image files.
 local function via_png(m)
-  local path = os.tmpname() .. ".png"
+  local base = os.tmpname() -- made empty by tmpname: the PNG goes beside it
+  local path = base .. ".png"
   m:save(path)
   local back = M.load(path)
   os.remove(path)
+  os.remove(base)
   return back
 end
 

@@ -22,10 +22,25 @@ function F.fail(fmt, ...)
   error("FUZZ FAILURE: " .. string.format(fmt, ...), 0)
 end
 
+-- m:save writes a file wherever its path says, and the fuzzer's paths are
+-- strings such as "x" or "1": each goes under FUZZ_OUT (default /tmp) as
+-- fuzz-<path>, never into the working tree.
+local SAVE_DIR = os.getenv("FUZZ_OUT") or "/tmp"
+local function confined_save(save)
+  return function(m, path, ...)
+    if type(path) == "string" or type(path) == "number" then
+      path = SAVE_DIR .. "/fuzz-" .. (tostring(path):gsub("/", "_"))
+    end
+    return save(m, path, ...)
+  end
+end
+
 -- Registers every function of a table under prefix.
 function F.register(prefix, t)
   for k, v in pairs(t) do
-    if type(v) == "function" then F.fns[prefix .. "." .. k] = v end
+    if type(v) == "function" then
+      F.fns[prefix .. "." .. k] = (prefix == "masks" and k == "save") and confined_save(v) or v
+    end
   end
 end
 

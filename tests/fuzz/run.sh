@@ -15,7 +15,8 @@ rm -rf "$OUT"
 mkdir -p "$OUT/frames"
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-export UBSAN_OPTIONS LSAN_OPTIONS
+FUZZ_OUT="$OUT" # where m:save writes (tests/fuzz/fuzz_lib.lua)
+export UBSAN_OPTIONS LSAN_OPTIONS FUZZ_OUT
 
 echo "fuzz: seed $SEED, $SECONDS_ s, $RUNNER"
 FUZZ_SEED=$SEED FUZZ_SECONDS=$SECONDS_ FUZZ_REPLAY="$OUT/replay.lua" \

@@ -94,7 +94,9 @@ end)
 
 T.test("PNG files and images", function()
   local m = M.circle(9)
-  local path = os.tmpname() .. ".png"
+  local base = os.tmpname()
+  local path = base .. ".png"
+  os.remove(base)
   m:save(path)
   local back = M.load(path)
   os.remove(path)

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* A PNG in memory of a w×h image in format (a PNG_FORMAT_…), pixel i's channels all i·37 mod 256. */
 static void *png_of(int w, int h, png_uint_32 format, size_t *size)
@@ -36,7 +37,8 @@ TEST(mask_png_round_trip)
     ENSURE_OK(tt_mask_fill_circle(m, 60, 30, 25, true));
     ENSURE_OK(tt_mask_set(m, 130, 66, true));
     ENSURE_OK(tt_mask_set(m, 0, 0, true));
-    const char *path = "build-mask-roundtrip.png";
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/tether-mask-roundtrip-%ld.png", (long)getpid());
     ENSURE_OK(tt_mask_save_png(m, path));
     tt_mask *back = tt_mask_load_png(path, 127);
     remove(path);
