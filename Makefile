@@ -221,7 +221,8 @@ bench: deps $(BENCH) $(RUNNER) $(LUA_MOD)
 	@if ! /usr/bin/python3 -c 'import pygame' >/dev/null 2>&1; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
 	    echo "bench: installing python3-pygame (pygame.mask, the comparison)"; \
-	    { apt-get install -y -q python3-pygame || { apt-get update -q && apt-get install -y -q python3-pygame; }; } >/dev/null 2>&1 || \
+	    { DEBIAN_FRONTEND=noninteractive apt-get install -y -q python3-pygame || \
+	      { apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q python3-pygame; }; } >/dev/null 2>&1 || \
 	      echo "bench: python3-pygame could not be installed"; \
 	  else echo "bench: python3-pygame is absent (as root, make bench installs it)"; fi; \
 	fi
