@@ -41,13 +41,16 @@ LUA_CFLAGS = $(call lazy,LUA_CFLAGS,$(call PC_CFLAGS,lua5.4))
 LUA_LIBS   = $(call lazy,LUA_LIBS,$(call PC_LIBS,lua5.4))
 BOX2D_CFLAGS = $(call lazy,BOX2D_CFLAGS,$(call PC_CFLAGS,box2d))
 BOX2D_LIBS   = $(call lazy,BOX2D_LIBS,$(call PC_LIBS,box2d))
+PNG_CFLAGS = $(call lazy,PNG_CFLAGS,$(call PC_CFLAGS,libpng))
+PNG_LIBS   = $(call lazy,PNG_LIBS,$(call PC_LIBS,libpng))
 
 # Sources by part (one folder each under src/, see README "Layout"). The
-# engine is core + constraints + collide; the Lua module adds lua/ and the
+# engine is core + constraints + collide + mask (mask needs libpng for its
+# PNG files, so the shared library and the Lua module link it); the Lua module adds lua/ and the
 # plain-C canvas of render/; the GL back ends need OSMesa, SDL2 and libpng.
-ENGINE_SRC := $(wildcard src/core/*.c src/constraints/*.c src/collide/*.c)
+ENGINE_SRC := $(wildcard src/core/*.c src/constraints/*.c src/collide/*.c src/mask/*.c)
 LUA_SRC    := $(wildcard src/lua/*.c)
-CANVAS_SRC := src/render/render_canvas.c src/render/render_font.c src/render/render_debug.c
+CANVAS_SRC := src/render/render_canvas.c src/render/render_font.c src/render/render_debug.c src/render/render_mask.c
 RENDER_SRC := $(wildcard src/render/*.c)
 RUNNER_SRC := $(wildcard src/runner/*.c)
 obj_of = $(patsubst src/%.c,$(BUILD)/obj/%.o,$(1))
@@ -59,7 +62,8 @@ RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
-TEST_SRC := $(wildcard tests/*.c tests/*/*.c)
+# tests/fuzz/ holds fuzzers with their own main, built on their own
+TEST_SRC := $(filter-out tests/fuzz/%,$(wildcard tests/*.c tests/*/*.c))
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
 
@@ -111,6 +115,10 @@ $(BUILD)/obj/runner/%.o: src/runner/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
+$(BUILD)/obj/mask/%.o: src/mask/%.c $(HEADERS) | deps
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_ALL) $(PNG_CFLAGS) -MMD -c $< -o $@
+
 $(BUILD)/obj/render/%.o: src/render/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -MMD -c $< -o $@
@@ -123,7 +131,7 @@ $(LIB_A): $(CORE_OBJ)
 	rm -f $@; ar rcs $@ $^
 
 $(LIB_SO): $(CORE_OBJ)
-	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 # The Lua module is not linked against liblua: the host (lua5.4 or our runner)
 # provides the Lua API, and a second copy of Lua in one process breaks it.
@@ -131,7 +139,7 @@ $(RENDER_A): $(RENDER_OBJ)
 	rm -f $@; ar rcs $@ $^
 
 $(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
-	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 $(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) -Wl,-E $(LUA_LIBS) $(RENDER_LIBS) -lm
@@ -141,6 +149,11 @@ $(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
 TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc
 $(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(TEST_WRAP) $(RENDER_LIBS) -lm
+
+# The PNG loader's fuzzer (tests/fuzz/fuzz_png.c), run by `make fuzz`.
+FUZZ_PNG := $(BUILD)/fuzz_png
+$(FUZZ_PNG): tests/fuzz/fuzz_png.c $(LIB_A) | deps
+	$(CC) $(CFLAGS_ALL) $(PNG_CFLAGS) -o $@ $< $(LIB_A) $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 # Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
 BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
@@ -196,13 +209,24 @@ memcheck: all $(TEST_C)
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
 # (tests/fuzz/); on a failure it prints the seed and a replay script and
-# shortens it.
-fuzz: all
+# shortens it. Then the PNG loader's fuzzer for half as long.
+fuzz: all $(FUZZ_PNG)
 	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
-bench: deps $(BENCH) $(RUNNER)
+# The mask section compares with Debian's python3-pygame (pygame.mask): installed
+# here when run as root, otherwise the table says it is absent.
+bench: deps $(BENCH) $(RUNNER) $(LUA_MOD)
 	@mkdir -p $(BUILD)/bench-out
 	$(BENCH) $(BUILD)/bench-out
+	@if ! /usr/bin/python3 -c 'import pygame' >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "bench: installing python3-pygame (pygame.mask, the comparison)"; \
+	    { DEBIAN_FRONTEND=noninteractive apt-get install -y -q python3-pygame || \
+	      { apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q python3-pygame; }; } >/dev/null 2>&1 || \
+	      echo "bench: python3-pygame could not be installed"; \
+	  else echo "bench: python3-pygame is absent (as root, make bench installs it)"; fi; \
+	fi
+	LUA_CPATH='$(BUILD)/?.so' lua5.4 bench/mask_bench.lua $(BUILD)/bench-out
 	@if command -v gnuplot >/dev/null 2>&1; then \
 	  for g in bench/*.gp; do gnuplot -e "dir='$(BUILD)/bench-out'" $$g; done; \
 	  echo "plots: $(BUILD)/bench-out/*.png"; \
@@ -217,7 +241,7 @@ install: all
 	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
 	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lm\nCflags: -I$${includedir}\n' \
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lpng16 -lm\nCflags: -I$${includedir}\n' \
 	  '$(PREFIX)' '$(VERSION)' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
 
 uninstall:

@@ -177,6 +177,7 @@ static const struct {
     {"collide", bench_collide},
     {"render", bench_render},
     {"constraints", bench_constraints},
+    {"mask", bench_mask},
 };
 
 int main(int argc, char **argv)

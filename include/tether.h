@@ -16,5 +16,6 @@
 #include "tether/composite.h"
 #include "tether/collide.h"
 #include "tether/clock.h"
+#include "tether/mask.h"
 
 #endif

@@ -796,4 +796,126 @@ function tether.gfx.image(img, x1, y1, x2, y2) end
 ---@param opts? tether.draw_options
 function world:draw(opts) end
 
+---A width × height bit mask (1..16384 a side) for pixel-perfect collision.
+---Pixel (0, 0) is the image's top-left; y goes down (the world's goes up).
+---Offsets dx, dy are integers within ±1e9: other's pixel (bx, by) lies on (bx + dx, by + dy).
+---@class tether.mask
+local mask = {}
+---@return integer width, integer height
+function mask:size() end
+---@return boolean
+function mask:get(x, y) end
+---@param value? boolean default true
+function mask:set(x, y, value) end
+---@return integer
+function mask:count() end
+function mask:clear() end
+function mask:fill() end
+function mask:invert() end
+---@return integer x, integer y, integer width, integer height
+function mask:bounding_rect() end
+---@return number x, number y
+function mask:centroid() end
+---@return tether.mask
+function mask:copy() end
+---Turned counter-clockwise on screen, radians.
+---@return tether.mask
+function mask:rotated(angle) end
+---@return tether.mask
+function mask:scaled(width, height) end
+---Rows of '#' and '.' joined by "\n".
+---@return string
+function mask:to_string() end
+---@param path string
+function mask:save(path) end
+---@param value? boolean default true
+function mask:fill_circle(cx, cy, r, value) end
+---@param value? boolean default true
+function mask:fill_rect(x, y, w, h, value) end
+---@param points number[] {x1, y1, ...}
+---@param value? boolean default true
+function mask:fill_polygon(points, value) end
+---@param other tether.mask
+function mask:draw(other, dx, dy) end
+---@param other tether.mask
+function mask:erase(other, dx, dy) end
+---The first overlapping pixel (topmost row, leftmost), in this mask's frame; nil when none.
+---@param other tether.mask
+---@return integer? x, integer? y
+function mask:overlap(other, dx, dy) end
+---@param other tether.mask
+---@return integer
+function mask:overlap_area(other, dx, dy) end
+---@param other tether.mask
+---@return tether.mask
+function mask:overlap_mask(other, dx, dy) end
+---Unit direction (image frame, y down) to push other out; 0, 0 when none.
+---@param other tether.mask
+---@return number nx, number ny
+function mask:overlap_normal(other, dx, dy) end
+---@param other tether.mask
+---@return tether.mask
+function mask:convolve(other) end
+---@return integer
+function mask:components() end
+---The component at pixel (x, y), or the largest without arguments.
+---@return tether.mask
+function mask:component(x, y) end
+---@return integer[][] rects {{x, y, w, h}, ...}
+function mask:component_rects() end
+---@return integer[] xy {x1, y1, x2, y2, ...}
+function mask:outline() end
+---@param tolerance? number pixels, default 0.5
+---@return number[][] lines {{x1, y1, ...}, ...}
+function mask:polylines(tolerance) end
+---@return tether.image
+function mask:to_image(r, g, b, a) end
+---@param img tether.image
+function mask:paint(img, r, g, b, a) end
+
+---@class tether.mask_module
+tether.mask = {}
+---@return tether.mask
+function tether.mask.new(width, height, filled) end
+---@param rows string
+---@return tether.mask
+function tether.mask.from_string(rows) end
+---@param path string
+---@param threshold? integer 0..254, default 127
+---@return tether.mask
+function tether.mask.load(path, threshold) end
+---@param img tether.image
+---@return tether.mask
+function tether.mask.from_image(img, threshold) end
+---@param img tether.image
+---@return tether.mask
+function tether.mask.from_color(img, r, g, b, tolerance, invert) end
+---@return tether.mask
+function tether.mask.circle(radius) end
+---@return tether.mask
+function tether.mask.rect(width, height) end
+---@param points number[] {x1, y1, ...}
+---@return tether.mask
+function tether.mask.polygon(points) end
+
+---@class tether.mask_chain_options
+---@field origin? number[] {x, y}: world position of pixel (0, 0)'s top-left corner; default {0, 0}
+---@field pixel? number metres per pixel; default 1
+---@field tolerance? number pixels; default 0.5
+---@field restitution? number
+---@field friction? number
+---@field category? integer
+---@field mask? integer
+---@field sensor? boolean
+
+---The mask's outline as static looped chains (image rows go down, world y up).
+---@param m tether.mask
+---@param opts? tether.mask_chain_options
+---@return integer[] shapes
+function world:mask_chains(m, opts) end
+
+---Draws a mask stretched over the world rectangle, set pixels in the current colour, its top row at the top.
+---@param m tether.mask
+function tether.gfx.mask(m, x1, y1, x2, y2) end
+
 return tether

@@ -43,7 +43,7 @@ if [ -s "$BUILD/layout-functions.txt" ]; then cat "$BUILD/layout-functions.txt";
 
 # 3. dependency circles between the object files of each part
 objs=$(ls "$BUILD"/obj/core/*.o "$BUILD"/obj/constraints/*.o "$BUILD"/obj/collide/*.o \
-          "$BUILD"/obj/lua/*.o "$BUILD"/obj/render/*.o "$BUILD"/obj/runner/*.o 2>/dev/null)
+          "$BUILD"/obj/mask/*.o "$BUILD"/obj/lua/*.o "$BUILD"/obj/render/*.o "$BUILD"/obj/runner/*.o 2>/dev/null)
 if [ -z "$objs" ]; then
     breach "no objects under $BUILD/obj: build first"
 else

@@ -121,6 +121,11 @@ TT_API void tt_image_size(const tt_image *img, int *width, int *height);
 TT_API uint8_t *tt_image_pixels(tt_image *img);
 /// Marks the pixels changed: back ends upload them again before the next draw.
 TT_API void tt_image_touch(tt_image *img);
+/// An image of a mask's size: colour on where a pixel is set, off where clear (mask pixel (0, 0) is the
+/// image's top-left). Drawn with tt_canvas_image, it shows the mask; NULL when m is NULL or memory runs out.
+TT_API tt_image *tt_image_from_mask(const tt_mask *m, tt_color on, tt_color off);
+/// Repaints img (of the mask's size, TT_EINVAL otherwise) from m as tt_image_from_mask does, and touches it.
+TT_API tt_result tt_image_paint_mask(tt_image *img, const tt_mask *m, tt_color on, tt_color off);
 
 /// Writes RGBA pixels (stride bytes per row; bottom_up when row 0 is the
 /// bottom, as GL reads them) to a PNG file. TT_EINVAL with a message in err on failure.

@@ -211,3 +211,8 @@ void tl_render_done(lua_State *L)
     lua_setfield(L, LUA_REGISTRYINDEX, TL_IMAGES_KEY);
 }
 
+
+tt_image *tl_check_image(lua_State *L, int arg)
+{
+    return check_image(L, arg);
+}

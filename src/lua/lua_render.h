@@ -51,6 +51,8 @@ void tl_render_hud_panel(tt_canvas *c, const char *text, double *y);
 void tl_render_remember(lua_State *L, int idx, tt_canvas *c);
 /* Wraps tether.world of the module table on the top of the stack (lua_render.c). */
 void tl_render_track_worlds(lua_State *L);
+/* The open image at arg (raises a type error, or "attempt to use a closed image"). */
+tt_image *tl_check_image(lua_State *L, int arg);
 /* Makes the image class, and adds g.new_image and g.image to the tether.gfx
  * table on the top of the stack (lua_image.c). */
 void tl_image_register(lua_State *L);

@@ -9,6 +9,7 @@
  * Built into build/tether.so for stock lua5.4 and linked into the runner. */
 #include "lua_common.h"
 #include "lua_render.h"
+#include "lua_mask.h"
 
 static const luaL_Reg tether_funcs[] = {
     { "world", tl_world_new },
@@ -37,5 +38,8 @@ TT_API int luaopen_tether(lua_State *L)
     lua_setfield(L, -2, "integrators");
     tl_clock_register(L);
     tl_render_register(L);
+    tl_mask_register(L);
+    tl_mask_ops_register(L);
+    tl_mask_draw_register(L);
     return 1;
 }

@@ -5,8 +5,8 @@
 -- FUZZ_CALLS (stop after this many calls), FUZZ_SKIP (comma-separated call
 -- numbers made but not called: the minimiser's knob), FUZZ_REPLAY (where
 -- the replay script goes; default DIR/replay.lua).
--- Every module function, world method and metamethod, gfx function and image
--- method is called with hostile arguments: wrong types, NaN, ±Inf, 1e300,
+-- Every module function, world method and metamethod, gfx function, image
+-- method, tether.mask function and mask method is called with hostile arguments: wrong types, NaN, ±Inf, 1e300,
 -- denormals, huge integers, stale and foreign handles, option tables whose
 -- reads call back into the world, finalizers that destroy it mid-call. The
 -- checks are fuzz_lib's. Before each call its line is written (and flushed)
@@ -42,7 +42,7 @@ replay:write(string.format([[
 -- replay of fuzz_api.lua, seed %d: build/tether --headless --frames 1000000 --every 20 --size 96x72 --out DIR THIS_FILE
 package.path = "tests/fuzz/?.lua;" .. package.path
 local F = require "fuzz_lib"
-local W, H, IMG = F.W, F.H, F.IMG
+local W, H, IMG, MASK = F.W, F.H, F.IMG, F.MASK
 local NAN, INF = F.NAN, F.INF
 local UP, DR, u, d = {}, {}, 0, 0
 local function at(t, k, f) t[k] = t[k] or {}; table.insert(t[k], f) end
@@ -52,6 +52,9 @@ F.register("tether", tether)
 F.register("gfx", tether.gfx)
 local wm = getmetatable(tether.world())
 F.register("world", wm.__index); F.register("world", wm)
+F.register("mask", tether.mask)
+local mm = getmetatable(tether.mask.new(1, 1))
+F.register("masks", mm.__index); F.register("masks", mm)
 function tether.update()
   u = u + 1
   for _, f in ipairs(UP[u] or {}) do f() end
@@ -73,7 +76,7 @@ local learn
 -- later calls get past the checks more often and reach deeper: into the
 -- option tables (where the hostile reads wait), the steps and the events.
 local wants = {}
-local KINDS = { { "tether.world", "world" }, { "tether.image", "image" }, { "table", "table" },
+local KINDS = { { "tether.world", "world" }, { "tether.image", "image" }, { "tether.mask", "mask" }, { "table", "table" },
                 { "particle", "handle1" }, { "spring", "handle2" }, { "constraint", "handle3" },
                 { "shape", "handle4" }, { "composite", "handle5" }, { "handle", "handle" },
                 { "integer", "integer" }, { "number", "number" },
@@ -195,6 +198,7 @@ function value(depth)
   elseif r <= 13 then return plain_table(depth)
   elseif r == 14 then return world_src()
   elseif r == 15 then
+    if #F.MASK > 0 and rand(2) == 1 then local i = rand(#F.MASK); return F.MASK[i], "MASK[" .. i .. "]" end
     if #F.IMG == 0 then return nil, "nil" end
     local i = rand(#F.IMG); return F.IMG[i], "IMG[" .. i .. "]"
   end
@@ -223,6 +227,7 @@ local function wanted(kind)
   elseif kind:match("^handle%d$") then return handle(tonumber(kind:sub(-1)))
   elseif kind == "world" then return world_src()
   elseif kind == "image" and #F.IMG > 0 then local i = rand(#F.IMG); return F.IMG[i], "IMG[" .. i .. "]"
+  elseif kind == "mask" and #F.MASK > 0 then local i = rand(#F.MASK); return F.MASK[i], "MASK[" .. i .. "]"
   elseif kind == "table" and rand(3) == 1 then -- an option table whose reads act on a world
     local w, ws = world_src()
     local what = pick(ACTIONS)
@@ -264,7 +269,11 @@ F.register("gfx", tether.gfx)
 local wm = getmetatable(tether.world())
 F.register("world", wm.__index)
 F.register("world", wm)
-list_of("tether"); list_of("world")
+F.register("mask", tether.mask)
+local mm = getmetatable(tether.mask.new(1, 1))
+F.register("masks", mm.__index)
+F.register("masks", mm)
+list_of("tether"); list_of("world"); list_of("mask"); list_of("masks")
 -- The update phase: world methods and module functions, steps weighted up.
 local start = os.clock()
 local updates, draws = 0, 0
@@ -287,6 +296,16 @@ function tether.update()
       emit("world.destroy", 1, { w }, { ws })
     elseif rand(10) == 1 then
       one_call("tether", nil, nil)
+    elseif rand(5) == 1 then -- masks: made from small sizes often enough to be used
+      if #F.MASK == 0 or rand(6) == 1 then
+        local wd, ht, full = rand(140), rand(70), rand(2) == 1
+        emit("mask.new", 3, { wd, ht, full }, { tostring(wd), tostring(ht), tostring(full) })
+      elseif rand(4) == 1 then
+        one_call("mask", nil, nil)
+      else
+        local i = rand(#F.MASK)
+        one_call("masks", F.MASK[i], "MASK[" .. i .. "]")
+      end
     else
       one_call("world", w, ws)
     end

@@ -11,6 +11,7 @@
 local F = {}
 
 F.W, F.H, F.IMG = {}, {}, {}   -- worlds, integer handles, images: in the order made
+F.MASK = {}                    -- masks, in the order made
 F.callbacks = 0                -- bumped by every hostile callback that runs
 F.counts = {}                  -- calls per function, "world.particle" = 12
 F.fns = {}                     -- "world.particle" → the function
@@ -21,10 +22,25 @@ function F.fail(fmt, ...)
   error("FUZZ FAILURE: " .. string.format(fmt, ...), 0)
 end
 
+-- m:save writes a file wherever its path says, and the fuzzer's paths are
+-- strings such as "x" or "1": each goes under FUZZ_OUT (default /tmp) as
+-- fuzz-<path>, never into the working tree.
+local SAVE_DIR = os.getenv("FUZZ_OUT") or "/tmp"
+local function confined_save(save)
+  return function(m, path, ...)
+    if type(path) == "string" or type(path) == "number" then
+      path = SAVE_DIR .. "/fuzz-" .. (tostring(path):gsub("/", "_"))
+    end
+    return save(m, path, ...)
+  end
+end
+
 -- Registers every function of a table under prefix.
 function F.register(prefix, t)
   for k, v in pairs(t) do
-    if type(v) == "function" then F.fns[prefix .. "." .. k] = v end
+    if type(v) == "function" then
+      F.fns[prefix .. "." .. k] = (prefix == "masks" and k == "save") and confined_save(v) or v
+    end
   end
 end
 
@@ -40,6 +56,10 @@ local function is_image(v)
   return type(v) == "userdata" and tostring(v):find("^tether.image") ~= nil
 end
 
+local function is_mask(v)
+  return type(v) == "userdata" and tostring(v):find("^tether.mask") ~= nil
+end
+
 local function alive(w)
   return is_world(w) and not tostring(w):find("destroyed", 1, true)
 end
@@ -53,6 +73,7 @@ local function keep(r)
     if math.type(v) == "integer" then F.H[#F.H + 1] = v
     elseif is_world(v) then F.W[#F.W + 1] = v
     elseif is_image(v) then F.IMG[#F.IMG + 1] = v
+    elseif is_mask(v) then F.MASK[#F.MASK + 1] = v
     end
   end
 end

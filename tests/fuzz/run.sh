@@ -3,6 +3,8 @@
 # (default 60) from seed FUZZ_SEED (default: the clock). On a failure it
 # prints the seed and the replay script, shortens it with minimise.lua
 # (FUZZ_MIN_SECONDS, default 120; 0 skips it) and exits 1.
+# Then the mask PNG loader's fuzzer ($BUILD/fuzz_png, tests/fuzz/fuzz_png.c)
+# for FUZZ_PNG_SECONDS (default half of FUZZ_SECONDS) from the same seed.
 # Environment: BUILD (build or build-san).
 BUILD=${BUILD:-build}
 RUNNER="$BUILD/tether"
@@ -13,7 +15,8 @@ rm -rf "$OUT"
 mkdir -p "$OUT/frames"
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-export UBSAN_OPTIONS LSAN_OPTIONS
+FUZZ_OUT="$OUT" # where m:save writes (tests/fuzz/fuzz_lib.lua)
+export UBSAN_OPTIONS LSAN_OPTIONS FUZZ_OUT
 
 echo "fuzz: seed $SEED, $SECONDS_ s, $RUNNER"
 FUZZ_SEED=$SEED FUZZ_SECONDS=$SECONDS_ FUZZ_REPLAY="$OUT/replay.lua" \
@@ -22,7 +25,18 @@ FUZZ_SEED=$SEED FUZZ_SECONDS=$SECONDS_ FUZZ_REPLAY="$OUT/replay.lua" \
 rc=$?
 grep -v 'frames, ETA' "$OUT/log.txt" | grep '^fuzz:\|passed, \|FUZZ FAILURE\|ERROR:\|runtime error' | head -20
 if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/log.txt"; then
-    exit 0
+    PNG_SECONDS=${FUZZ_PNG_SECONDS:-$((SECONDS_ / 2))}
+    "$BUILD/fuzz_png" "$PNG_SECONDS" "$SEED" "$OUT/png-last.bin" >"$OUT/png-log.txt" 2>&1
+    rc=$?
+    grep '^fuzz_png: \|passed, \|ERROR:\|runtime error' "$OUT/png-log.txt" | head -20
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/png-log.txt"; then
+        exit 0
+    fi
+    echo "fuzz: the PNG fuzzer FAILED (exit $rc), seed $SEED; its last input: $OUT/png-last.bin"
+    echo "fuzz: replay: $BUILD/fuzz_png $PNG_SECONDS $SEED"
+    tail -n 30 "$OUT/png-log.txt" | sed 's/^/    | /'
+    echo "0 passed, 1 failed"
+    exit 1
 fi
 calls=$(grep -o -- '-- [0-9]*$' "$OUT/replay.lua" | tail -n 1 | tr -dc 0-9)
 echo "fuzz: FAILED (exit $rc) at call $calls, seed $SEED"

@@ -169,6 +169,10 @@ K.shopts = table_kind(true, "table or nil")
 K.copts = table_kind(true, "table or nil")
 K.points = table_kind(false, "table of coordinates {x1, y1, x2, y2, ...}")
 K.points.good = function() return { 0, 0, 1, 0, 0, 1 } end
+-- masks (lua_mask_ops.c)
+K.mask = { good = function() return tether.mask.rect(4, 4) end, bad = {} }
+for _, t in ipairs(WRONG_TYPES) do K.mask.bad[#K.mask.bad + 1] = { t[1], "tether.mask expected, got " .. t[2] } end
+K.mopts = table_kind(true, "table or nil")
 
 -- Every method and the kinds of its arguments after self.
 local METHODS = {
@@ -285,6 +289,8 @@ local METHODS = {
   { "query_point", "coord", "coord", "optu16" },
   { "query_aabb", "coord", "coord", "coord", "coord", "optu16" },
   { "contacts" },
+  -- masks (lua_mask_ops.c)
+  { "mask_chains", "mask", "mopts" },
 }
 
 -- Option tables: fields and their kinds.
@@ -295,6 +301,8 @@ local OPTIONS = {
   set_spring = { arg = 3, fields = { stiffness = "nonneg", damping = "nonneg", rest = "nonneg" } },
   circle = { arg = 5, fields = { restitution = "unit", friction = "nonneg", friction_static = "nonneg",
                                  friction_kinetic = "nonneg", category = "u16", mask = "u16", sensor = "bool" } },
+  mask_chains = { arg = 3, fields = { restitution = "unit", friction = "nonneg",
+                                      category = "u16", mask = "u16", sensor = "bool" } },
   set_collision = { arg = 2, fields = { particles = "bool", cell_size = "nonneg", restitution = "unit",
                                         friction = "nonneg", friction_static = "nonneg", friction_kinetic = "nonneg",
                                         restitution_threshold = "nonneg" } },
