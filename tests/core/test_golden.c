@@ -1,0 +1,42 @@
+/* tether — golden values: the reference scenes (tests/core/scenes.c) after
+ * GOLDEN_STEPS steps have these positions (a digest of their bits, computed
+ * apart from tt_world_hash) and this world hash. A change of results, or of
+ * what the hash covers, must be deliberate: it changes these constants in
+ * the same commit, which says why. The positions digests were recorded
+ * before the hash became the hash of the snapshot stream and did not change
+ * with it: that change of definition moved no particle. */
+#include "test.h"
+#include "core/scenes.h"
+
+#include <inttypes.h>
+
+enum { GOLDEN_STEPS = 300 };
+
+static const struct {
+    uint64_t positions;
+    uint64_t hash;
+} golden[SCENE_COUNT] = {
+    [SCENE_POUR] = {0x49313d37792194fdull, 0x3d594f58de677f13ull},
+    [SCENE_CLOTH] = {0xca2e7434da8a9057ull, 0x2fb50e59126ed02full},
+    [SCENE_ZOO] = {0xbd08a0bb5657eec7ull, 0x66a609561704e0d5ull},
+    [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0x7a23f5d1be8c9e81ull},
+};
+
+TEST(golden_scenes_keep_their_positions_and_hashes)
+{
+    int bad = 0;
+    for (int k = 0; k < SCENE_COUNT; k++) {
+        scene sc;
+        ENSURE(scene_build(&sc, (scene_kind)k));
+        for (int s = 0; s < GOLDEN_STEPS; s++) scene_step(&sc);
+        uint64_t pos = scene_positions_digest(sc.w), h = tt_world_hash(sc.w);
+        if (pos != golden[k].positions || h != golden[k].hash) {
+            tt_test_fail(__FILE__, __LINE__, "scene %s: positions 0x%016" PRIx64 "ull, hash 0x%016" PRIx64
+                         "ull (pinned 0x%016" PRIx64 ", 0x%016" PRIx64 ")", scene_name((scene_kind)k), pos, h,
+                         golden[k].positions, golden[k].hash);
+            bad++;
+        }
+        tt_world_destroy(sc.w);
+    }
+    ENSURE(bad == 0);
+}
