@@ -11,16 +11,16 @@ local tether = require "tether"
 
 local STEPS = 120
 local golden = {
-  cloth = { "bf95991b563e9272", "d23d5fcc63b71977" },
-  fountain = { "25b1064dba2bae74", "5223328bbbf97f13" },
-  galton = { "cef42891f80af0e6", "a29aedfc721296cb" },
-  hourglass = { "91992223c1eeadff", "59af12d946385abe" },
-  integrators = { "72823523ba511575", "1e25e20850840eca,4b2d6895ea62ff05,c3e389b7117092fb,cff93b3bacb89aa9,b82dc46bc0cd7f14" },
-  ragdoll = { "74016491e8b45d88", "c007c6a2cc2810a1" },
-  rope_bridge = { "73fa3817e5c476a7", "79f70505821e14b6" },
-  soft_bodies = { "19d58e45566a5e66", "fba8f3e64323c161" },
-  spring_net = { "dbb870a369c6c0a1", "55925ccf53a2d78c" },
-  terrain = { "1db0fd03fee478a9", "e4b5efc4c4f822a0" },
+  cloth = { "bf95991b563e9272", "6525abdc094c4633" },
+  fountain = { "25b1064dba2bae74", "35dd04c21e572d21" },
+  galton = { "cef42891f80af0e6", "1fb7c6dd5bb42c67" },
+  hourglass = { "91992223c1eeadff", "35b3ba854e353f86" },
+  integrators = { "72823523ba511575", "3621fcd6145aab93,26f29bf1c1082c37,95cb19c7b2324695,8ccc75868e811135,ea6678e9ca425f4c" },
+  ragdoll = { "74016491e8b45d88", "b967998d6d910302" },
+  rope_bridge = { "73fa3817e5c476a7", "1695e8d069c351f6" },
+  soft_bodies = { "19d58e45566a5e66", "4b2e506a54a39d80" },
+  spring_net = { "dbb870a369c6c0a1", "d1cc7b63aa998e09" },
+  terrain = { "1db0fd03fee478a9", "4499408a99387c2e" },
 }
 
 local function digest(h, xy)
