@@ -96,15 +96,20 @@ static int w_restore(lua_State *L)
     return 1;
 }
 
-tt_world *tl_snapshot_load(lua_State *L, int ud, int arg)
+/* registry[TL_SNAPSHOT_LOADER](ud, s): the world of tether.world{snapshot = s} */
+static int load_into(lua_State *L)
 {
+    tl_world_ud *u = luaL_checkudata(L, 1, TL_WORLD_CLASS);
+    if (!luaL_testudata(L, 2, TL_SNAPSHOT_CLASS) && lua_type(L, 2) != LUA_TSTRING)
+        tl_error(L, "bad option 'snapshot' (tether.snapshot or string expected, got %s)", tl_pushtypename(L, 2));
     size_t size;
     bool users;
-    const void *data = check_stream(L, arg, &size, &users);
+    const void *data = check_stream(L, 2, &size, &users);
     tt_world *w = tt_world_load(data, size);
     if (!w) tl_error(L, "%s", tt_last_error(NULL));
-    set_users(L, ud, arg, users);
-    return w;
+    u->w = w;
+    set_users(L, 1, 2, users);
+    return 0;
 }
 
 /* s:bytes() → the stream as a string (to write to a file) */
@@ -143,4 +148,7 @@ void tl_snapshot_register(lua_State *L)
     }
     lua_pop(L, 1);
     tl_world_add_methods(L, snapshot_world_methods);
+    lua_pushstring(L, "tether.world"); /* its errors name the function the script called */
+    lua_pushcclosure(L, load_into, 1);
+    lua_setfield(L, LUA_REGISTRYINDEX, TL_SNAPSHOT_LOADER);
 }

@@ -145,7 +145,11 @@ int tl_world_new(lua_State *L)
         int keys = 0;
         for (lua_pushnil(L); lua_next(L, 1); lua_pop(L, 1)) keys++;
         if (keys > 1) tl_error(L, "option 'snapshot' takes no other option: the snapshot holds the settings");
-        u->w = tl_snapshot_load(L, 2, 3);
+        /* through the registry: the snapshot binding (lua_snapshot.c) uses this file, not the reverse */
+        lua_getfield(L, LUA_REGISTRYINDEX, TL_SNAPSHOT_LOADER);
+        lua_pushvalue(L, 2);
+        lua_pushvalue(L, 3);
+        lua_call(L, 2, 0);
         lua_settop(L, 2);
         return 1;
     }

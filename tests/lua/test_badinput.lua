@@ -156,6 +156,10 @@ K.shopts = table_kind(true, "table or nil")
 K.copts = table_kind(true, "table or nil")
 K.points = table_kind(false, "table of coordinates {x1, y1, x2, y2, ...}")
 K.points.good = function() return { 0, 0, 1, 0, 0, 1 } end
+-- w:restore: a snapshot or its bytes; a refused stream returns nil, msg (tests/lua/test_snapshot.lua)
+K.snap = { good = function() return tether.world():snapshot() end, bad = {
+  { 42, "tether.snapshot or string expected, got number" }, { NIL, "tether.snapshot or string expected, got nil" },
+  { {}, "tether.snapshot or string expected, got table" } } }
 
 -- Every method and the kinds of its arguments after self.
 local METHODS = {
@@ -208,6 +212,8 @@ local METHODS = {
   { "energy" },
   { "memory" },
   { "hash" },
+  { "snapshot" },
+  { "restore", "snap" },
   { "particles", "opttable" },
   { "positions", "opttable" },
   { "set_positions", "handles", "xy", "mode" },
