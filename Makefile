@@ -195,9 +195,10 @@ memcheck: all $(TEST_C)
 	  grep -v '^ok ' $(BUILD)/memcheck.log | tail -n 40; exit $$rc
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
-# (tests/fuzz/); on a failure it prints the seed and a replay script and
+# (tests/fuzz/), then the snapshot stream reader's (tests/fuzz/fuzz_stream.c,
+# as long again); on a failure it prints the seed and a replay script and
 # shortens it.
-fuzz: all
+fuzz: all $(TEST_C)
 	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 bench: deps $(BENCH) $(RUNNER)

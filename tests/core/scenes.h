@@ -30,6 +30,9 @@ const char *scene_name(scene_kind k);
 bool scene_build(scene *sc, scene_kind k);
 /* What the script does before step number w.stats.steps, then the step. */
 void scene_step(scene *sc);
+/* A small world with one of nearly everything, stepped twice: a short
+ * stream for the byte-by-byte tests and the stream fuzzer. */
+tt_world *scene_small_world(void);
 /* FNV-1a over every live particle's position bits in slot order, from
  * tt_world_read_positions: a digest independent of tt_world_hash. */
 uint64_t scene_positions_digest(const tt_world *w);

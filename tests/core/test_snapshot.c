@@ -146,58 +146,9 @@ TEST(snapshot_save_asks_for_room_and_writes_nothing_short)
     tt_world_destroy(sc.w);
 }
 
-/* A small world with one of nearly everything, for the byte-by-byte tests. */
-static tt_world *small_world(void)
-{
-    tt_world *w = tt_world_create(NULL);
-    tt_collision_settings cs = tt_collision_settings_default();
-    cs.events = TT_EVENT_BEGIN | TT_EVENT_PERSIST | TT_EVENT_END;
-    tt_world_set_collision(w, &cs);
-    static const tt_vec2 tri[] = {{-3, -1}, {3, -1}, {0, -0.5}};
-    tt_shape_def sd = tt_shape_def_default();
-    sd.type = TT_SHAPE_POLYGON;
-    sd.points = tri;
-    sd.count = 3;
-    tt_shape_create(w, &sd);
-    tt_particle_def pd = tt_particle_def_default();
-    pd.radius = 0.3;
-    tt_particle p[5];
-    for (int i = 0; i < 5; i++) {
-        pd.position = (tt_vec2){i * 0.5 - 1, -0.2 + 0.1 * (i % 2)};
-        p[i] = tt_particle_create(w, &pd);
-    }
-    tt_particle_destroy(w, tt_particle_create(w, &pd));
-    tt_particle_set_material(w, p[0], 0.5, 0.2, 0.1);
-    tt_particle_set_bullet(w, p[1], true);
-    tt_world_set_pair_collision(w, p[3], p[4], false);
-    tt_spring_def sp = tt_spring_def_default();
-    sp.a = p[0];
-    sp.b = p[1];
-    tt_spring_create(w, &sp);
-    tt_distance_def dd = tt_distance_def_default();
-    dd.a = p[1];
-    dd.b = p[2];
-    tt_constraint d = tt_distance_create(w, &dd);
-    tt_distance_set_length(w, d, 0.3);
-    tt_area_def ad = tt_area_def_default();
-    ad.particles = &p[2];
-    ad.count = 3;
-    tt_area_create(w, &ad);
-    tt_bounds_def bd = tt_bounds_def_default();
-    bd.particles = &p[3];
-    bd.count = 2;
-    tt_bounds_create(w, &bd);
-    tt_rope_def rd = tt_rope_def_default();
-    rd.segments = 2;
-    tt_rope_create(w, &rd);
-    tt_world_step(w, 1.0 / 60);
-    tt_world_step(w, 1.0 / 60);
-    return w;
-}
-
 TEST(snapshot_truncated_corrupted_or_foreign_streams_are_refused_with_the_world_unchanged)
 {
-    tt_world *src = small_world(), *w = small_world();
+    tt_world *src = scene_small_world(), *w = scene_small_world();
     ENSURE(src && w);
     tt_world_step(w, 0.01); /* w differs from src */
     size_t n, wn;
@@ -248,7 +199,7 @@ static void reseal(unsigned char *b, size_t n)
 
 TEST(snapshot_reader_survives_every_byte_changed_behind_a_valid_checksum)
 {
-    tt_world *w = small_world();
+    tt_world *w = scene_small_world();
     ENSURE(w);
     size_t n, wn;
     unsigned char *b = save(w, &n), *before = save(w, &wn);

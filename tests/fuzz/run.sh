@@ -1,8 +1,11 @@
 #!/bin/sh
 # tests/fuzz/run.sh — `make fuzz`: the Lua API fuzzer for FUZZ_SECONDS
-# (default 60) from seed FUZZ_SEED (default: the clock). On a failure it
-# prints the seed and the replay script, shortens it with minimise.lua
-# (FUZZ_MIN_SECONDS, default 120; 0 skips it) and exits 1.
+# (default 60) from seed FUZZ_SEED (default: the clock), then the snapshot
+# stream reader's fuzzer (tests/fuzz/fuzz_stream.c) for FUZZ_STREAM_SECONDS
+# (default FUZZ_SECONDS). On a failure of the first it prints the seed and
+# the replay script, shortens it with minimise.lua (FUZZ_MIN_SECONDS,
+# default 120; 0 skips it) and exits 1; of the second, the seed and the
+# stream count that replay it.
 # Environment: BUILD (build or build-san).
 BUILD=${BUILD:-build}
 RUNNER="$BUILD/tether"
@@ -22,7 +25,20 @@ FUZZ_SEED=$SEED FUZZ_SECONDS=$SECONDS_ FUZZ_REPLAY="$OUT/replay.lua" \
 rc=$?
 grep -v 'frames, ETA' "$OUT/log.txt" | grep '^fuzz:\|passed, \|FUZZ FAILURE\|ERROR:\|runtime error' | head -20
 if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/log.txt"; then
-    exit 0
+    # The snapshot stream reader (tests/fuzz/fuzz_stream.c, a C test in
+    # $BUILD/test_c): mutated valid streams, as long again.
+    echo "fuzz: snapshot stream reader, seed $SEED, ${FUZZ_STREAM_SECONDS:-$SECONDS_} s"
+    FUZZ_SEED=$SEED FUZZ_STREAM_SECONDS=${FUZZ_STREAM_SECONDS:-$SECONDS_} "$BUILD/test_c" fuzz_stream_reader \
+        >"$OUT/stream.txt" 2>&1
+    src=$?
+    grep 'fuzz_stream\|passed, \|runtime error\|ERROR' "$OUT/stream.txt" | head -20
+    if [ "$src" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/stream.txt"; then
+        echo "2 passed, 0 failed"
+        exit 0
+    fi
+    tail -n 30 "$OUT/stream.txt" | sed 's/^/    | /'
+    echo "1 passed, 1 failed"
+    exit 1
 fi
 calls=$(grep -o -- '-- [0-9]*$' "$OUT/replay.lua" | tail -n 1 | tr -dc 0-9)
 echo "fuzz: FAILED (exit $rc) at call $calls, seed $SEED"
