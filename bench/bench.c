@@ -177,6 +177,7 @@ static const struct {
     {"collide", bench_collide},
     {"render", bench_render},
     {"constraints", bench_constraints},
+    {"snapshot", bench_snapshot},
 };
 
 int main(int argc, char **argv)
