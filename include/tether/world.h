@@ -135,8 +135,8 @@ TT_API uint64_t tt_world_hash(const tt_world *w);
 /// with a checksum, in this machine's byte order. Per-step scratch (grids,
 /// batches, caches) is not in it and is rebuilt. Writes the stream into
 /// buf[0..cap) and its size into *size (may be NULL); with cap too small
-/// (buf NULL and cap 0 to ask), writes nothing there, sets *size and returns
-/// TT_ENOMEM. One pass, no allocation.
+/// (buf NULL and cap 0 to ask) it sets *size, returns TT_ENOMEM and leaves
+/// buf[0..cap) partly written, never past cap. One pass, no allocation.
 TT_API tt_result tt_world_save(const tt_world *w, void *buf, size_t cap, size_t *size);
 /// Makes w bit-exactly the saved world, in place (w keeps its address):
 /// stepping both gives the same states. The world then has the saved
