@@ -58,10 +58,13 @@ local tether = {}
 ---@class tether.snapshot
 local snapshot = {}
 
----The engine's stream as a string, for a file. It holds no Lua values: a world
----restored or loaded from it has no user values.
+---The snapshot as a string, for a file: with the user values (plain data only:
+---booleans, numbers, strings, tables of them; anything else raises) unless users
+---is false, when it is the engine stream alone and a world restored or loaded
+---from it has no user values.
+---@param users? boolean default true
 ---@return string
-function snapshot:bytes() end
+function snapshot:bytes(users) end
 
 ---Makes a new world. Unknown option keys raise ("tether.world: unknown option 'gravty' ...").
 ---@param opts? tether.world_options
@@ -360,7 +363,7 @@ function world:snapshot() end
 
 ---Makes this world bit-exactly the one saved in s (a snapshot, or its bytes): the
 ---same steps then give the same states; each particle's user value is what it was
----when s was taken (none from bytes). A truncated, corrupted or foreign stream
+---when s was taken (none from s:bytes(false)). A truncated, corrupted or foreign stream
 ---returns nil and the reason, and the world is unchanged.
 ---@param s tether.snapshot|string
 ---@return true|nil ok

@@ -5,15 +5,21 @@
  * stream (tt_world_save) and, as its user value, a copy of the world's
  * particle user values (handle → Lua value) when it was taken: a restore
  * puts both back, so each particle's user value is what it was then.
- * s:bytes() is the stream as a Lua string, for a file; a string is
- * accepted wherever a snapshot is, and carries the engine state only (Lua
- * values cannot be written as bytes): restoring or loading one leaves no
- * user values. */
+ *
+ * s:bytes() is the snapshot as a string, for a file. With user values it is
+ * an envelope: "TTLU", its version (u32), the engine stream's length (u64),
+ * the engine stream, then the user values, which must be plain data (nil,
+ * booleans, numbers, strings, and tables of them without metatables or
+ * cycles); s:bytes(false) is the engine stream alone. A string is accepted
+ * wherever a snapshot is; one without user values leaves none. */
 #include "lua_common.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #define TL_SNAPSHOT_CLASS "tether.snapshot"
+#define TL_USERS_MAGIC "TTLU"
+enum { TL_USERS_VERSION = 1, TL_USERS_HEADER = 16, TL_USERS_DEPTH = 64 };
 
 typedef struct tl_snapshot {
     size_t size;
@@ -31,6 +37,130 @@ static void push_copy(lua_State *L, int idx)
         lua_insert(L, -2);
         lua_rawset(L, -4);
     }
+}
+
+/* ---- user values as bytes ------------------------------------------------------ */
+
+enum { UV_FALSE = 1, UV_TRUE, UV_INT, UV_FLOAT, UV_STRING, UV_TABLE };
+
+typedef struct ubuf {
+    char *p;
+    size_t n, cap;
+    const char *why; /* the first failure */
+} ubuf;
+
+static void uput(ubuf *b, const void *d, size_t n)
+{
+    if (b->why) return;
+    if (b->n + n > b->cap) {
+        size_t cap = b->cap ? b->cap * 2 : 256;
+        while (cap < b->n + n) cap *= 2;
+        char *p = realloc(b->p, cap);
+        if (!p) { b->why = "out of memory"; return; }
+        b->p = p;
+        b->cap = cap;
+    }
+    memcpy(b->p + b->n, d, n);
+    b->n += n;
+}
+
+static void uput_tag(ubuf *b, unsigned char t) { uput(b, &t, 1); }
+
+/* The value at idx (a key when key is true), or b->why set. */
+static void put_value(lua_State *L, ubuf *b, int idx, int depth, bool key)
+{
+    idx = lua_absindex(L, idx);
+    switch (lua_type(L, idx)) {
+    case LUA_TBOOLEAN: uput_tag(b, lua_toboolean(L, idx) ? UV_TRUE : UV_FALSE); return;
+    case LUA_TNUMBER:
+        if (lua_isinteger(L, idx)) {
+            lua_Integer i = lua_tointeger(L, idx);
+            uput_tag(b, UV_INT);
+            uput(b, &i, sizeof i);
+        } else {
+            lua_Number d = lua_tonumber(L, idx);
+            uput_tag(b, UV_FLOAT);
+            uput(b, &d, sizeof d);
+        }
+        return;
+    case LUA_TSTRING: {
+        size_t n;
+        const char *s = lua_tolstring(L, idx, &n);
+        uint32_t n32 = (uint32_t)n;
+        if (n > UINT32_MAX) { b->why = "a string over 4 GB"; return; }
+        uput_tag(b, UV_STRING);
+        uput(b, &n32, 4);
+        uput(b, s, n);
+        return;
+    }
+    case LUA_TTABLE: break;
+    default: b->why = "a value that is not plain data (nil, boolean, number, string, table)"; return;
+    }
+    if (key) { b->why = "a table used as a key"; return; }
+    if (depth >= TL_USERS_DEPTH) { b->why = "tables nested too deep (or a cycle)"; return; }
+    if (lua_getmetatable(L, idx)) {
+        lua_pop(L, 1);
+        b->why = "a table with a metatable";
+        return;
+    }
+    uint32_t count = 0;
+    for (lua_pushnil(L); lua_next(L, idx); lua_pop(L, 1)) count++;
+    uput_tag(b, UV_TABLE);
+    uput(b, &count, 4);
+    luaL_checkstack(L, 4, "user values");
+    for (lua_pushnil(L); !b->why && lua_next(L, idx); lua_pop(L, 1)) {
+        put_value(L, b, -2, depth + 1, true);
+        put_value(L, b, -1, depth + 1, false);
+    }
+    if (b->why) lua_pop(L, 1); /* the key the loop left */
+}
+
+typedef struct ucur {
+    const unsigned char *p;
+    size_t n, at;
+} ucur;
+
+static bool uget(ucur *c, void *out, size_t n)
+{
+    if (n > c->n - c->at) return false;
+    memcpy(out, c->p + c->at, n);
+    c->at += n;
+    return true;
+}
+
+/* Pushes the value at the cursor; false (nothing pushed) when the bytes are not one. */
+static bool get_value(lua_State *L, ucur *c, int depth, bool key)
+{
+    unsigned char t;
+    if (!uget(c, &t, 1) || !lua_checkstack(L, 3)) return false;
+    switch (t) {
+    case UV_FALSE: case UV_TRUE: lua_pushboolean(L, t == UV_TRUE); return true;
+    case UV_INT: { lua_Integer i; if (!uget(c, &i, sizeof i)) return false; lua_pushinteger(L, i); return true; }
+    case UV_FLOAT: {
+        lua_Number d;
+        if (!uget(c, &d, sizeof d) || (key && d != d)) return false; /* NaN cannot be a key */
+        lua_pushnumber(L, d);
+        return true;
+    }
+    case UV_STRING: {
+        uint32_t n;
+        if (!uget(c, &n, 4) || n > c->n - c->at) return false;
+        lua_pushlstring(L, (const char *)c->p + c->at, n);
+        c->at += n;
+        return true;
+    }
+    case UV_TABLE: break;
+    default: return false;
+    }
+    uint32_t count;
+    if (key || depth >= TL_USERS_DEPTH || !uget(c, &count, 4) || count > (c->n - c->at) / 2) return false;
+    lua_createtable(L, 0, 0);
+    for (uint32_t k = 0; k < count; k++) {
+        if (!get_value(L, c, depth + 1, true)) { lua_pop(L, 1); return false; }
+        if (!get_value(L, c, depth + 1, false)) { lua_pop(L, 2); return false; }
+        lua_rawset(L, -3);
+    }
+    return true;
 }
 
 /* w:snapshot() → snapshot */
@@ -54,38 +184,67 @@ static int w_snapshot(lua_State *L)
     return 1;
 }
 
-/* The stream at arg (a snapshot or a string); *users: whether the snapshot carries user values. */
-static const void *check_stream(lua_State *L, int arg, size_t *size, bool *users)
+/* The engine stream at arg (a snapshot, or a string: an engine stream or
+ * an envelope), and pushes the user table it brings (a new table: a copy of
+ * the snapshot's, the envelope's values, or empty). Returns NULL, pushing
+ * nothing, with *why set, when an envelope is not valid. */
+static const void *take_stream(lua_State *L, int arg, size_t *size, const char **why)
 {
     tl_snapshot *s = luaL_testudata(L, arg, TL_SNAPSHOT_CLASS);
-    *users = s != NULL;
     if (s) {
         *size = s->size;
+        if (lua_getiuservalue(L, arg, 1) == LUA_TTABLE) push_copy(L, -1);
+        else lua_newtable(L);
+        lua_remove(L, -2);
         return s->bytes;
     }
     if (lua_type(L, arg) != LUA_TSTRING) tl_typeerror(L, arg, "tether.snapshot or string");
-    return lua_tolstring(L, arg, size);
-}
-
-/* Makes the user values of the world at idx those of the snapshot at arg (none for a string). */
-static void set_users(lua_State *L, int idx, int arg, bool users)
-{
-    if (users && lua_getiuservalue(L, arg, 1) == LUA_TTABLE) push_copy(L, -1);
-    else lua_newtable(L);
-    lua_setiuservalue(L, idx, 1);
-    if (users) lua_pop(L, 1);
+    size_t n;
+    const unsigned char *p = (const unsigned char *)lua_tolstring(L, arg, &n);
+    if (n < 4 || memcmp(p, TL_USERS_MAGIC, 4) != 0) {
+        *size = n;
+        lua_newtable(L);
+        return p;
+    }
+    uint32_t version = 0;
+    uint64_t len = 0;
+    if (n >= TL_USERS_HEADER) {
+        memcpy(&version, p + 4, 4);
+        memcpy(&len, p + 8, 8);
+    }
+    ucur c = {p, n, TL_USERS_HEADER + (size_t)len};
+    if (n < TL_USERS_HEADER || version != TL_USERS_VERSION || len > n - TL_USERS_HEADER) {
+        *why = "a user-value envelope of another version, or cut short";
+        return NULL;
+    }
+    bool ok = get_value(L, &c, 0, false);
+    if (ok && (!lua_istable(L, -1) || c.at != n)) {
+        lua_pop(L, 1);
+        ok = false;
+    }
+    if (!ok) {
+        *why = "its user values are corrupted";
+        return NULL;
+    }
+    *size = (size_t)len;
+    return p + TL_USERS_HEADER;
 }
 
 /* w:restore(s) → true, or nil and the reason (the world unchanged) */
 static int w_restore(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
+    lua_settop(L, 2);
     size_t size;
-    bool users;
-    const void *data = check_stream(L, 2, &size, &users);
+    const char *why = NULL;
     /* the new user table first: once the world is restored nothing may fail */
-    if (users && lua_getiuservalue(L, 2, 1) == LUA_TTABLE) push_copy(L, -1);
-    else lua_newtable(L);
+    const void *data = take_stream(L, 2, &size, &why);
+    if (!data) {
+        lua_settop(L, 2);
+        lua_pushnil(L);
+        lua_pushfstring(L, "restore: %s; the world is unchanged", why);
+        return 2;
+    }
     if (tt_world_restore(w, data, size) != TT_OK) {
         lua_pushnil(L);
         lua_pushstring(L, tt_last_error(w));
@@ -100,23 +259,47 @@ static int w_restore(lua_State *L)
 static int load_into(lua_State *L)
 {
     tl_world_ud *u = luaL_checkudata(L, 1, TL_WORLD_CLASS);
+    lua_settop(L, 2);
     if (!luaL_testudata(L, 2, TL_SNAPSHOT_CLASS) && lua_type(L, 2) != LUA_TSTRING)
         tl_error(L, "bad option 'snapshot' (tether.snapshot or string expected, got %s)", tl_pushtypename(L, 2));
     size_t size;
-    bool users;
-    const void *data = check_stream(L, 2, &size, &users);
+    const char *why = NULL;
+    const void *data = take_stream(L, 2, &size, &why);
+    if (!data) tl_error(L, "%s", why);
     tt_world *w = tt_world_load(data, size);
     if (!w) tl_error(L, "%s", tt_last_error(NULL));
     u->w = w;
-    set_users(L, 1, 2, users);
+    lua_setiuservalue(L, 1, 1);
     return 0;
 }
 
-/* s:bytes() → the stream as a string (to write to a file) */
+/* s:bytes([users]) → the snapshot as a string (to write to a file): with
+ * its user values unless users is false or there are none */
 static int s_bytes(lua_State *L)
 {
     tl_snapshot *s = luaL_checkudata(L, 1, TL_SNAPSHOT_CLASS);
-    lua_pushlstring(L, (const char *)s->bytes, s->size);
+    bool users = lua_isnoneornil(L, 2) || tl_checkboolean(L, 2);
+    lua_settop(L, 1);
+    if (!users || lua_getiuservalue(L, 1, 1) != LUA_TTABLE || (lua_pushnil(L), !lua_next(L, 2))) {
+        lua_pushlstring(L, (const char *)s->bytes, s->size);
+        return 1;
+    }
+    lua_settop(L, 2);
+    ubuf b = {NULL, 0, 0, NULL};
+    uint32_t version = TL_USERS_VERSION;
+    uint64_t len = s->size;
+    uput(&b, TL_USERS_MAGIC, 4);
+    uput(&b, &version, 4);
+    uput(&b, &len, 8);
+    uput(&b, s->bytes, s->size);
+    put_value(L, &b, 2, 0, false);
+    if (b.why) {
+        free(b.p);
+        return tl_error(L, "a user value holds %s: only plain data can be written as bytes (s:bytes(false) leaves "
+                        "the user values out)", b.why);
+    }
+    lua_pushlstring(L, b.p, b.n);
+    free(b.p);
     return 1;
 }
 

@@ -82,7 +82,7 @@ T.test("a new world from a snapshot or its bytes continues as the original", fun
   for _ = 1, 300 do copy:step(1 / 60); from_bytes:step(1 / 60); w:step(1 / 60) end
   T.eq(copy:hash(), w:hash())
   T.eq(from_bytes:hash(), w:hash())
-  T.eq(#s, #s:bytes())
+  T.eq(#s, #s:bytes(false))
   T.ok(tostring(s):match("^tether.snapshot %(%d+ bytes%)"), tostring(s))
 end)
 
@@ -105,10 +105,50 @@ T.test("user values follow a restore", function()
   T.eq(w:user(ps[1]).id, 1)
   local copy = tether.world { snapshot = s }
   T.eq(copy:user(ps[3]).id, 3)
-  -- bytes carry no Lua values
-  local bare = tether.world { snapshot = s:bytes() }
+  -- bytes carry them (plain data), unless asked not to
+  local saved = tether.world { snapshot = s:bytes() }
+  T.eq(saved:user(ps[3]).id, 3)
+  T.ok(saved:is_valid(ps[3]), "the saved handle is valid in the loaded world")
+  local bare = tether.world { snapshot = s:bytes(false) }
   T.eq(bare:user(ps[3]), nil)
-  T.ok(bare:is_valid(ps[3]), "the saved handle is valid in the loaded world")
+  T.eq(bare:hash(), saved:hash())
+end)
+
+T.test("user values written as bytes: plain data round-trips, the rest is refused", function()
+  local w = tether.world {}
+  local nested = { name = "crate", hp = 3.5, tags = { "wood", "small", [10] = true }, flag = false, big = math.maxinteger }
+  local a = w:particle(0, 0, { user = nested })
+  local b = w:particle(1, 0, { user = "plain string\0with a zero" })
+  local c = w:particle(2, 0, { user = -0.25 })
+  local bytes = w:snapshot():bytes()
+  T.eq(bytes:sub(1, 4), "TTLU")
+  local l = tether.world { snapshot = bytes }
+  local got = l:user(a)
+  T.eq(got.name, "crate"); T.eq(got.hp, 3.5); T.eq(got.tags[2], "small"); T.eq(got.tags[10], true)
+  T.eq(got.flag, false); T.eq(got.big, math.maxinteger); T.eq(math.type(got.big), "integer")
+  T.eq(l:user(b), "plain string\0with a zero"); T.eq(l:user(c), -0.25)
+  w:set_user(a, "changed")
+  T.eq(w:restore(bytes), true)
+  T.eq(w:user(a).tags[1], "wood")
+  -- not plain data: refused when written, with the way out named
+  w:set_user(c, function() end)
+  T.checkerror("bytes: a user value holds a value that is not plain data", w:snapshot().bytes, w:snapshot())
+  local cyc = {}; cyc.self = cyc
+  w:set_user(c, cyc)
+  T.checkerror("nested too deep (or a cycle)", w:snapshot().bytes, w:snapshot())
+  w:set_user(c, setmetatable({}, {}))
+  T.checkerror("a table with a metatable", w:snapshot().bytes, w:snapshot())
+  T.ok(#w:snapshot():bytes(false) > 0)
+  -- a corrupted envelope is refused, the world unchanged
+  local h = w:hash()
+  for _, cut in ipairs { 3, 10, 17, #bytes - 1 } do
+    local ok, msg = w:restore(bytes:sub(1, cut))
+    T.eq(ok, nil, "cut at " .. cut); T.ok(msg:match("unchanged"), msg)
+  end
+  local ok, msg = w:restore(bytes .. "\1")
+  T.eq(ok, nil); T.ok(msg:match("user values are corrupted"), msg)
+  T.eq(w:hash(), h)
+  T.checkerror("tether.world: its user values are corrupted", tether.world, { snapshot = bytes .. "\1" })
 end)
 
 T.test("a truncated, corrupted or foreign stream is refused, the world unchanged", function()
