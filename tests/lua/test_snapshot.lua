@@ -149,6 +149,21 @@ T.test("user values written as bytes: plain data round-trips, the rest is refuse
   T.eq(ok, nil); T.ok(msg:match("user values are corrupted"), msg)
   T.eq(w:hash(), h)
   T.checkerror("tether.world: its user values are corrupted", tether.world, { snapshot = bytes .. "\1" })
+  -- every byte of the envelope changed in turn: refused with the world unchanged, or a world (no checksum
+  -- guards the user values: a changed string or number is still plain data)
+  local small = tether.world {}
+  small:particle(0, 0, { user = { 1, "two", { three = 3.0 } } })
+  local env = small:snapshot():bytes()
+  local before = small:snapshot():bytes()
+  for i = 1, #env do
+    local bad = env:sub(1, i - 1) .. string.char(env:byte(i) ~ 0x21) .. env:sub(i + 1)
+    if small:restore(bad) then
+      small:step(1 / 60)
+      small:restore(env)
+    else
+      T.ok(small:snapshot():bytes() == before, "byte " .. i .. ": refused but changed")
+    end
+  end
 end)
 
 T.test("a truncated, corrupted or foreign stream is refused, the world unchanged", function()
