@@ -112,14 +112,18 @@ TEST(snapshot_saved_handles_work_in_the_loaded_world)
     ENSURE(b);
     tt_world_destroy(a);
     tt_world *other = tt_world_create(NULL); /* takes the next tag */
+    tt_particle mine = tt_particle_create(other, &pd);
+    ENSURE(mine.index == p.index && mine.gen != p.gen); /* same slot, another world's tag */
     tt_world *c = tt_world_load(b, n);
     ENSURE(c);
     ENSURE(tt_particle_is_valid(c, p));
     ENSURE(!tt_particle_is_valid(c, gone));
     ENSURE(!tt_particle_is_valid(other, p));
+    ENSURE(!tt_particle_is_valid(c, mine));
     /* restored in place, another world becomes the saved one, tag included */
     ENSURE_OK(tt_world_restore(other, b, n));
     ENSURE(tt_particle_is_valid(other, p));
+    ENSURE(!tt_particle_is_valid(other, mine)); /* its own handles of before are stale now */
     /* the free list came back: the next particle takes the removed one's slot, with a new generation */
     tt_particle q = tt_particle_create(c, &pd);
     ENSURE(q.index == gone.index && q.gen != gone.gen);
