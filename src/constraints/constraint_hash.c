@@ -203,7 +203,7 @@ static void load_gen(tt_world *w, tt__cgroup *g, tt__source *s)
             tt__get(s, c->p, sizeof c->p);
         }
         c->k = get_soft(s, &c->alpha);
-        for (int k = 0; k < 4; k++) c->v[k] = tt__get_num(s, -INFINITY, INFINITY, "constraint value");
+        for (int k = 0; k < 4; k++) c->v[k] = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "constraint value");
         c->friction = tt__get_num(s, 0.0, 1.0, "bounds friction");
         if (s->failed) return;
         if (!gen_valid(w, c) || !slot_is(g, c->slot, i, false) || g->slots[c->slot].kind != c->kind)
@@ -257,7 +257,7 @@ static void load_events(tt__cgroup *g, tt__source *s)
         get_handle(s, &e->constraint.index, &e->constraint.gen);
         get_handle(s, &e->a.index, &e->a.gen);
         get_handle(s, &e->b.index, &e->b.gen);
-        e->length = tt__get_num(s, 0.0, INFINITY, "break length");
+        e->length = tt__get_num(s, 0.0, 1e300, "break length");
         e->strain = tt__get_num(s, -1.0, TT_MAX_VALUE, "break strain");
     }
 }
