@@ -159,6 +159,10 @@ typedef struct tt__record {  /* one contact of the step, for events */
     tt_contact_event ev;
 } tt__record;
 
+/* State: what contacts.c saves (settings, shapes, materials, bullets,
+ * switched-off pairs, the last step's records and events, and the last
+ * substep's end positions while valid). The primitives and static index,
+ * the grid, pairs, batches and the other per-substep arrays are rebuilt. */
 typedef struct tt__collide {
     tt_collision_settings set;
     /* shapes */

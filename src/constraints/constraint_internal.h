@@ -69,6 +69,11 @@ typedef struct tt__composite {
     double *rest;      /* 2·np: rest offsets from the rest centre of mass */
 } tt__composite;
 
+/* State: what constraint_hash.c saves (pool, slots, links and their cold
+ * halves but lambda, the other kinds, moving targets, published break
+ * events, composites). Everything else here is derived (counts, refs,
+ * excluded pairs) or per-step scratch (plan, pk, hot copies, grad, new
+ * events), rebuilt after a restore. */
 typedef struct tt__cgroup {
     tt_pool pool;
     tt__cslot *slots;

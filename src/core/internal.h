@@ -83,6 +83,11 @@ typedef struct tt__group {
 
 enum { TT_MAX_GROUPS = 8 };
 
+/* What of a world is state (saved, restored, hashed) and what is per-step
+ * scratch (rebuilt) is decided in one place per part: snapshot.c's
+ * save_settings/save_particles/save_springs for this struct, each group's
+ * save hook for its own. A new persistent field is written there, or it
+ * is not state. */
 struct tt_world {
     /* settings */
     tt_vec2 gravity, wind;
