@@ -99,7 +99,7 @@ void bench_constraints(const char *dir)
         tt_world *w = tt_world_create(&wd);
         tt_rope_def rd = tt_rope_def_default();
         rd.segments = 32;
-        rd.end = (tt_vec2){32, 0};
+        rd.finish = (tt_vec2){32, 0};
         tt_rope_create(w, &rd);
         for (int k = 0; k < 30; k++) tt_world_step(w, dt); /* swinging down */
         double t0 = bench_now_ns();

@@ -22,7 +22,7 @@ function tether.load()
   -- made straight, then the pinned far end is moved in to the cliff edge
   for k, y in ipairs { 0.0, -0.02 } do
     ropes[k] = world:rope { start = { -SPAN / 2, y }, finish = { SPAN / 2 * 1.16, y }, segments = PLANKS * 2,
-                            pin_start = true, pin_end = true, mass = 0.5, radius = 0.03 }
+                            pin_start = true, pin_finish = true, mass = 0.5, radius = 0.03 }
     local ps = world:composite_particles(ropes[k])
     world:set_position(ps[#ps], SPAN / 2, y)
   end

@@ -34,7 +34,7 @@ function tether.load(args)
   world:aabb(2.5, 3, 5, 3.3, { friction = 0.7 })                          -- right ledge
   for i = 1, count do
     local x = -4 + 8 * (i - 1) / math.max(count - 1, 1)
-    local b = world:soft_body { center = { x, 6 + i }, size = 0.4 + 0.1 * (i % 3), segments = 20,
+    local b = world:soft_body { center = { x, 6 + i }, ring_radius = 0.4 + 0.1 * (i % 3), segments = 20,
                                 pressure = 1 + 0.1 * (i % 2), stiffness = 0.6, mass = 0.05, radius = 0.06 }
     bodies[#bodies + 1] = b
     rest[#rest + 1] = area(world:composite_particles(b))

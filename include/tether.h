@@ -15,5 +15,6 @@
 #include "tether/constraint.h"
 #include "tether/composite.h"
 #include "tether/collide.h"
+#include "tether/clock.h"
 
 #endif

@@ -6,8 +6,9 @@
 -- (`w:position(p)`: p is argument #2). Numbers must be numbers (no numeric
 -- strings), finite, and inside the documented ranges, or the call raises.
 
----A particle handle: a Lua integer (index in the low 32 bits, generation in
----the high 32 bits). It goes stale when its particle is removed.
+---A particle handle: a Lua integer below 2^53 that carries its kind (bits
+---52…50), world tag, reuse counter and slot index (tether/base.h). It goes
+---stale when its particle is removed; a handle of another kind is refused.
 ---@alias tether.particle integer
 
 ---A spring handle: a Lua integer, like a particle handle.
@@ -68,7 +69,42 @@ function snapshot:bytes(users) end
 
 ---Makes a new world. Unknown option keys raise ("tether.world: unknown option 'gravty' ...").
 ---@param opts? tether.world_options
----@return tether.world
+---@---A fixed-step clock: real frame time in, steps of dt out (tether/clock.h).
+---@class tether.clock
+local clock = {}
+---Feeds `real` seconds (>= 0) of the frame; returns the steps to take now.
+---@param real number
+---@return integer
+function clock:advance(real) end
+---How far from the last step to the next, [0, 1): blend the drawn states by it.
+---@return number
+function clock:alpha() end
+---@return number
+function clock:dt() end
+---@return number
+function clock:scale() end
+---@param s number virtual seconds per real one, [0, 1000]
+function clock:set_scale(s) end
+---@return boolean
+function clock:paused() end
+---@param paused boolean
+function clock:set_paused(paused) end
+---One step at the next advance, even while paused.
+function clock:step_once() end
+---@return {dt: number, max_steps: integer, scale: number, paused: boolean, time: number, steps: integer, acc: number, dropped: number, capped: boolean}
+function clock:info() end
+
+---@class tether.clock_options
+---@field dt? number s, default 1/60
+---@field max_steps? integer most steps per frame, default 8
+---@field scale? number virtual seconds per real one, [0, 1000], default 1
+
+---A new clock.
+---@param opts? tether.clock_options
+---@return tether.clock
+function tether.clock(opts) end
+
+return tether.world
 function tether.world(opts) end
 
 ---Runner only (the `tether` executable): ends the update loop after the current call.
@@ -471,7 +507,7 @@ function world:constraint_lines(t) end
 ---Constraints broken in the last step.
 ---@return {constraint: tether.constraint, a: tether.particle, b: tether.particle, length: number, strain: number}[]
 function world:break_events() end
----opts: start, finish, segments, pin_start, pin_end, slack, break_strain + composite options.
+---opts: start, finish, segments, pin_start, pin_finish, slack, break_strain + composite options.
 ---@return tether.composite
 function world:rope(opts) end
 ---opts: origin, width, height, columns, rows, shear_stiffness, bend_stiffness, pin_top_corners, pin_top_row, break_strain + composite options.
@@ -480,7 +516,7 @@ function world:cloth(opts) end
 ---opts: position, height, limits + composite options.
 ---@return tether.composite
 function world:ragdoll(opts) end
----opts: center, size, segments, pressure, area_stiffness, area_compliance + composite options.
+---opts: center, ring_radius (m; radius is each particle's), segments, pressure, area_stiffness, area_compliance + composite options.
 ---@return tether.composite
 function world:soft_body(opts) end
 ---opts: center, width, height, angle, columns, rows or points {x1, y1, …} (no point repeated, no three consecutive on a line) + composite options.

@@ -11,5 +11,10 @@ void tt_test_alloc_fail_from(long n);
 /* Allocations succeed again; true when one was refused since the last
  * tt_test_alloc_fail_from. */
 bool tt_test_alloc_ok(void);
+/* Allocation calls (malloc, calloc, realloc) made so far, refused or not. */
+long tt_test_alloc_calls(void);
+/* Where the first refused allocation since tt_test_alloc_fail_from was asked
+ * for (a code address: addr2line -f -e build/test_c names the function). */
+void *tt_test_alloc_refused_at(void);
 
 #endif

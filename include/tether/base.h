@@ -50,12 +50,47 @@ typedef struct tt_vec2 {
     double x, y;
 } tt_vec2;
 
-/// Generational handles: index of a slot + the slot's generation when the
-/// object was made. A removed object's handle stays stale forever (the
-/// generation moved on; a slot whose generation would wrap is retired).
-/// The generation's high byte is a tag of the world (worlds take tags 1…255
-/// in turn), so a handle used on another world is refused as stale unless the
-/// two worlds share a tag. The all-zero handle is null.
+/// Handles. Every object is named by a generational handle: the index of its
+/// slot and the slot's generation when the object was made. A removed
+/// object's handle stays stale forever (the generation moves on; a slot
+/// whose generation would wrap is retired, never reused). The all-zero
+/// handle is null. All handle types live here, one struct each, so C code
+/// cannot pass one kind where another is expected.
+///
+/// The generation field holds the world's tag above a reuse counter. Worlds
+/// take tags 1…1023 in turn, so a handle of one world is refused by every
+/// world created after it until 1022 more worlds have been created.
+///
+/// As one integer (tt_*_to_u64, what Lua sees and what a game may store or
+/// key a table by) a handle carries its kind and stays below 2^53, so it is
+/// exact as an IEEE double (LuaJIT, JSON):
+///
+///     bits 52…50  kind          (tt_kind: 1…5; 0 is never a handle)
+///     bits 49…40  world tag     (TT_HANDLE_TAG_BITS)
+///     bits 39…24  reuse counter (TT_HANDLE_GEN_BITS: a slot retires after
+///                               65 535 removals)
+///     bits 23…0   slot index    (TT_HANDLE_INDEX_BITS: at most 2^24 slots
+///                               of each kind per world)
+///
+/// Decoding an integer of another kind (or no handle at all) gives the null
+/// handle, which every call refuses as stale.
+#define TT_HANDLE_INDEX_BITS 24
+#define TT_HANDLE_GEN_BITS 16
+#define TT_HANDLE_TAG_BITS 10
+#define TT_HANDLE_KIND_BITS 3
+#define TT_HANDLE_MAX_SLOTS (1u << TT_HANDLE_INDEX_BITS)
+
+/// The kind of object a handle names.
+typedef enum tt_kind {
+    TT_KIND_NONE = 0,   ///< not a handle
+    TT_KIND_PARTICLE,
+    TT_KIND_SPRING,
+    TT_KIND_CONSTRAINT,
+    TT_KIND_SHAPE,
+    TT_KIND_COMPOSITE
+} tt_kind;
+
+/// A particle (see tether/particle.h).
 typedef struct tt_particle {
     uint32_t index;
     uint32_t gen;
@@ -67,11 +102,63 @@ typedef struct tt_spring {
     uint32_t gen;
 } tt_spring;
 
-/// Handles as one 64-bit integer (gen in the high half): what Lua sees.
-static inline uint64_t tt_particle_to_u64(tt_particle p) { return ((uint64_t)p.gen << 32) | p.index; }
-static inline tt_particle tt_particle_from_u64(uint64_t u) { tt_particle p; p.index = (uint32_t)u; p.gen = (uint32_t)(u >> 32); return p; }
-static inline uint64_t tt_spring_to_u64(tt_spring s) { return ((uint64_t)s.gen << 32) | s.index; }
-static inline tt_spring tt_spring_from_u64(uint64_t u) { tt_spring s; s.index = (uint32_t)u; s.gen = (uint32_t)(u >> 32); return s; }
+/// A position constraint (see tether/constraint.h).
+typedef struct tt_constraint {
+    uint32_t index;
+    uint32_t gen;
+} tt_constraint;
+
+/// A static or kinematic collision shape (see tether/collide.h).
+typedef struct tt_shape {
+    uint32_t index;
+    uint32_t gen;
+} tt_shape;
+
+/// A composite: a group of particles and constraints made as one (see
+/// tether/composite.h).
+typedef struct tt_composite {
+    uint32_t index;
+    uint32_t gen;
+} tt_composite;
+
+#define TT__HANDLE_KIND_SHIFT (TT_HANDLE_INDEX_BITS + TT_HANDLE_GEN_BITS + TT_HANDLE_TAG_BITS)
+
+/// The kind of the handle written as u (TT_KIND_NONE if u is no handle).
+static inline tt_kind tt_handle_kind(uint64_t u)
+{
+    uint64_t k = u >> TT__HANDLE_KIND_SHIFT; /* ≥ 8 from 2^53 up */
+    return k >= TT_KIND_PARTICLE && k <= TT_KIND_COMPOSITE ? (tt_kind)k : TT_KIND_NONE;
+}
+
+/* Packing runs once per handle in every bulk read, so it is kept to a few
+ * branch-free instructions. A struct whose index or generation is past its
+ * budget (it would spill into the next field and name another object), or
+ * the null handle, packs to 0. */
+static inline uint64_t tt__handle_pack(tt_kind k, uint32_t index, uint32_t gen)
+{
+    uint64_t u = ((uint64_t)k << TT__HANDLE_KIND_SHIFT) | ((uint64_t)gen << TT_HANDLE_INDEX_BITS) | index;
+    uint32_t spill = (index >> TT_HANDLE_INDEX_BITS) | ((gen - 1u) >> (TT_HANDLE_GEN_BITS + TT_HANDLE_TAG_BITS));
+    return spill == 0 ? u : 0;
+}
+/* Bits above the kind make u >> TT__HANDLE_KIND_SHIFT differ from k too. */
+static inline void tt__handle_unpack(uint64_t u, tt_kind k, uint32_t *index, uint32_t *gen)
+{
+    bool ok = u >> TT__HANDLE_KIND_SHIFT == (uint64_t)k;
+    *index = ok ? (uint32_t)(u & (TT_HANDLE_MAX_SLOTS - 1)) : 0;
+    *gen = ok ? (uint32_t)(u >> TT_HANDLE_INDEX_BITS) & ((1u << (TT_HANDLE_GEN_BITS + TT_HANDLE_TAG_BITS)) - 1) : 0;
+}
+
+#define TT__HANDLE_U64(T, K)                                                                     \
+    static inline uint64_t T##_to_u64(T h) { return tt__handle_pack(K, h.index, h.gen); }        \
+    static inline T T##_from_u64(uint64_t u) { T h; tt__handle_unpack(u, K, &h.index, &h.gen); return h; }
+/// Handles to and from one integer (0 for the null handle or a handle out of
+/// the budget; from an integer of another kind, the null handle).
+TT__HANDLE_U64(tt_particle, TT_KIND_PARTICLE)
+TT__HANDLE_U64(tt_spring, TT_KIND_SPRING)
+TT__HANDLE_U64(tt_constraint, TT_KIND_CONSTRAINT)
+TT__HANDLE_U64(tt_shape, TT_KIND_SHAPE)
+TT__HANDLE_U64(tt_composite, TT_KIND_COMPOSITE)
+#undef TT__HANDLE_U64
 
 /// Time integrators. Chosen per world and switchable between steps; a
 /// switch keeps each particle's position and velocity.

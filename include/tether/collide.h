@@ -23,15 +23,6 @@
 extern "C" {
 #endif
 
-/// A static or kinematic collision shape (generational handle; zero = null).
-typedef struct tt_shape {
-    uint32_t index;
-    uint32_t gen;
-} tt_shape;
-
-static inline uint64_t tt_shape_to_u64(tt_shape s) { return ((uint64_t)s.gen << 32) | s.index; }
-static inline tt_shape tt_shape_from_u64(uint64_t u) { tt_shape s; s.index = (uint32_t)u; s.gen = (uint32_t)(u >> 32); return s; }
-
 /// Kinds of shape. Geometry is given in the shape's local frame and placed
 /// by position + angle (world = position + R(angle)·local).
 typedef enum tt_shape_type {
@@ -137,7 +128,11 @@ TT_API tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def);
 TT_API tt_result tt_shape_destroy(tt_world *w, tt_shape s);
 /// True if s names a live shape of w.
 TT_API bool tt_shape_is_valid(const tt_world *w, tt_shape s);
-/// Kinematic move: new position (m) and angle (rad). The static index is rebuilt at the next step.
+/// Kinematic move: new position (m) and angle (rad). The shape travels
+/// there across the substeps of the next step, at the speed that takes, so
+/// what rests on it is carried (friction) and what it meets is pushed at
+/// that speed, not thrown by a jump. Calls between two steps keep the first
+/// starting point; the getter returns the target at once.
 TT_API tt_result tt_shape_set_transform(tt_world *w, tt_shape s, tt_vec2 position, double angle);
 TT_API tt_result tt_shape_get_transform(const tt_world *w, tt_shape s, tt_vec2 *position, double *angle);
 /// Restitution 0…1, μs ≥ 0, μk ≥ 0.

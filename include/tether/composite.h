@@ -10,15 +10,6 @@
 extern "C" {
 #endif
 
-/// A composite (generational handle; all-zero is null).
-typedef struct tt_composite {
-    uint32_t index;
-    uint32_t gen;
-} tt_composite;
-
-static inline uint64_t tt_composite_to_u64(tt_composite c) { return ((uint64_t)c.gen << 32) | c.index; }
-static inline tt_composite tt_composite_from_u64(uint64_t u) { tt_composite c; c.index = (uint32_t)u; c.gen = (uint32_t)(u >> 32); return c; }
-
 /// What every composite shares: its particles and its links.
 typedef struct tt_composite_common {
     double mass;        ///< kg per particle, > 0; default 1
@@ -28,13 +19,13 @@ typedef struct tt_composite_common {
     bool collide;       ///< may particles joined by a link collide with each other? default false
 } tt_composite_common;
 
-/// A rope (or chain) from `start` to `end`, `segments` links, segments + 1 particles.
+/// A rope (or chain) from `start` to `finish`, `segments` links, segments + 1 particles.
 typedef struct tt_rope_def {
     tt_composite_common common;
-    tt_vec2 start, end; ///< m; default (0, 0), (1, 0)
+    tt_vec2 start, finish; ///< m; default (0, 0), (1, 0)
     uint32_t segments;  ///< 1 … 100 000; default 10
     bool pin_start;     ///< pin the first particle (infinite mass); default true
-    bool pin_end;       ///< pin the last particle; default false
+    bool pin_finish;    ///< pin the last particle; default false
     bool slack;         ///< links are TT_DISTANCE_MAX (the rope can go slack); default false (rigid links)
     double break_strain;///< see tt_distance_def; default 0 = never
 } tt_rope_def;
@@ -71,7 +62,7 @@ typedef struct tt_ragdoll_def {
 typedef struct tt_soft_body_def {
     tt_composite_common common;
     tt_vec2 center;          ///< m; default (0, 0)
-    double radius;           ///< m, > 0; default 1
+    double ring_radius;      ///< m, > 0; default 1 (common.radius is each particle's)
     uint32_t segments;       ///< 3 … 65 536; default 16
     double pressure;         ///< target area / rest area, > 0; default 1
     double area_stiffness;   ///< [0, 1]; default 1

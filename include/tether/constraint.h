@@ -18,16 +18,6 @@
 extern "C" {
 #endif
 
-/// A position constraint (generational handle; all-zero is null).
-typedef struct tt_constraint {
-    uint32_t index;
-    uint32_t gen;
-} tt_constraint;
-
-/// Handles as one 64-bit integer (gen in the high half): what Lua sees.
-static inline uint64_t tt_constraint_to_u64(tt_constraint c) { return ((uint64_t)c.gen << 32) | c.index; }
-static inline tt_constraint tt_constraint_from_u64(uint64_t u) { tt_constraint c; c.index = (uint32_t)u; c.gen = (uint32_t)(u >> 32); return c; }
-
 /// Kinds of constraint.
 typedef enum tt_constraint_kind {
     TT_CONSTRAINT_DISTANCE = 1, ///< |xa − xb| = length (or ≤, or ≥)

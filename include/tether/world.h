@@ -27,7 +27,7 @@ typedef struct tt_world_def {
     double dt_hint;           ///< the step you expect to use, s; default 1/60. Verlet turns a velocity set
                               ///< before the first step into x_old with it (any later dt is still exact)
     uint32_t capacity;        ///< particles to reserve up front; default 0 (grows on demand)
-    uint32_t max_particles;   ///< hard limit on live + removed-slot particles; default 16 777 216
+    uint32_t max_particles;   ///< hard limit on live + removed-slot particles, ≤ 2^24 (the handle budget); default 2^24 = 16 777 216
     uint32_t substeps;        ///< each step runs this many substeps of dt/substeps; default 1; 1…1000
     uint32_t iterations;      ///< most relaxation sweeps per substep; default 10; 1…10 000
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
@@ -88,6 +88,14 @@ TT_API void tt_world_destroy(tt_world *w);
 /// forces → integrate → detect (collisions) → relax (constraints and contacts,
 /// up to `iterations` sweeps) → velocity pass → events. Stages a world does not use are skipped.
 /// Forces applied with tt_particle_apply_force are used for this step, then cleared.
+/// Memory: everything the step needs that follows from the world's counts
+/// (particles, links, shapes) is allocated before it changes anything, and
+/// a world at steady state allocates nothing per step. TT_ENOMEM then means
+/// one of two things, and tt_last_error says which: "before the step; the
+/// world is as it was", or, when more contacts than ever before needed more
+/// room inside the step, "the step ran without it" (some contacts, batches
+/// or events were skipped; the world is valid and one step further). A game
+/// that wants all or nothing saves a snapshot before the step.
 TT_API tt_result tt_world_step(tt_world *w, double dt);
 
 TT_API tt_result tt_world_set_gravity(tt_world *w, tt_vec2 g);      ///< m/s², finite

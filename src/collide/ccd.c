@@ -64,7 +64,13 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
         w->px[i] = x0 + (x1 - x0) * t;
         w->py[i] = y0 + (y1 - y0) * t;
         c->ccd_prim[i] = prim;
-        if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) continue;
-        c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)prim, nx, ny, 0.0, 0.0, 0.0, 1};
+        if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) {
+            tt__step_oom(w, "a bullet's contact (it stops at the shape without its bounce)");
+            continue;
+        }
+        double cx, cy;
+        const double r = w->radius[i];
+        tt__shape_carry(&c->shapes[c->prims[prim].shape], w->px[i] - nx * r, w->py[i] - ny * r, &cx, &cy);
+        c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)prim, nx, ny, 0.0, 0.0, 0.0, cx, cy, 1};
     }
 }

@@ -32,11 +32,33 @@ static inline bool tt__prim_box_meets(const tt__prim *p, double lox, double loy,
 }
 
 typedef struct tt__shape {
-    tt_shape_def def;     /* def.points is NULL: the points live in pts */
+    tt_shape_def def;     /* def.points is NULL: the points live in pts; def's transform is where the script put it */
     tt_vec2 *pts;
     bool alive;
-    bool moved;           /* by the script since the last step: its contacts keep the push's speed */
+    bool moved;           /* by the script since the last step: it moves from `from` to def's transform across
+                           * the next step's substeps, a kinematic body whose contacts see its velocity */
+    tt_vec2 from;         /* where the last step left it, and its angle */
+    double from_angle;
+    /* moved, during a step: its placement at the end of the last substep (0)
+     * and of this one (1), and the turn between them */
+    tt_vec2 at0, at1;
+    double ang1, turn_c, turn_s;
+    uint32_t prim0, vert0; /* its primitives and polygon vertices in the static index */
 } tt__shape;
+
+/* How far the point of shape s now at (x, y) moved in this substep (0 for
+ * a shape the script did not move): where the contact drags a particle. */
+static inline void tt__shape_carry(const tt__shape *s, double x, double y, double *dx, double *dy)
+{
+    if (!s->moved) {
+        *dx = *dy = 0.0;
+        return;
+    }
+    /* the point was at at0 + R(−turn)·((x, y) − at1) when the substep began */
+    const double rx = x - s->at1.x, ry = y - s->at1.y;
+    *dx = x - (s->at0.x + s->turn_c * rx + s->turn_s * ry);
+    *dy = y - (s->at0.y - s->turn_s * rx + s->turn_c * ry);
+}
 
 /* Static index: a uniform grid over the primitives' boxes, built once and
  * rebuilt only when shapes are added, removed or moved. */
@@ -100,6 +122,8 @@ typedef struct tt__batches {
  * rows, pairs [runs[y·TT__PARTS + k], runs[y·TT__PARTS + k + 1]); runs NULL:
  * TT__PARTS equal parts. inv: the particles' inverse masses, which stay
  * as they are until the substep ends. False on no memory. */
+/* Room for the stamps of np particles (the rest follows the pairs). */
+bool tt__batches_reserve(tt__batches *B, uint32_t np);
 bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
                       const double *inv, uint32_t np);
 /* One Gauss-Seidel sweep over the batches; returns the deepest overlap
@@ -151,6 +175,7 @@ typedef struct tt__scontact {
     uint32_t a, prim;
     double nx, ny, lambda; /* normal, normal correction accumulated this substep (m) */
     double lambda_t, mu;  /* friction correction along (−ny, nx) this substep (m), |lambda_t| ≤ mu·lambda; μs */
+    double cx, cy;        /* how far the shape moved at the contact this substep (tt__shape_carry; 0: it did not) */
     uint32_t ccd;         /* found by the swept test: velocity restarts from the pre-solve one */
 } tt__scontact;
 
@@ -229,6 +254,7 @@ bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem);
 /* The stages of the contacts group (contacts.c registers them): detection
  * (contact_detect.c), projection and the velocity pass
  * (contact_response.c), events after the step (contact_events.c). */
+bool tt__contacts_reserve(tt_world *w, void *self);
 void tt__contacts_begin(tt_world *w, void *self, double h);
 double tt__contacts_relax(tt_world *w, void *self, double h);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
@@ -278,6 +304,10 @@ static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, ui
 
 /* Grid (grid.c). */
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell);
+/* Room for a build over n particles, whatever their spread (the cells are
+ * bounded by tt__grid_max_cells); false on no memory. */
+bool tt__grid_reserve(tt__grid *g, uint32_t n);
+uint32_t tt__grid_max_cells(uint32_t n);
 /* Appends candidate pairs (gap < margin) to c->pairs; false on no memory. */
 bool tt__grid_pairs(tt_world *w, tt__collide *c);
 void tt__grid_free(tt__grid *g);
@@ -298,6 +328,12 @@ bool tt__brute_pairs(tt_world *w, tt__collide *c);
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
 /* What tt_shape_create accepts (a snapshot's shapes pass the same test). */
 tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const char *fn);
+/* Places the shapes the script moved where they are at the end of the
+ * world's current substep, on their way from `from` to their def's
+ * transform (the static index holds their whole path: no rebuild). */
+void tt__shapes_place_moved(const tt_world *w, tt__collide *c);
+/* After a step: the moved shapes have arrived. */
+void tt__shapes_arrived(tt__collide *c);
 void tt__shapes_free(tt__collide *c);
 size_t tt__shapes_bytes(const tt__collide *c);
 /* Calls visit for each primitive whose cell range meets the box (each at most once per call). */

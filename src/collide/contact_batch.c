@@ -53,19 +53,24 @@ typedef struct cursor {
     uint32_t y, p, end;
 } cursor;
 
+bool tt__batches_reserve(tt__batches *B, uint32_t np)
+{
+    if (np <= B->stamp_cap) return true;
+    uint32_t *st = realloc(B->stamp, (size_t)np * sizeof *st);
+    if (!st) return false;
+    B->stamp = st;
+    B->stamp_cap = np;
+    B->mark = 0;
+    return true;
+}
+
 bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
                       const double *inv, uint32_t np)
 {
     B->n = 0;
     B->np = np;
     if (npairs == 0) return true;
-    if (np > B->stamp_cap) {
-        uint32_t *st = realloc(B->stamp, (size_t)np * sizeof *st);
-        if (!st) return false;
-        B->stamp = st;
-        B->stamp_cap = np;
-        B->mark = 0;
-    }
+    if (!tt__batches_reserve(B, np)) return false;
     uint32_t eq[TT__PARTS + 1], L = 0;
     for (uint32_t k = 0; runs && k < TT__PARTS; k++) {
         uint32_t len = 0;

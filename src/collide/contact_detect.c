@@ -35,7 +35,9 @@ static void detect_visit(void *ctx, uint32_t k)
         d->ok = false;
         return;
     }
-    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0};
+    double cx, cy; /* the shape's motion where it meets the particle */
+    tt__shape_carry(&c->shapes[p->shape], d->x - hit.nx * d->r, d->y - hit.ny * d->r, &cx, &cy);
+    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, cx, cy, 0};
 }
 
 /* Marks the cells of the particle grid, just built, (c->near) a particle
@@ -48,12 +50,7 @@ static bool grid_near_shapes(tt__collide *c)
 {
     const tt__grid *g = &c->grid;
     if (g->ncell == 0) return false;
-    if (g->ncell > c->near_cap) {
-        uint8_t *p = realloc(c->near, g->ncell);
-        if (!p) return false;
-        c->near = p;
-        c->near_cap = g->ncell;
-    }
+    if (g->ncell > c->near_cap) return false; /* contacts_reserve sized it for any grid */
     memset(c->near, 0, g->ncell);
     const double grow = g->rmax * (1.0 + TT__CONTACT_MARGIN);
     for (uint32_t k = 0; k < c->nprim; k++) {
@@ -86,12 +83,37 @@ static bool grow_xy(const tt_world *w, double **x, double **y, uint32_t *cap, ui
     return true;
 }
 
-/* The velocities and positions the substep starts from; false (the
- * substep detects nothing) on no memory. */
-static bool substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
+/* What the substeps need from the counts of particles and shapes, before
+ * the step changes anything: the static index, the arrays begin fills per
+ * particle, the grid for any spread of the particles. */
+bool tt__contacts_reserve(tt_world *w, void *self)
+{
+    tt__collide *c = self;
+    if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) return false;
+    const bool pairs = c->set.particles;
+    if (!pairs && c->nprim == 0) return true;
+    const uint32_t n = w->ppool.count;
+    if (!grow_xy(w, &c->vx0, &c->vy0, &c->vcap, n)) return false;
+    if (w->integrator != TT_VERLET && !grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return false;
+    if (c->nprim && !grow_xy(w, &c->gx0, &c->gy0, &c->gcap, n)) return false;
+    if (pairs && c->set.broadphase == TT_BROADPHASE_GRID) {
+        if (!tt__grid_reserve(&c->grid, n)) return false;
+        const uint32_t cells = tt__grid_max_cells(n);
+        if (c->nprim && cells > c->near_cap) {
+            uint8_t *p = realloc(c->near, cells);
+            if (!p) return false;
+            c->near = p;
+            c->near_cap = cells;
+        }
+    }
+    return !pairs || tt__batches_reserve(&c->bat, n);
+}
+
+/* The velocities and positions the substep starts from (contacts_reserve
+ * sized their arrays). */
+static void substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
 {
     /* pre-solve velocities: what restitution and friction measure against */
-    if (!grow_xy(w, &c->vx0, &c->vy0, &c->vcap, n)) return false;
     if (w->integrator == TT_VERLET) {
         const double inv_h = 1.0 / h;
         for (uint32_t i = 0; i < n; i++) {
@@ -103,7 +125,6 @@ static bool substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
         tt__copy(c->vy0, w->qy, (size_t)n * sizeof *c->vy0);
     }
     if (w->integrator != TT_VERLET) {
-        if (!grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return false;
         /* the last substep's end positions, unless something moved or appeared since: then x − v·h */
         if (!(c->s_epoch == w->epoch && c->s_count == n)) {
             /* where each integrator started the substep, exact under gravity alone */
@@ -115,7 +136,6 @@ static bool substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
             }
         }
     }
-    return true;
 }
 
 /* The broadphase: the substep's particle pairs, planned into batches when
@@ -139,10 +159,13 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
         grid_built = ok;
     }
     c->bp_ms += tt__now_ms() - t0;
-    if (!ok) tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
+    if (!ok) tt__step_oom(w, "contact pairs (some were skipped)");
     /* batches pay for their planning from the second sweep on */
-    c->batched = w->order == TT_GAUSS_SEIDEL && w->iterations > 1 &&
-                 tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, w->inv_mass, n);
+    c->batched = false;
+    if (w->order == TT_GAUSS_SEIDEL && w->iterations > 1) {
+        c->batched = tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, w->inv_mass, n);
+        if (!c->batched) tt__step_oom(w, "contact batches (pairs were solved in list order)");
+    }
     return grid_built;
 }
 
@@ -165,12 +188,12 @@ static void detect_shapes(tt_world *w, tt__collide *c, uint32_t n, bool grid_bui
         if (!tt__sgrid_near(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m)) continue;
         tt__sgrid_query(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m, detect_visit, &d);
         if (!d.ok) {
-            tt__fail(w, TT_ENOMEM, "collisions: out of memory for contacts; some were skipped this step");
+            tt__step_oom(w, "shape contacts (some were skipped)");
             break;
         }
     }
     /* where the sweeps start from, for the guard in sweeps_done */
-    if (n && grow_xy(w, &c->gx0, &c->gy0, &c->gcap, n)) {
+    if (n && c->gcap >= n) {
         memcpy(c->gx0, w->px, (size_t)n * sizeof *c->gx0);
         memcpy(c->gy0, w->py, (size_t)n * sizeof *c->gy0);
         c->guard = true;
@@ -185,10 +208,11 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     c->batched = false;
     c->guard = false; /* until this substep's start positions are copied */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
+    tt__shapes_place_moved(w, c);
     bool pairs = c->set.particles;
     if (!pairs && c->nprim == 0) return;
     const uint32_t n = w->ppool.count;
-    if (!substep_start(w, c, h, n)) return;
+    substep_start(w, c, h, n);
     if (c->nbullets && c->nprim) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);

@@ -9,7 +9,10 @@
 void tt__record_contact(tt_world *w, tt__collide *c, uint64_t key, uint32_t a, uint32_t b, uint32_t shape, bool sensor,
                         double nx, double ny, double impulse)
 {
-    if (!tt__grow((void **)&c->rec, &c->reccap, c->nrec + 1, sizeof *c->rec)) return; /* no memory: the event is lost */
+    if (!tt__grow((void **)&c->rec, &c->reccap, c->nrec + 1, sizeof *c->rec)) {
+        tt__step_oom(w, "contact events (a contact went unrecorded)");
+        return;
+    }
     tt__record *r = &c->rec[c->nrec++];
     memset(r, 0, sizeof *r);
     r->key = key;
@@ -32,24 +35,23 @@ static int cmp_record(const void *x, const void *y)
     return a < b ? -1 : a > b; /* never equal pointers; keeps the order of the substeps */
 }
 
-static bool push_event(tt__collide *c, const tt_contact_event *ev, uint32_t kind)
+static void push_event(tt_world *w, tt__collide *c, const tt_contact_event *ev, uint32_t kind)
 {
-    if (!(c->set.events & kind)) return true;
-    if (!tt__grow((void **)&c->events, &c->evcap, c->nevents + 1, sizeof *c->events)) return false;
+    if (!(c->set.events & kind)) return;
+    if (!tt__grow((void **)&c->events, &c->evcap, c->nevents + 1, sizeof *c->events)) {
+        tt__step_oom(w, "contact events (some were dropped)");
+        return;
+    }
     c->events[c->nevents] = *ev;
     c->events[c->nevents].kind = kind;
     if (kind == TT_EVENT_END) c->events[c->nevents].impulse = 0.0;
     c->nevents++;
-    return true;
 }
 
 void tt__contacts_after_step(tt_world *w, void *self)
 {
     tt__collide *c = self;
-    if (c->any_moved) {
-        for (uint32_t i = 0; i < c->spool.count; i++) c->shapes[i].moved = false;
-        c->any_moved = false;
-    }
+    if (c->any_moved) tt__shapes_arrived(c);
     /* the step bumps the epoch once after this: end positions stay valid through it, not through a teleport */
     if (c->s_epoch == w->epoch) c->s_epoch = w->epoch + 1;
     c->nevents = 0;
@@ -74,11 +76,11 @@ void tt__contacts_after_step(tt_world *w, void *self)
     uint32_t i = 0, j = 0;
     while (i < c->nrec || j < c->nprev) {
         if (j == c->nprev || (i < c->nrec && c->rec[i].key < c->prev[j].key)) {
-            push_event(c, &c->rec[i++].ev, TT_EVENT_BEGIN);
+            push_event(w, c, &c->rec[i++].ev, TT_EVENT_BEGIN);
         } else if (i == c->nrec || c->prev[j].key < c->rec[i].key) {
-            push_event(c, &c->prev[j++].ev, TT_EVENT_END);
+            push_event(w, c, &c->prev[j++].ev, TT_EVENT_END);
         } else {
-            push_event(c, &c->rec[i++].ev, TT_EVENT_PERSIST);
+            push_event(w, c, &c->rec[i++].ev, TT_EVENT_PERSIST);
             j++;
         }
     }

@@ -64,17 +64,19 @@ static inline void shift(tt_world *w, uint32_t i, double dx, double dy, double h
 }
 
 /* Velocity-pass static friction: undo the tangential part of the
- * particle's displacement in this substep (share s of it) and its
- * tangential velocity vt. Verlet: moving x does both. */
+ * particle's displacement in this substep relative to what it touches
+ * (share s of it; (cx, cy) the shape's own motion there, 0 between
+ * particles) and its relative tangential velocity vt. Verlet: moving x
+ * does both. */
 static inline void unslide(tt_world *w, const tt__collide *c, uint32_t i, double h, double nx, double ny, double s,
-                           double vtx, double vty)
+                           double vtx, double vty, double cx, double cy)
 {
     if (w->integrator == TT_VERLET) {
         w->px[i] -= vtx * h * s;
         w->py[i] -= vty * h * s;
         return;
     }
-    double dx = w->px[i] - c->sx0[i], dy = w->py[i] - c->sy0[i], dn = dx * nx + dy * ny;
+    double dx = w->px[i] - c->sx0[i] - cx, dy = w->py[i] - c->sy0[i] - cy, dn = dx * nx + dy * ny;
     w->px[i] -= (dx - dn * nx) * s;
     w->py[i] -= (dy - dn * ny) * s;
     w->qx[i] -= vtx * s;
@@ -172,7 +174,7 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
         }
         if (s->lambda == 0.0 || s->ccd || !fr) continue; /* a sweep's contact gets its friction with its restart, in end */
         const double tx = -s->ny, ty = s->nx;
-        double f = rub((X[a * st] - sx[a]) * tx + (Y[a * st] - sy[a]) * ty, s->lambda, s->mu, &s->lambda_t);
+        double f = rub((X[a * st] - sx[a] - s->cx) * tx + (Y[a * st] - sy[a] - s->cy) * ty, s->lambda, s->mu, &s->lambda_t);
         if (f != 0.0) move(w, X, Y, st, a, tx * f, ty * f);
     }
     return err;
@@ -214,8 +216,6 @@ void tt__contacts_sweeps_done(tt_world *w, void *self)
  * push gives no separating speed beyond what the pair had before the sweeps
  * (settled): a deep pile that the sweeps cannot hold in one substep would
  * otherwise boil, each layer thrown up by the overlap it was pushed out of.
- * Shapes moved by the script since the last step keep the push: a paddle
- * moved into a ball throws it.
  * With μ > 0 also Coulomb friction (particle pairs; shapes with Euler,
  * leapfrog, RK4; a sweep's contact whose velocity restarts here): static
  * (tangential v under μs·Δvn) writes the tangential velocity to undo into
@@ -279,8 +279,8 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
     respond(rvx, rvy, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr, &dvx, &dvy, &sx, &sy,
             &dvn);
     if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
-        unslide(w, c, a, h, nx, ny, wa, sx, sy);
-        unslide(w, c, b, h, nx, ny, wb, -sx, -sy);
+        unslide(w, c, a, h, nx, ny, wa, sx, sy, 0.0, 0.0);
+        unslide(w, c, b, h, nx, ny, wb, -sx, -sy, 0.0, 0.0);
     }
     tt__add_velocity(w, a, dvx * wa, dvy * wa);
     tt__add_velocity(w, b, -dvx * wb, -dvy * wb);
@@ -302,12 +302,63 @@ static void pair_one(void *ctx, uint32_t k)
     pair_end(p->w, p->c, p->c->bat.a[k], p->c->bat.b[k], p->h, p->thr, false);
 }
 
+/* Velocity pass of a shape contact that touched this substep (or a
+ * bullet's sweep hit). Restitution and friction act on the velocity
+ * relative to the shape where it meets the particle: a kinematic shape
+ * (moved by the script) carries what rests on it and throws what it hits
+ * at its own speed. */
+static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double h, double thr, bool events)
+{
+    const uint32_t a = s->a;
+    const tt_shape_def *sd = &c->shapes[c->prims[s->prim].shape].def;
+    double mus = sqrt(tt__mat(c, a, 1) * sd->friction_static), muk = sqrt(tt__mat(c, a, 2) * sd->friction_kinetic);
+    const double ux = s->cx / h, uy = s->cy / h; /* the shape's velocity at the contact */
+    double vx, vy;
+    if (s->ccd) { /* the sweep cut the substep's motion short: restart from the velocity before it */
+        vx = c->vx0[a];
+        vy = c->vy0[a];
+        if (w->integrator == TT_VERLET) {
+            w->qx[a] = w->px[a] - vx * h;
+            w->qy[a] = w->py[a] - vy * h;
+        } else {
+            w->qx[a] = vx;
+            w->qy[a] = vy;
+        }
+    } else {
+        if (rub_in_sweeps(w)) {
+            double slide = (w->px[a] - start_x(w, c)[a] - s->cx) * -s->ny + (w->py[a] - start_y(w, c)[a] - s->cy) * s->nx;
+            double d = unrub(slide, s->lambda_t, s->lambda, mus, muk);
+            if (d != 0.0) shift(w, a, -s->ny * d, s->nx * d, h);
+            mus = muk = 0.0;
+        }
+        tt_vec2 v = tt__velocity(w, a);
+        vx = v.x;
+        vy = v.y;
+    }
+    double ea = tt__mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
+    double dvx, dvy, sx, sy, dvn;
+    respond(vx - ux, vy - uy, c->vx0[a] - ux, c->vy0[a] - uy, s->nx, s->ny, e, true, mus, muk, thr, &dvx, &dvy, &sx, &sy,
+            &dvn);
+    if (s->ccd) {
+        dvx -= sx;
+        dvy -= sy;
+    } else if (sx != 0.0 || sy != 0.0) {
+        unslide(w, c, a, h, s->nx, s->ny, 1.0, sx, sy, s->cx, s->cy);
+    }
+    tt__add_velocity(w, a, dvx, dvy);
+    if (events) {
+        uint32_t shape = c->prims[s->prim].shape;
+        tt__record_contact(w, c, tt__shape_key(shape, a), a, UINT32_MAX, shape, false, s->nx, s->ny,
+                           dvn / w->inv_mass[a]);
+    }
+}
+
 void tt__contacts_end(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
     const double g = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
     const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
-    const bool events = c->set.events != 0, fr = rub_in_sweeps(w);
+    const bool events = c->set.events != 0;
     const double *inv = w->inv_mass;
     if (c->batched) {
         tt__batches *B = &c->bat;
@@ -321,50 +372,8 @@ void tt__contacts_end(tt_world *w, void *self, double h)
         for (uint32_t k = 0; k < c->npairs; k++)
             if (c->pairs[k].lambda > 0.0f) pair_end(w, c, c->pairs[k].a, c->pairs[k].b, h, thr, events);
     }
-    for (uint32_t k = 0; k < c->nsc; k++) {
-        const tt__scontact *s = &c->sc[k];
-        if (s->lambda <= 0.0 && !s->ccd) continue;
-        const uint32_t a = s->a;
-        if (inv[a] == 0.0) continue;
-        const tt_shape_def *sd = &c->shapes[c->prims[s->prim].shape].def;
-        double mus = sqrt(tt__mat(c, a, 1) * sd->friction_static), muk = sqrt(tt__mat(c, a, 2) * sd->friction_kinetic);
-        double vx, vy;
-        if (s->ccd) { /* the sweep cut the substep's motion short: restart from the velocity before it */
-            vx = c->vx0[a];
-            vy = c->vy0[a];
-            if (w->integrator == TT_VERLET) {
-                w->qx[a] = w->px[a] - vx * h;
-                w->qy[a] = w->py[a] - vy * h;
-            } else {
-                w->qx[a] = vx;
-                w->qy[a] = vy;
-            }
-        } else {
-            if (fr) {
-                double slide = (w->px[a] - start_x(w, c)[a]) * -s->ny + (w->py[a] - start_y(w, c)[a]) * s->nx;
-                double d = unrub(slide, s->lambda_t, s->lambda, mus, muk);
-                if (d != 0.0) shift(w, a, -s->ny * d, s->nx * d, h);
-                mus = muk = 0.0;
-            }
-            tt_vec2 v = tt__velocity(w, a);
-            vx = v.x;
-            vy = v.y;
-        }
-        double ea = tt__mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
-        double dvx, dvy, sx, sy, dvn;
-        respond(vx, vy, c->vx0[a], c->vy0[a], s->nx, s->ny, e, !c->shapes[c->prims[s->prim].shape].moved, mus, muk, thr, &dvx, &dvy, &sx, &sy, &dvn);
-        if (s->ccd) {
-            dvx -= sx;
-            dvy -= sy;
-        } else if (sx != 0.0 || sy != 0.0) {
-            unslide(w, c, a, h, s->nx, s->ny, 1.0, sx, sy);
-        }
-        tt__add_velocity(w, a, dvx, dvy);
-        if (events) {
-            uint32_t shape = c->prims[s->prim].shape;
-            tt__record_contact(w, c, tt__shape_key(shape, a), a, UINT32_MAX, shape, false, s->nx, s->ny, dvn / inv[a]);
-        }
-    }
+    for (uint32_t k = 0; k < c->nsc; k++)
+        if ((c->sc[k].lambda > 0.0 || c->sc[k].ccd) && inv[c->sc[k].a] != 0.0) shape_end(w, c, &c->sc[k], h, thr, events);
     if (w->integrator != TT_VERLET && c->sx0 && c->scap >= w->ppool.count) {
         tt__copy(c->sx0, w->px, (size_t)w->ppool.count * sizeof *c->sx0);
         tt__copy(c->sy0, w->py, (size_t)w->ppool.count * sizeof *c->sy0);

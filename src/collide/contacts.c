@@ -76,6 +76,7 @@ void tt__contacts_destroy(tt_world *w, void *self)
 const tt__group_ops tt__contacts_ops = {
     .name = "contacts", .rank = TT__RANK_CONTACTS,
     .begin_stage = TT_STAGE_COLLIDE,
+    .reserve = tt__contacts_reserve,
     .begin = tt__contacts_begin,
     .relax = tt__contacts_relax,
     .sweeps_done = tt__contacts_sweeps_done,
@@ -115,7 +116,8 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn)
 }
 
 /* --- the snapshot section ("COLL") ------------------------------------------
- * Settings, shapes with their points, per-particle materials and bullets,
+ * Settings, shapes with their points (a shape the script moved since the
+ * last step with where that step left it), per-particle materials and bullets,
  * switched-off pairs, the contact records of the last step (what the next
  * step's begin/persist/end events compare with), the events published, and
  * for integrators that keep velocities, the last substep's end positions
@@ -144,6 +146,10 @@ static void save_shape(tt__sink *s, const tt__shape *sh)
     tt__put_u8(s, sh->alive);
     if (!sh->alive) return;
     tt__put_u8(s, sh->moved);
+    if (sh->moved) { /* the next step carries it from where the last one left it */
+        tt__put(s, &sh->from, sizeof sh->from);
+        tt__put_f64(s, sh->from_angle);
+    }
     tt__put_u32(s, (uint32_t)d->type);
     tt__put(s, &d->position, sizeof d->position);
     tt__put_f64(s, d->angle);
@@ -242,6 +248,11 @@ static bool load_shape(tt_world *w, tt__shape *sh, tt__source *s)
     sh->alive = tt__get_bool(s, "shape alive");
     if (!sh->alive) return !s->failed;
     sh->moved = tt__get_bool(s, "shape moved");
+    if (sh->moved) {
+        sh->from.x = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "shape start");
+        sh->from.y = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "shape start");
+        sh->from_angle = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "shape start angle");
+    }
     d->type = (tt_shape_type)tt__get_u32(s);
     tt__get(s, &d->position, sizeof d->position);
     d->angle = tt__get_num(s, -1e300, 1e300, "shape angle");
@@ -263,6 +274,10 @@ static bool load_shape(tt_world *w, tt__shape *sh, tt__source *s)
     d->sensor = tt__get_bool(s, "shape sensor");
     d->user = tt__get_u64(s);
     if (s->failed) return false;
+    if (!sh->moved) {
+        sh->from = d->position;
+        sh->from_angle = d->angle;
+    }
     d->points = sh->pts;
     bool ok = tt__shape_check_def(w, d, "snapshot") == TT_OK;
     bool with_points = d->type == TT_SHAPE_CHAIN || d->type == TT_SHAPE_POLYGON;

@@ -99,6 +99,16 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     }
 }
 
+/* The most cells a build over n particles can use (the limit below). */
+static uint32_t max_cells(uint32_t n) { return (uint32_t)fmin(4.0 * n + 1024.0, TT__GRID_MAX_CELLS); }
+
+bool tt__grid_reserve(tt__grid *g, uint32_t n)
+{
+    return grow_n(g, n ? n : 1) && tt__grow((void **)&g->start, &g->cap_cells, max_cells(n) + 1, sizeof *g->start);
+}
+
+uint32_t tt__grid_max_cells(uint32_t n) { return max_cells(n); }
+
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
 {
     const uint32_t n = w->ppool.count;
@@ -135,7 +145,7 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     if (!(cs > 0.0)) cs = fmax(sqrt(fmax(ex * ey, ex * ex + ey * ey) / m), 1e-6); /* points only: about one per cell */
     cs = fmax(cs, DBL_MIN); /* 1 / 4.9e-324 is inf, and inf · 0 a NaN cell */
     /* The bound keeps nx·ny, and ncell + 1, inside a uint32_t whatever m is. */
-    const double limit = fmin(4.0 * m + 1024.0, TT__GRID_MAX_CELLS);
+    const double limit = max_cells(m);
     g->cs = cs;
     fit(g, lox, loy, hix, hiy);
     if ((double)g->nx * g->ny > limit) { /* a few particles far away: a second pass for the spread */

@@ -152,6 +152,8 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
     s->pts = pts;
     s->alive = true;
     s->moved = false;
+    s->from = def->position;
+    s->from_angle = def->angle;
     c->shapes_alive++;
     c->dirty = true;
     return (tt_shape){i, c->spool.gen[i]};
@@ -187,6 +189,10 @@ tt_result tt_shape_set_transform(tt_world *w, tt_shape s, tt_vec2 position, doub
     if (!tt__vec_ok(position)) return tt__fail(w, TT_EINVAL, "tt_shape_set_transform: position must be finite, |x| <= %g", TT_MAX_VALUE);
     if (!tt__in_range(angle, -TT_MAX_VALUE, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "tt_shape_set_transform: angle must be finite");
     if (sh->def.type == TT_SHAPE_AABB && angle != 0.0) return tt__fail(w, TT_EINVAL, "tt_shape_set_transform: an aabb cannot be turned (angle must be 0)");
+    if (!sh->moved) { /* the first move since the last step: the path starts where that step left it */
+        sh->from = sh->def.position;
+        sh->from_angle = sh->def.angle;
+    }
     sh->def.position = position;
     sh->def.angle = angle;
     sh->moved = true;

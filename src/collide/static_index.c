@@ -7,10 +7,17 @@
 
 /* --- primitives --------------------------------------------------------- */
 
-static tt_vec2 place(const tt_shape_def *d, tt_vec2 p)
+/* Where a shape stands: its def's transform, or a point of its path. */
+typedef struct placement {
+    tt_vec2 at;
+    double cs, sn;
+} placement;
+
+static placement placed_at(tt_vec2 at, double angle) { return (placement){at, cos(angle), sin(angle)}; }
+
+static tt_vec2 place(const placement *t, tt_vec2 p)
 {
-    double cs = cos(d->angle), sn = sin(d->angle);
-    return (tt_vec2){d->position.x + cs * p.x - sn * p.y, d->position.y + sn * p.x + cs * p.y};
+    return (tt_vec2){t->at.x + t->cs * p.x - t->sn * p.y, t->at.y + t->sn * p.x + t->cs * p.y};
 }
 
 static tt__prim *new_prim(tt__collide *c, uint32_t shape)
@@ -60,18 +67,18 @@ static bool add_poly(tt__collide *c, uint32_t shape, const tt_vec2 *pts, uint32_
     return true;
 }
 
-static bool shape_prims(tt__collide *c, uint32_t i)
+static bool shape_prims(tt__collide *c, uint32_t i, const placement *t)
 {
     const tt__shape *s = &c->shapes[i];
     const tt_shape_def *d = &s->def;
     switch (d->type) {
-    case TT_SHAPE_SEGMENT: return add_capsule(c, i, place(d, d->a), place(d, d->b), 0.0);
-    case TT_SHAPE_CAPSULE: return add_capsule(c, i, place(d, d->a), place(d, d->b), d->radius);
-    case TT_SHAPE_CIRCLE: { tt_vec2 o = place(d, (tt_vec2){0, 0}); return add_capsule(c, i, o, o, d->radius); }
+    case TT_SHAPE_SEGMENT: return add_capsule(c, i, place(t, d->a), place(t, d->b), 0.0);
+    case TT_SHAPE_CAPSULE: return add_capsule(c, i, place(t, d->a), place(t, d->b), d->radius);
+    case TT_SHAPE_CIRCLE: { tt_vec2 o = place(t, (tt_vec2){0, 0}); return add_capsule(c, i, o, o, d->radius); }
     case TT_SHAPE_CHAIN: {
         uint32_t segs = d->loop ? d->count : d->count - 1;
         for (uint32_t k = 0; k < segs; k++)
-            if (!add_capsule(c, i, place(d, s->pts[k]), place(d, s->pts[(k + 1) % d->count]), 0.0)) return false;
+            if (!add_capsule(c, i, place(t, s->pts[k]), place(t, s->pts[(k + 1) % d->count]), 0.0)) return false;
         return true;
     }
     case TT_SHAPE_AABB:
@@ -84,14 +91,14 @@ static bool shape_prims(tt__collide *c, uint32_t i)
             double hx = d->half_extents.x, hy = d->half_extents.y;
             q[0] = (tt_vec2){-hx, -hy}; q[1] = (tt_vec2){hx, -hy}; q[2] = (tt_vec2){hx, hy}; q[3] = (tt_vec2){-hx, hy};
         }
-        for (int k = 0; k < 4; k++) q[k] = place(d, q[k]);
+        for (int k = 0; k < 4; k++) q[k] = place(t, q[k]);
         if (q[0].x == q[1].x && q[0].y == q[1].y) return add_capsule(c, i, q[0], q[2], 0.0); /* degenerate aabb: a segment */
         if (q[1].x == q[2].x && q[1].y == q[2].y) return add_capsule(c, i, q[0], q[1], 0.0);
         return add_poly(c, i, q, 4);
     }
     case TT_SHAPE_POLYGON: {
         tt_vec2 q[TT_MAX_POLYGON_POINTS];
-        for (uint32_t k = 0; k < d->count; k++) q[k] = place(d, s->pts[k]);
+        for (uint32_t k = 0; k < d->count; k++) q[k] = place(t, s->pts[k]);
         return add_poly(c, i, q, d->count);
     }
     default: return true;
@@ -113,12 +120,40 @@ static void cell_range(const tt__sgrid *g, double lox, double loy, double hix, d
 
 enum { BIG_CELLS = 4096 };
 
+/* A moved shape's primitives where the script put it, each box grown to
+ * hold the primitive where the path starts too: the index then holds the
+ * whole path, and each substep only re-places the primitives. */
+static bool moved_prims(tt__collide *c, uint32_t i)
+{
+    tt__shape *s = &c->shapes[i];
+    const placement to = placed_at(s->def.position, s->def.angle), from = placed_at(s->from, s->from_angle);
+    if (!shape_prims(c, i, &to)) return false;
+    const uint32_t end = c->nprim, vend = c->nvert;
+    if (!shape_prims(c, i, &from)) return false; /* after them, for their boxes */
+    for (uint32_t k = s->prim0; k < end; k++) {
+        tt__prim *p = &c->prims[k];
+        const tt__prim *q = &c->prims[end + (k - s->prim0)];
+        p->lox = fmin(p->lox, q->lox); p->loy = fmin(p->loy, q->loy);
+        p->hix = fmax(p->hix, q->hix); p->hiy = fmax(p->hiy, q->hiy);
+    }
+    c->nprim = end;
+    c->nvert = vend;
+    return true;
+}
+
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c)
 {
     c->nprim = 0;
     c->nvert = 0;
-    for (uint32_t i = 0; i < c->spool.count; i++)
-        if (c->shapes[i].alive && !shape_prims(c, i)) return tt__fail(w, TT_ENOMEM, "collisions: out of memory for shapes");
+    for (uint32_t i = 0; i < c->spool.count; i++) {
+        tt__shape *s = &c->shapes[i];
+        if (!s->alive) continue;
+        s->prim0 = c->nprim;
+        s->vert0 = c->nvert;
+        const placement t = placed_at(s->def.position, s->def.angle);
+        if (!(s->moved ? moved_prims(c, i) : shape_prims(c, i, &t)))
+            return tt__fail(w, TT_ENOMEM, "collisions: out of memory for shapes");
+    }
     tt__sgrid *g = &c->sgrid;
     g->nbig = 0;
     if (c->nprim == 0) {
@@ -186,6 +221,48 @@ tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c)
     c->dirty = false;
     c->static_rebuilds++;
     return TT_OK;
+}
+
+void tt__shapes_place_moved(const tt_world *w, tt__collide *c)
+{
+    if (!c->any_moved) return;
+    const uint32_t n = c->nprim, nv = c->nvert;
+    /* the end of substep k of m lies (k + 1)/m along the path; the last ends exactly where the script said */
+    const double f = (double)(w->substep + 1) / (double)w->substeps;
+    for (uint32_t i = 0; i < c->spool.count; i++) {
+        tt__shape *s = &c->shapes[i];
+        if (!s->alive || !s->moved) continue;
+        const tt_vec2 to = s->def.position;
+        const double ang0 = w->substep == 0 ? s->from_angle : s->ang1;
+        s->at0 = w->substep == 0 ? s->from : s->at1;
+        if (w->substep + 1 >= w->substeps) {
+            s->at1 = to;
+            s->ang1 = s->def.angle;
+        } else {
+            s->at1 = (tt_vec2){s->from.x + (to.x - s->from.x) * f, s->from.y + (to.y - s->from.y) * f};
+            s->ang1 = s->from_angle + (s->def.angle - s->from_angle) * f;
+        }
+        s->turn_c = cos(s->ang1 - ang0);
+        s->turn_s = sin(s->ang1 - ang0);
+        /* rewritten in place: the same primitives and vertices, so nothing grows */
+        const placement t = placed_at(s->at1, s->ang1);
+        c->nprim = s->prim0;
+        c->nvert = s->vert0;
+        shape_prims(c, i, &t);
+    }
+    c->nprim = n;
+    c->nvert = nv;
+}
+
+void tt__shapes_arrived(tt__collide *c)
+{
+    for (uint32_t i = 0; i < c->spool.count; i++) {
+        tt__shape *s = &c->shapes[i];
+        s->from = s->def.position;
+        s->from_angle = s->def.angle;
+        s->moved = false;
+    }
+    c->any_moved = false;
 }
 
 bool tt__sgrid_near(const tt__collide *c, double lox, double loy, double hix, double hiy)

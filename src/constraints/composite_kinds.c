@@ -36,7 +36,7 @@ tt_rope_def tt_rope_def_default(void)
     tt_rope_def d;
     memset(&d, 0, sizeof d);
     d.common = common_default();
-    d.end = (tt_vec2){1, 0};
+    d.finish = (tt_vec2){1, 0};
     d.segments = 10;
     d.pin_start = true;
     return d;
@@ -70,7 +70,7 @@ tt_soft_body_def tt_soft_body_def_default(void)
     tt_soft_body_def d;
     memset(&d, 0, sizeof d);
     d.common = common_default();
-    d.radius = 1.0;
+    d.ring_radius = 1.0;
     d.segments = 16;
     d.pressure = 1.0;
     d.area_stiffness = 1.0;
@@ -119,15 +119,15 @@ tt_composite tt_rope_create(tt_world *w, const tt_rope_def *d)
 {
     const char *fn = "tt_rope_create";
     START(fn);
-    if (!tt__vec_ok(d->start) || !tt__vec_ok(d->end)) { tt__fail(w, TT_EINVAL, "%s: start and end must be finite", fn); return NONE; }
+    if (!tt__vec_ok(d->start) || !tt__vec_ok(d->finish)) { tt__fail(w, TT_EINVAL, "%s: start and finish must be finite", fn); return NONE; }
     if (d->segments < 1 || d->segments > 100000) { tt__fail(w, TT_EINVAL, "%s: segments must be in [1, 100000], got %u", fn, d->segments); return NONE; }
     if (!strain_ok(w, d->break_strain, fn)) return NONE;
     tt__builder b;
     if (!tt__builder_begin(&b, w, &d->common, d->segments + 1, fn)) return NONE;
     for (uint32_t i = 0; i <= d->segments; i++) {
         double t = (double)i / d->segments;
-        tt__builder_place(&b, d->start.x + (d->end.x - d->start.x) * t, d->start.y + (d->end.y - d->start.y) * t,
-              (i == 0 && d->pin_start) || (i == d->segments && d->pin_end));
+        tt__builder_place(&b, d->start.x + (d->finish.x - d->start.x) * t, d->start.y + (d->finish.y - d->start.y) * t,
+              (i == 0 && d->pin_start) || (i == d->segments && d->pin_finish));
     }
     if (!tt__builder_spawn(&b)) return NONE;
     for (uint32_t i = 0; i < d->segments; i++)
@@ -235,7 +235,7 @@ tt_composite tt_soft_body_create(tt_world *w, const tt_soft_body_def *d)
     const char *fn = "tt_soft_body_create";
     START(fn);
     if (!tt__vec_ok(d->center)) { tt__fail(w, TT_EINVAL, "%s: center must be finite", fn); return NONE; }
-    if (!positive(w, d->radius, fn, "radius") || !positive(w, d->pressure, fn, "pressure")) return NONE;
+    if (!positive(w, d->ring_radius, fn, "ring_radius") || !positive(w, d->pressure, fn, "pressure")) return NONE;
     if (d->segments < 3 || d->segments > 65536) { tt__fail(w, TT_EINVAL, "%s: segments must be in [3, 65536], got %u", fn, d->segments); return NONE; }
     if (!unit(w, d->area_stiffness, fn, "area_stiffness")) return NONE;
     if (!tt__in_range(d->area_compliance, 0.0, TT_MAX_VALUE)) { tt__fail(w, TT_EINVAL, "%s: area_compliance must be in [0, %g]", fn, TT_MAX_VALUE); return NONE; }
@@ -244,7 +244,7 @@ tt_composite tt_soft_body_create(tt_world *w, const tt_soft_body_def *d)
     if (!tt__builder_begin(&b, w, &d->common, n, fn)) return NONE;
     for (uint32_t i = 0; i < n; i++) {
         double a = 2 * TT_PI * i / n;
-        tt__builder_place(&b, d->center.x + d->radius * cos(a), d->center.y + d->radius * sin(a), false);
+        tt__builder_place(&b, d->center.x + d->ring_radius * cos(a), d->center.y + d->ring_radius * sin(a), false);
     }
     if (!tt__builder_spawn(&b)) return NONE;
     for (uint32_t i = 0; i < n; i++) tt__builder_link(&b, i, (i + 1) % n, d->common.stiffness, TT_DISTANCE_RIGID, 0.0);

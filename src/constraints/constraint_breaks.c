@@ -10,6 +10,18 @@ static bool event_push(tt__cgroup *g, tt_break_event e)
     return true;
 }
 
+/* Before a step: the distance sweep's plan, and room for every breakable
+ * link to break in it, an event and a free slot each, so breaking never
+ * runs out of memory. */
+bool tt__cgroup_reserve(tt_world *w, void *self)
+{
+    tt__cgroup *g = self;
+    if (!tt__distance_plan_reserve(w, g)) return false;
+    if (!g->nbreakable) return true;
+    return tt__constraints_grow((void **)&g->ev_new, sizeof *g->ev_new, &g->cap_new, g->nnew + g->nbreakable) &&
+           tt_pool_reserve_free(&g->pool, g->nbreakable);
+}
+
 /* Called at the end of each substep, after the bounds' friction. */
 void tt__cgroup_break_links(tt_world *w, tt__cgroup *g)
 {
@@ -23,7 +35,7 @@ void tt__cgroup_break_links(tt_world *w, tt__cgroup *g)
         if (!(len > rest * (1.0 + x->break_strain))) continue;
         tt_break_event e = {tt__cgroup_handle(g, x->slot), tt__cgroup_particle(w, d->a), tt__cgroup_particle(w, d->b),
                             len, rest > 0.0 ? len / rest - 1.0 : TT_MAX_VALUE};
-        event_push(g, e); /* no memory: the constraint still breaks, the event is lost */
+        if (!event_push(g, e)) tt__step_oom(w, "break events (the link broke, its event was dropped)");
         tt__cgroup_dist_remove(g, i);
     }
 }

@@ -183,11 +183,13 @@ void tt__cgroup_after_step(tt_world *w, void *self);                        /* c
 void tt__cgroup_save(const tt_world *w, const void *self, struct tt__sink *s);
 void *tt__cgroup_load(tt_world *w, struct tt__source *s);
 void tt__cgroup_destroy(tt_world *w, void *self); /* constraints.c */
+bool tt__cgroup_reserve(tt_world *w, void *self);                           /* constraint_breaks.c */
 
 /* ---- the distance links' sweep (distance_sweep.c) -------------------------- */
 /* Sets w's mode; false (and no change) when this build or processor lacks it. */
 bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
 void tt__distance_hot_sync(tt__cgroup *g, uint32_t i);
+bool tt__distance_plan_reserve(tt_world *w, tt__cgroup *g);
 double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h);
 double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, double h);
 

@@ -17,6 +17,7 @@ static size_t group_memory(const tt_world *w, const void *self);
 static const tt__group_ops constraint_ops = {
     .name = "constraints", .rank = TT__RANK_CONSTRAINTS,
     .begin_stage = TT_STAGE_SOLVE,
+    .reserve = tt__cgroup_reserve,
     .begin = tt__cgroup_begin,
     .relax = tt__cgroup_relax,
     .sweeps_done = tt__cgroup_sweeps_done,

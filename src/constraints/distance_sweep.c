@@ -145,7 +145,7 @@ static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
         g->h_hi[j] = d->hi;
         g->h_k[j] = d->k;
         g->h_alpha[j] = d->alpha;
-        g->h_ra[j] = 4 * a; /* indices < 2^30 (max_particles): no overflow */
+        g->h_ra[j] = 4 * a; /* indices < 2^24 (TT_HANDLE_MAX_SLOTS): no overflow */
         g->h_rb[j] = 4 * b;
         const uint32_t lim = s - r >= (D - 1) * W ? s - (D - 1) * W : r; /* j must share no particle with [lim, j) */
         uint32_t k1 = stamp[a] > stamp[b] ? stamp[a] : stamp[b];
@@ -369,6 +369,15 @@ static void rows_release(tt_world *w, tt__cgroup *g)
 }
 
 void tt__cgroup_sweeps_done(tt_world *w, void *self) { rows_release(w, self); }
+
+/* The plan wanted at the next sweep, before a step: its arrays are then in
+ * place, so a plan redone inside the step (links broke: fewer of them)
+ * allocates nothing. */
+bool tt__distance_plan_reserve(tt_world *w, tt__cgroup *g)
+{
+    if (w->order != TT_GAUSS_SEIDEL || tt__simd_kind(g->simd) == TT__SIMD_SCALAR || g->ndist < 8) return true;
+    return (g->plan_ok && g->plan_w == 4) || plan_build(g, 4, 2);
+}
 
 double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h)
 {

@@ -244,6 +244,17 @@ static uint32_t rk4(tt_world *w, double dt, bool forces)
     return bad;
 }
 
+bool tt__integrate_reserve(tt_world *w)
+{
+    if (!tt__has_forces(w)) return true; /* gravity alone needs no arrays */
+    if (w->ppool.count == 0) return true; /* nothing to integrate: no arrays (tt__scratch gives NULL for none) */
+    const int stages = w->integrator == TT_RK4 ? 8 : w->integrator == TT_LEAPFROG ? 2 : 0;
+    if (!tt__scratch(w, TT_SCRATCH_AX) || !tt__scratch(w, TT_SCRATCH_AY)) return false;
+    for (int k = 0; k < stages; k++)
+        if (!tt__scratch(w, TT_SCRATCH_RK4_FIRST + k)) return false;
+    return true;
+}
+
 void tt__integrate(tt_world *w, double dt)
 {
     double t0 = tt__now_ms(), forces_before = w->stats.stage_ms[TT_STAGE_FORCES];

@@ -50,6 +50,10 @@ typedef struct tt__group_ops {
     const char *name;
     int rank;             /* TT__RANK_*: groups run in increasing rank */
     tt_stage begin_stage; /* where begin's time is booked (TT_STAGE_COLLIDE for detection) */
+    /* before a step changes anything: size what the step will need from the
+     * world's counts, so running out of memory fails the step with the
+     * world as it was; false on no memory */
+    bool (*reserve)(tt_world *w, void *self);
     /* once per substep after integration, before the sweeps (detection, rest data) */
     void (*begin)(tt_world *w, void *self, double h);
     /* one sweep over every constraint; returns the largest error seen before correcting, m */
@@ -118,6 +122,7 @@ struct tt_world {
 
     /* relaxation solver (solver.c) */
     uint32_t substeps, iterations;
+    const char *step_oom; /* what memory a step ran without (tt__step_oom), NULL: none */
     uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
     double tolerance;
     tt_solver_order order;
@@ -187,6 +192,13 @@ static inline void tt__add_velocity(tt_world *w, uint32_t i, double dvx, double 
     }
 }
 double *tt__scratch(tt_world *w, int which);
+/* Step memory (integrate.c, solver.c): the arrays the step will use, sized
+ * before it changes anything; false on no memory. */
+bool tt__integrate_reserve(tt_world *w);
+bool tt__solver_reserve(tt_world *w);
+/* Memory refused inside a step, where nothing can be put back: the step goes
+ * on without what was refused and tt_world_step returns TT_ENOMEM. */
+void tt__step_oom(tt_world *w, const char *what);
 
 /* Springs. */
 void tt__springs_detach(tt_world *w, uint32_t particle);

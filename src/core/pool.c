@@ -7,7 +7,7 @@ uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew)
 {
     *grew = false;
     if (p->free_count > 0) return p->free_list[--p->free_count];
-    if (p->count >= limit || p->count == UINT32_MAX) return UINT32_MAX;
+    if (p->count >= limit || p->count >= TT_HANDLE_MAX_SLOTS) return UINT32_MAX;
     if (p->count == p->cap) {
         uint32_t cap = p->cap ? (p->cap > UINT32_MAX / 2 ? UINT32_MAX : p->cap * 2) : 64;
         uint32_t *gen = realloc(p->gen, (size_t)cap * sizeof *gen);
@@ -21,19 +21,29 @@ uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew)
     return i;
 }
 
+bool tt_pool_reserve_free(tt_pool *p, uint32_t more)
+{
+    /* The free list grows only with removals, so worlds that never remove never pay. */
+    uint64_t need = (uint64_t)p->free_count + more;
+    if (need > p->count) need = p->count; /* at most every slot is free */
+    if (need <= p->free_cap) return true;
+    uint64_t cap = p->free_cap ? p->free_cap : 64;
+    while (cap < need) cap *= 2;
+    if (cap > p->cap) cap = p->cap;
+    uint32_t *fl = realloc(p->free_list, (size_t)cap * sizeof *fl);
+    if (!fl) return false;
+    p->free_list = fl;
+    p->free_cap = (uint32_t)cap;
+    return true;
+}
+
 void tt_pool_free(tt_pool *p, uint32_t index)
 {
     if ((p->gen[index] & TT_POOL_GEN_MASK) == TT_POOL_GEN_MASK) return; /* retired: its handles stay stale forever */
     p->gen[index]++;
-    /* The free list grows only with removals, so worlds that never remove never pay. */
-    if (p->free_count == p->free_cap) {
-        uint32_t cap = p->free_cap ? p->free_cap * 2 : 64;
-        if (cap > p->cap) cap = p->cap;
-        uint32_t *fl = realloc(p->free_list, (size_t)cap * sizeof *fl);
-        if (!fl) return; /* no memory: the slot is retired instead of recycled */
-        p->free_list = fl;
-        p->free_cap = cap;
-    }
+    /* Removals reserve their room first (tt_pool_reserve_free); without it
+     * the slot is retired rather than recycled: its handles stay stale. */
+    if (!tt_pool_reserve_free(p, 1)) return;
     p->free_list[p->free_count++] = index;
 }
 

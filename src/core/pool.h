@@ -6,13 +6,17 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tether/base.h"
+
 /* New slots come from a LIFO free list, else the high-water mark (deterministic).
  * Freeing bumps the slot's generation, so old handles go stale; a slot whose
- * generation would wrap is retired, never reused. A generation's high byte is
- * the owning world's tag (TT_POOL_TAG_SHIFT), so a handle from another world
- * is stale here too; its low 24 bits count reuses of the slot. */
-#define TT_POOL_TAG_SHIFT 24
-#define TT_POOL_GEN_MASK 0x00FFFFFFu
+ * generation would wrap is retired, never reused. A generation holds the
+ * owning world's tag above TT_POOL_TAG_SHIFT, so a handle from another world
+ * is stale here too; the bits below count reuses of the slot. The widths are
+ * the handle budget of tether/base.h; so is the most slots a pool hands out. */
+#define TT_POOL_TAG_SHIFT TT_HANDLE_GEN_BITS
+#define TT_POOL_GEN_MASK ((1u << TT_HANDLE_GEN_BITS) - 1)
+#define TT_POOL_MAX_TAG ((1u << TT_HANDLE_TAG_BITS) - 1)
 
 typedef struct tt_pool {
     uint32_t *gen;       /* generation per slot; the slot is live when `live` says so */
@@ -20,14 +24,19 @@ typedef struct tt_pool {
     uint32_t free_count, free_cap;
     uint32_t count;      /* slots ever used (high-water mark) */
     uint32_t cap;
-    uint32_t tag;        /* 1…255, set by the world before first use (0 works, without the cross-world check) */
+    uint32_t tag;        /* 1…TT_POOL_MAX_TAG, set by the world before first use (0 works, without the cross-world check) */
 } tt_pool;
 
-/* Returns a slot index, or UINT32_MAX if the pool cannot grow (limit or memory;
+/* Returns a slot index, or UINT32_MAX if the pool cannot grow (limit, the
+ * handle budget TT_HANDLE_MAX_SLOTS, or memory;
  * the pool is then unchanged). *grew is set when count increased (the caller
  * must size its arrays to count). */
 uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew);
 void tt_pool_free(tt_pool *p, uint32_t index);
+/* Room in the free list for `more` slots freed from now on, so that removals
+ * that must not fail half way (a step's breaking links, a composite's
+ * parts) can reserve it before changing anything. False on no memory. */
+bool tt_pool_reserve_free(tt_pool *p, uint32_t more);
 
 /* Where a pool stood before a call that allocates many slots, so that a
  * failure half way can put it back: the same handles then come next, as if

@@ -197,7 +197,7 @@ static void load_settings(tt_world *w, tt__source *s)
     if (w->max_particles == 0 || w->max_particles > (1u << 30)) tt__src_fail(s, "max_particles %u", w->max_particles);
     if (w->substeps < 1 || w->substeps > TT_MAX_SUBSTEPS) tt__src_fail(s, "substeps %u", w->substeps);
     if (w->iterations < 1 || w->iterations > TT_MAX_ITERATIONS) tt__src_fail(s, "iterations %u", w->iterations);
-    if (w->tag == 0) tt__src_fail(s, "world tag 0");
+    if (w->tag == 0 || w->tag > TT_POOL_MAX_TAG) tt__src_fail(s, "world tag %u, outside [1, %u]", w->tag, TT_POOL_MAX_TAG);
     w->integrator = (tt_integrator)integrator;
     w->order = (tt_solver_order)order;
 }

@@ -50,19 +50,32 @@ static bool grow_to(void **p, size_t elem, uint32_t n)
     return true;
 }
 
-/* Jacobi accumulators, zeroed; false (and Gauss-Seidel is used) if no memory. */
-static bool jacobi_arrays(tt_world *w)
+/* Jacobi accumulators, zeroed (tt__solver_reserve sized them). */
+static void jacobi_zero(tt_world *w)
 {
     uint32_t n = w->ppool.count;
-    if (w->jcap < n) {
+    tt__zero(w->jx, n * sizeof(double));
+    tt__zero(w->jy, n * sizeof(double));
+    tt__zero(w->jn, n * sizeof(uint32_t));
+}
+
+bool tt__solver_reserve(tt_world *w)
+{
+    if (w->group_count == 0) return true;
+    const uint32_t n = w->ppool.count;
+    if (w->order == TT_JACOBI && w->jcap < n) {
         if (!grow_to((void **)&w->jx, sizeof(double), w->pcap) || !grow_to((void **)&w->jy, sizeof(double), w->pcap) ||
             !grow_to((void **)&w->jn, sizeof(uint32_t), w->pcap))
             return false;
         w->jcap = w->pcap;
     }
-    tt__zero(w->jx, n * sizeof(double));
-    tt__zero(w->jy, n * sizeof(double));
-    tt__zero(w->jn, n * sizeof(uint32_t));
+    if (w->integrator != TT_VERLET && w->bcap < n) {
+        if (!grow_to((void **)&w->bx, sizeof(double), w->pcap) || !grow_to((void **)&w->by, sizeof(double), w->pcap))
+            return false;
+        w->bcap = w->pcap;
+    }
+    for (int g = 0; g < w->group_count; g++)
+        if (w->groups[g].ops->reserve && !w->groups[g].ops->reserve(w, w->groups[g].self)) return false;
     return true;
 }
 
@@ -153,7 +166,7 @@ static bool any_past_guard(const tt_world *w, double h)
  * tiny mass between stiff links), so the same rule holds after the sweeps:
  * the particle is stopped where the substep began (Verlet: x_old; the
  * others: where the integrator put it before the sweeps, in bx/by). */
-static void guard(tt_world *w, double h, bool have_start)
+static void guard(tt_world *w, double h)
 {
     if (!any_past_guard(w, h)) return;
     const uint32_t n = w->ppool.count;
@@ -161,14 +174,12 @@ static void guard(tt_world *w, double h, bool have_start)
     const double vmax = velocity_limit(w, h);
     for (uint32_t i = 0; i < n; i++) {
         if (w->inv_mass[i] == 0.0 || !past_guard(w, i, verlet, vmax)) continue;
-        const double x = w->px[i], y = w->py[i];
         if (verlet) {
             w->px[i] = w->qx[i];
             w->py[i] = w->qy[i];
         } else {
-            /* without the copy (no memory for it) the nearest point inside the limit; NaN becomes 0 */
-            w->px[i] = have_start ? w->bx[i] : fmax(-TT_DIVERGED, fmin(TT_DIVERGED, x == x ? x : 0.0));
-            w->py[i] = have_start ? w->by[i] : fmax(-TT_DIVERGED, fmin(TT_DIVERGED, y == y ? y : 0.0));
+            w->px[i] = w->bx[i];
+            w->py[i] = w->by[i];
             w->qx[i] = w->qy[i] = 0.0;
         }
         w->stats.diverged++;
@@ -188,18 +199,13 @@ void tt__solve(tt_world *w, double h)
     double t0 = tt__now_ms();
     const uint32_t n = w->ppool.count;
     /* Velocity integrators learn about corrections from the positions before the sweeps. */
-    bool fix = w->integrator != TT_VERLET;
-    if (fix && w->bcap < n) {
-        if (grow_to((void **)&w->bx, sizeof(double), w->pcap) && grow_to((void **)&w->by, sizeof(double), w->pcap))
-            w->bcap = w->pcap;
-        else
-            fix = false;
-    }
+    const bool fix = w->integrator != TT_VERLET;
     if (fix) {
         tt__copy(w->bx, w->px, n * sizeof(double));
         tt__copy(w->by, w->py, n * sizeof(double));
     }
-    bool jacobi = w->order == TT_JACOBI && jacobi_arrays(w);
+    const bool jacobi = w->order == TT_JACOBI;
+    if (jacobi) jacobi_zero(w);
     if (!jacobi && w->jn) { /* tt__correct reads jn to pick the mode */
         free(w->jx); free(w->jy); free(w->jn);
         w->jx = w->jy = NULL;
@@ -208,10 +214,12 @@ void tt__solve(tt_world *w, double h)
     }
     double err = 0.0;
     uint32_t it = 0;
+    bool moved = false; /* some sweep found an error (or a NaN) to correct */
     while (it < w->iterations) {
         err = 0.0;
         for (int g = 0; g < w->group_count; g++) {
             double e = w->groups[g].ops->relax(w, w->groups[g].self, h);
+            moved |= e != 0.0;
             if (e > err) err = e;
         }
         if (jacobi) jacobi_apply(w);
@@ -232,7 +240,11 @@ void tt__solve(tt_world *w, double h)
     }
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->end) w->groups[g].ops->end(w, w->groups[g].self, h);
-    guard(w, h, fix);
+    /* Sweeps that found nothing to correct moved nothing, and the velocity
+     * passes only act where they did (or slow a bullet's sweep down): the
+     * integrator's own guard has seen every particle then. A world whose
+     * groups are idle (collisions on, nothing touching) skips the scan. */
+    if (moved) guard(w, h);
     w->stats.stage_ms[TT_STAGE_SOLVE] += tt__now_ms() - t0;
 }
 

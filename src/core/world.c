@@ -99,7 +99,7 @@ tt_world *tt_world_create(const tt_world_def *def)
     if (!tt__in_range(d.damping, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: damping must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.damping); return NULL; }
     if ((unsigned)d.integrator >= TT_INTEGRATOR_COUNT) { tt__fail(NULL, TT_EINVAL, "%s: unknown integrator %d", fn, (int)d.integrator); return NULL; }
     if (check_dt(NULL, d.dt_hint, fn) != TT_OK) return NULL;
-    if (d.max_particles == 0 || d.max_particles > (1u << 30)) { tt__fail(NULL, TT_EINVAL, "%s: max_particles must be in [1, 2^30]", fn); return NULL; }
+    if (d.max_particles == 0 || d.max_particles > TT_HANDLE_MAX_SLOTS) { tt__fail(NULL, TT_EINVAL, "%s: max_particles must be in [1, 2^24]", fn); return NULL; }
     if (d.substeps < 1 || d.substeps > TT_MAX_SUBSTEPS) { tt__fail(NULL, TT_EINVAL, "%s: substeps must be in [1, %d], got %u", fn, TT_MAX_SUBSTEPS, d.substeps); return NULL; }
     if (d.iterations < 1 || d.iterations > TT_MAX_ITERATIONS) { tt__fail(NULL, TT_EINVAL, "%s: iterations must be in [1, %d], got %u", fn, TT_MAX_ITERATIONS, d.iterations); return NULL; }
     if (!tt__in_range(d.tolerance, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: tolerance must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.tolerance); return NULL; }
@@ -108,10 +108,11 @@ tt_world *tt_world_create(const tt_world_def *def)
 
     tt_world *w = calloc(1, sizeof *w);
     if (!w) { tt__fail(NULL, TT_ENOMEM, "%s: out of memory", fn); return NULL; }
-    /* Worlds take tags 1…255 in turn; handles carry it, so a handle used on
-     * the wrong world is refused as stale. Not simulation state: hashes mask it. */
+    /* Worlds take tags 1…TT_POOL_MAX_TAG in turn; handles carry it, so a
+     * handle used on the wrong world is refused as stale. Not simulation
+     * state: hashes mask it. */
     static atomic_uint next_tag;
-    w->tag = atomic_fetch_add(&next_tag, 1) % 255 + 1;
+    w->tag = atomic_fetch_add(&next_tag, 1) % TT_POOL_MAX_TAG + 1;
     w->ppool.tag = w->spool.tag = w->tag;
     w->gravity = d.gravity;
     w->wind = d.wind;
@@ -147,6 +148,10 @@ tt_result tt_world_step(tt_world *w, double dt)
     TT_CHECK_WORLD(w, "tt_world_step");
     tt_result r = check_dt(w, dt, "tt_world_step");
     if (r != TT_OK) return r;
+    /* Everything the step's counts call for, before anything changes. */
+    if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
+        return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
+    w->step_oom = NULL;
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
@@ -173,10 +178,17 @@ tt_result tt_world_step(tt_world *w, double dt)
     w->stats.time += dt;
     w->epoch++;
     w->stats.step_ms = tt__now_ms() - t0;
+    if (w->step_oom)
+        return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory for %s; the step ran without it", w->step_oom);
     if (w->stats.diverged)
         tt__fail(w, TT_OK, "tt_world_step: %u particle(s) passed |x| or |v| > %g and were stopped",
                  w->stats.diverged, TT_DIVERGED);
     return TT_OK;
+}
+
+void tt__step_oom(tt_world *w, const char *what)
+{
+    if (!w->step_oom) w->step_oom = what; /* the first says the most */
 }
 
 tt_result tt_world_set_gravity(tt_world *w, tt_vec2 g)

@@ -105,11 +105,9 @@ static int w_set_positions(lua_State *L)
     for (size_t i = 0; i < n; i++) {
         uint64_t h = 0;
         lua_rawgeti(L, 2, (lua_Integer)i + 1);
-        if (!tl_tohandle(L, -1, "particle", &h))
+        if (!tl_tohandle(L, -1, w, TT_KIND_PARTICLE, &h))
             tl_argerror(L, 2, "index %I: %s", (LUAI_UACINT)(i + 1), lua_tostring(L, -1));
         ids[i] = tt_particle_from_u64(h);
-        if (!tt_particle_is_valid(w, ids[i]))
-            tl_argerror(L, 2, "index %I: stale particle handle", (LUAI_UACINT)(i + 1));
         lua_pop(L, 1);
     }
     for (size_t i = 0; i < 2 * n; i++) {

@@ -12,12 +12,9 @@ static const tl_range tl_r_pos = {0.0, TT_MAX_VALUE, true};
 
 static tt_shape check_shape(lua_State *L, tt_world *w, int arg)
 {
-    tt_shape s = tt_shape_from_u64(tl_checkhandle(L, arg, "shape"));
-    if (!tt_shape_is_valid(w, s)) tl_argerror(L, arg, "stale shape handle");
-    return s;
+    return tt_shape_from_u64(tl_checkhandle(L, w, arg, TT_KIND_SHAPE));
 }
 
-static void push_shape(lua_State *L, tt_shape s) { lua_pushinteger(L, (lua_Integer)tt_shape_to_u64(s)); }
 
 /* --- shapes ----------------------------------------------------------------- */
 
@@ -52,7 +49,7 @@ static int make_shape(lua_State *L, tt_world *w, const tt_shape_def *d)
 {
     tt_shape s = tt_shape_create(w, d);
     if (s.gen == 0) tl_check_result(L, w, TT_EINVAL);
-    push_shape(L, s);
+    tl_push_shape(L, s);
     return 1;
 }
 
@@ -179,7 +176,7 @@ static int w_remove_shape(lua_State *L)
 static int w_shape_is_valid(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    lua_pushboolean(L, tt_shape_is_valid(w, tt_shape_from_u64(tl_checkhandle(L, 2, "shape"))));
+    lua_pushboolean(L, tl_handle_is_live(L, w, 2, TT_KIND_SHAPE));
     return 1;
 }
 
@@ -430,7 +427,7 @@ static int w_raycast(lua_State *L)
         tl_push_particle(L, h.particle);
         lua_setfield(L, -2, "particle");
     } else {
-        push_shape(L, h.shape);
+        tl_push_shape(L, h.shape);
         lua_setfield(L, -2, "shape");
     }
     lua_pushnumber(L, h.point.x); lua_setfield(L, -2, "x");
@@ -462,7 +459,7 @@ static int area(lua_State *L, tt_world *w, bool point, tt_vec2 lo, tt_vec2 hi, u
             }
             lua_createtable(L, (int)ns, 0);
             for (uint32_t k = 0; k < ns; k++) {
-                push_shape(L, ss[k]);
+                tl_push_shape(L, ss[k]);
                 lua_rawseti(L, -2, k + 1);
             }
             return 2;
@@ -517,7 +514,7 @@ static int w_contacts(lua_State *L)
             tl_push_particle(L, e->b);
             lua_setfield(L, -2, "b");
         } else {
-            push_shape(L, e->shape);
+            tl_push_shape(L, e->shape);
             lua_setfield(L, -2, "shape");
         }
         lua_pushnumber(L, e->point.x); lua_setfield(L, -2, "x");

@@ -84,9 +84,7 @@ int tl_typeerror(lua_State *L, int arg, const char *expected)
 
 /* --- validators that report instead of raising ------------------------------ */
 
-/* Pushes "<what> expected, got <type>" for the value at idx, or with
- * by_value "got <the number>" when it is a number. */
-static void push_expected(lua_State *L, int idx, const char *what, bool by_value)
+void tl_push_expected(lua_State *L, int idx, const char *what, bool by_value)
 {
     char buf[40];
     idx = lua_absindex(L, idx);
@@ -116,17 +114,17 @@ bool tl_tonumber_in(lua_State *L, int idx, const tl_range *r, double *out)
     double v;
     idx = lua_absindex(L, idx);
     if (lua_type(L, idx) != LUA_TNUMBER) {
-        push_expected(L, idx, "number", false);
+        tl_push_expected(L, idx, "number", false);
         return false;
     }
     v = lua_tonumber(L, idx);
     if (!isfinite(v)) {
-        push_expected(L, idx, "finite number", true);
+        tl_push_expected(L, idx, "finite number", true);
         return false;
     }
     if (v > r->hi || v < r->lo || (r->lo_open && v == r->lo)) {
         push_range(L, r);
-        push_expected(L, idx, lua_tostring(L, -1), true);
+        tl_push_expected(L, idx, lua_tostring(L, -1), true);
         lua_remove(L, -2);
         return false;
     }
@@ -141,34 +139,17 @@ static bool tointeger_in(lua_State *L, int idx, lua_Integer lo, lua_Integer hi, 
     lua_Integer v;
     idx = lua_absindex(L, idx);
     if (lua_type(L, idx) != LUA_TNUMBER) {
-        push_expected(L, idx, "integer", false);
+        tl_push_expected(L, idx, "integer", false);
         return false;
     }
     v = lua_tointegerx(L, idx, &isint);
     if (!isint || v < lo || v > hi) {
         lua_pushfstring(L, "integer in [%I, %I]", (LUAI_UACINT)lo, (LUAI_UACINT)hi);
-        push_expected(L, idx, lua_tostring(L, -1), true);
+        tl_push_expected(L, idx, lua_tostring(L, -1), true);
         lua_remove(L, -2);
         return false;
     }
     *out = v;
-    return true;
-}
-
-bool tl_tohandle(lua_State *L, int idx, const char *kind, uint64_t *out)
-{
-    int isint = 0;
-    lua_Integer v = 0;
-    idx = lua_absindex(L, idx);
-    if (lua_type(L, idx) == LUA_TNUMBER)
-        v = lua_tointegerx(L, idx, &isint);
-    if (!isint) {
-        lua_pushfstring(L, "%s handle", kind);
-        push_expected(L, idx, lua_tostring(L, -1), true);
-        lua_remove(L, -2);
-        return false;
-    }
-    *out = (uint64_t)v;
     return true;
 }
 
@@ -254,14 +235,6 @@ int tl_checkoption(lua_State *L, int arg, const char *what, const char *def, con
             return i;
     push_choices(L, list);
     return tl_argerror(L, arg, "invalid %s '%s', expected one of: %s", what, name, lua_tostring(L, -1));
-}
-
-uint64_t tl_checkhandle(lua_State *L, int arg, const char *kind)
-{
-    uint64_t h = 0;
-    if (!tl_tohandle(L, arg, kind, &h))
-        tl_argerror(L, arg, "%s", lua_tostring(L, -1));
-    return h;
 }
 
 bool tl_opttable(lua_State *L, int arg)
@@ -366,7 +339,7 @@ bool tl_optfield_boolean(lua_State *L, int arg, const char *key, bool def)
     if (!tl_getopt(L, arg, key))
         return def;
     if (lua_type(L, -1) != LUA_TBOOLEAN) {
-        push_expected(L, -1, "boolean", false);
+        tl_push_expected(L, -1, "boolean", false);
         opterror(L, key);
     }
     v = lua_toboolean(L, -1) != 0;
@@ -382,7 +355,7 @@ tt_vec2 tl_optfield_vec2(lua_State *L, int arg, const char *key, const tl_range 
         return def;
     t = lua_gettop(L);
     if (lua_type(L, t) != LUA_TTABLE) {
-        push_expected(L, t, "table {x, y}", false);
+        tl_push_expected(L, t, "table {x, y}", false);
         opterror(L, key);
     }
     for (int i = 1; i <= 2; i++) {
@@ -410,7 +383,7 @@ int tl_optfield_option(lua_State *L, int arg, const char *key, const char *what,
     if (!tl_getopt(L, arg, key))
         return def_index;
     if (lua_type(L, -1) != LUA_TSTRING) {
-        push_expected(L, -1, "string", false);
+        tl_push_expected(L, -1, "string", false);
         opterror(L, key);
     }
     name = lua_tostring(L, -1);

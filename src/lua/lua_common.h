@@ -83,9 +83,6 @@ const char *tl_optstring(lua_State *L, int arg, const char *def);
  * what names the thing in the error:
  * "invalid mode 'x', expected one of: 'keep', 'reset'". Returns the index. */
 int tl_checkoption(lua_State *L, int arg, const char *what, const char *def, const char *const list[]);
-/* A handle: an integer-valued number. kind is "particle" or "spring".
- * Whether it names a live object is the caller's question. */
-uint64_t tl_checkhandle(lua_State *L, int arg, const char *kind);
 /* Nothing, nil or a table: returns true for a table. */
 bool tl_opttable(lua_State *L, int arg);
 
@@ -114,7 +111,27 @@ int tl_optfield_option(lua_State *L, int arg, const char *key, const char *what,
  * expected, got nan") and returns false. Used by the raising checkers above
  * and by the bulk functions that add "at index 7" to the message. */
 bool tl_tonumber_in(lua_State *L, int idx, const tl_range *r, double *out);
-bool tl_tohandle(lua_State *L, int idx, const char *kind, uint64_t *out);
+/* Pushes "<what> expected, got <type>" for the value at idx, or with
+ * by_value "got <the number>" when it is a number. */
+void tl_push_expected(lua_State *L, int idx, const char *what, bool by_value);
+
+/* --- handles (lua_handle.c): the one place they are pushed and checked ------
+ * A handle is an integer carrying its kind (tether/base.h). The checkers
+ * refuse a non-integer, an integer that is no handle, a handle of another
+ * kind ("particle expected, got shape") and, when w is not NULL, a stale
+ * one ("stale particle handle"). */
+bool tl_tohandle(lua_State *L, int idx, const tt_world *w, tt_kind kind, uint64_t *out);
+uint64_t tl_checkhandle(lua_State *L, const tt_world *w, int arg, tt_kind kind);
+void tl_push_particle(lua_State *L, tt_particle p);
+void tl_push_spring(lua_State *L, tt_spring s);
+void tl_push_constraint(lua_State *L, tt_constraint c);
+void tl_push_shape(lua_State *L, tt_shape s);
+void tl_push_composite(lua_State *L, tt_composite c);
+/* What w:is_valid(h) and its kin answer: false for a stale handle and for
+ * an integer that is no handle (0 included); raises for a non-integer or a
+ * handle of another kind. */
+bool tl_handle_is_live(lua_State *L, const tt_world *w, int arg, tt_kind kind);
+const char *tl_kind_name(tt_kind k);
 
 /* --- classes (lua_world.c) -------------------------------------------------- */
 
@@ -179,12 +196,12 @@ tt_world *tl_check_world(lua_State *L, int arg);
 tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg);
 /* Raises "fname: <tt_last_error(w)>" unless r is TT_OK. */
 void tl_check_result(lua_State *L, const tt_world *w, tt_result r);
-void tl_push_particle(lua_State *L, tt_particle p);
 /* The live world of the world userdata at idx, or NULL (not a world, or destroyed): never raises. */
 tt_world *tl_toworld(lua_State *L, int idx);
 
 /* --- method files and feature bindings: each adds its methods to the world class */
 void tl_particles_register(lua_State *L);   /* lua_particles.c */
+void tl_clock_register(lua_State *L);       /* lua_clock.c: tether.clock into the module table on top */
 void tl_springs_register(lua_State *L);     /* lua_springs.c */
 void tl_stepping_register(lua_State *L);    /* lua_stepping.c */
 void tl_stats_register(lua_State *L);       /* lua_stats.c */

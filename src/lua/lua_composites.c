@@ -10,15 +10,13 @@ static const tl_range R_POS = {0.0, TT_MAX_VALUE, true};
 
 static tt_composite check_composite(lua_State *L, tt_world *w, int arg)
 {
-    tt_composite c = tt_composite_from_u64(tl_checkhandle(L, arg, "composite"));
-    if (!tt_composite_is_valid(w, c)) tl_argerror(L, arg, "stale composite handle");
-    return c;
+    return tt_composite_from_u64(tl_checkhandle(L, w, arg, TT_KIND_COMPOSITE));
 }
 
 static void push_composite(lua_State *L, tt_world *w, tt_composite c)
 {
     if (c.gen == 0) tl_check_result(L, w, TT_EINVAL);
-    lua_pushinteger(L, (lua_Integer)tt_composite_to_u64(c));
+    tl_push_composite(L, c);
 }
 
 #define COMMON_KEYS "mass", "radius", "stiffness", "compliance", "collide"
@@ -32,9 +30,9 @@ static void common_opts(lua_State *L, int arg, tt_composite_common *k)
     k->collide = tl_optfield_boolean(L, arg, "collide", k->collide);
 }
 
-static const char *const rope_opts[] = {COMMON_KEYS, "start", "finish", "segments", "pin_start", "pin_end", "slack", "break_strain", NULL};
+static const char *const rope_opts[] = {COMMON_KEYS, "start", "finish", "segments", "pin_start", "pin_finish", "slack", "break_strain", NULL};
 
-/* w:rope({start = {x, y}, finish = {x, y}, segments, pin_start, pin_end, slack, break_strain, …common}) → composite */
+/* w:rope({start = {x, y}, finish = {x, y}, segments, pin_start, pin_finish, slack, break_strain, …common}) → composite */
 static int c_rope(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -43,10 +41,10 @@ static int c_rope(lua_State *L)
     tl_checkopts(L, 2, rope_opts);
     common_opts(L, 2, &d.common);
     d.start = tl_optfield_vec2(L, 2, "start", &TL_R_COORD, d.start);
-    d.end = tl_optfield_vec2(L, 2, "finish", &TL_R_COORD, d.end);
+    d.finish = tl_optfield_vec2(L, 2, "finish", &TL_R_COORD, d.finish);
     d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 1, 100000, d.segments);
     d.pin_start = tl_optfield_boolean(L, 2, "pin_start", d.pin_start);
-    d.pin_end = tl_optfield_boolean(L, 2, "pin_end", d.pin_end);
+    d.pin_finish = tl_optfield_boolean(L, 2, "pin_finish", d.pin_finish);
     d.slack = tl_optfield_boolean(L, 2, "slack", d.slack);
     d.break_strain = tl_optfield_number(L, 2, "break_strain", &TL_R_NONNEG, d.break_strain);
     push_composite(L, w, tt_rope_create(w, &d));
@@ -96,7 +94,7 @@ static int c_ragdoll(lua_State *L)
     return 1;
 }
 
-static const char *const soft_body_opts[] = {COMMON_KEYS, "center", "size", "segments", "pressure", "area_stiffness",
+static const char *const soft_body_opts[] = {COMMON_KEYS, "center", "ring_radius", "segments", "pressure", "area_stiffness",
                                              "area_compliance", NULL};
 
 /* w:soft_body({center = {x, y}, size (ring radius), segments, pressure, area_stiffness, area_compliance, …common}) */
@@ -108,7 +106,7 @@ static int c_soft_body(lua_State *L)
     tl_checkopts(L, 2, soft_body_opts);
     common_opts(L, 2, &d.common);
     d.center = tl_optfield_vec2(L, 2, "center", &TL_R_COORD, d.center);
-    d.radius = tl_optfield_number(L, 2, "size", &R_POS, d.radius);
+    d.ring_radius = tl_optfield_number(L, 2, "ring_radius", &R_POS, d.ring_radius);
     d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 3, 65536, d.segments);
     d.pressure = tl_optfield_number(L, 2, "pressure", &R_POS, d.pressure);
     d.area_stiffness = tl_optfield_number(L, 2, "area_stiffness", &R_UNIT, d.area_stiffness);
@@ -166,7 +164,7 @@ static int c_remove_composite(lua_State *L)
 static int c_composite_is_valid(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    lua_pushboolean(L, tt_composite_is_valid(w, tt_composite_from_u64(tl_checkhandle(L, 2, "composite"))));
+    lua_pushboolean(L, tl_handle_is_live(L, w, 2, TT_KIND_COMPOSITE));
     return 1;
 }
 
@@ -198,7 +196,7 @@ static int c_composite_constraints(lua_State *L)
     tt_composite_get_constraints(w, c, cs, n, &n);
     lua_createtable(L, (int)n, 0);
     for (uint32_t i = 0; i < n; i++) {
-        lua_pushinteger(L, (lua_Integer)tt_constraint_to_u64(cs[i]));
+        tl_push_constraint(L, cs[i]);
         lua_rawseti(L, -2, (lua_Integer)i + 1);
     }
     return 1;

@@ -17,15 +17,13 @@ static const char *const mode_names[] = {"rigid", "max", "min", NULL};
 
 static tt_constraint check_constraint(lua_State *L, tt_world *w, int arg)
 {
-    tt_constraint c = tt_constraint_from_u64(tl_checkhandle(L, arg, "constraint"));
-    if (!tt_constraint_is_valid(w, c)) tl_argerror(L, arg, "stale constraint handle");
-    return c;
+    return tt_constraint_from_u64(tl_checkhandle(L, w, arg, TT_KIND_CONSTRAINT));
 }
 
 static void push_constraint(lua_State *L, tt_world *w, tt_constraint c)
 {
     if (c.gen == 0) tl_check_result(L, w, TT_EINVAL);
-    lua_pushinteger(L, (lua_Integer)tt_constraint_to_u64(c));
+    tl_push_constraint(L, c);
 }
 
 /* Raises about argument arg, or about option `opt` when it is not NULL. */
@@ -53,15 +51,11 @@ static tt_particle *check_handle_list(lua_State *L, tt_world *w, int idx, const 
     for (lua_Integer i = 1; i <= len; i++) {
         uint64_t h;
         lua_rawgeti(L, idx, i);
-        if (!tl_tohandle(L, -1, "particle", &h)) {
+        if (!tl_tohandle(L, -1, w, TT_KIND_PARTICLE, &h)) {
             lua_pushfstring(L, "index %d: %s", (int)i, lua_tostring(L, -1));
             list_error(L, idx, opt, lua_tostring(L, -1));
         }
         ps[i - 1] = tt_particle_from_u64(h);
-        if (!tt_particle_is_valid(w, ps[i - 1])) {
-            lua_pushfstring(L, "index %d: stale particle handle", (int)i);
-            list_error(L, idx, opt, lua_tostring(L, -1));
-        }
         lua_pop(L, 1);
     }
     *n = (uint32_t)len;
@@ -221,7 +215,7 @@ static int c_remove_constraint(lua_State *L)
 static int c_constraint_is_valid(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    lua_pushboolean(L, tt_constraint_is_valid(w, tt_constraint_from_u64(tl_checkhandle(L, 2, "constraint"))));
+    lua_pushboolean(L, tl_handle_is_live(L, w, 2, TT_KIND_CONSTRAINT));
     return 1;
 }
 
@@ -378,7 +372,7 @@ static int c_break_events(lua_State *L)
     lua_createtable(L, (int)n, 0);
     for (uint32_t i = 0; i < n; i++) {
         lua_createtable(L, 0, 5);
-        lua_pushinteger(L, (lua_Integer)tt_constraint_to_u64(ev[i].constraint));
+        tl_push_constraint(L, ev[i].constraint);
         lua_setfield(L, -2, "constraint");
         tl_push_particle(L, ev[i].a);
         lua_setfield(L, -2, "a");

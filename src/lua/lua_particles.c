@@ -73,8 +73,7 @@ static int w_remove(lua_State *L)
 static int w_is_valid(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    tt_particle p = tt_particle_from_u64(tl_checkhandle(L, 2, "particle"));
-    lua_pushboolean(L, tt_particle_is_valid(w, p));
+    lua_pushboolean(L, tl_handle_is_live(L, w, 2, TT_KIND_PARTICLE));
     return 1;
 }
 

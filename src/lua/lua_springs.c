@@ -5,15 +5,7 @@
 
 static tt_spring check_spring(lua_State *L, tt_world *w, int arg)
 {
-    tt_spring s = tt_spring_from_u64(tl_checkhandle(L, arg, "spring"));
-    if (!tt_spring_is_valid(w, s))
-        tl_argerror(L, arg, "stale spring handle");
-    return s;
-}
-
-static void push_spring(lua_State *L, tt_spring s)
-{
-    lua_pushinteger(L, (lua_Integer)tt_spring_to_u64(s));
+    return tt_spring_from_u64(tl_checkhandle(L, w, arg, TT_KIND_SPRING));
 }
 
 static const char *const spring_opts[] = { "stiffness", "damping", "rest", NULL };
@@ -38,7 +30,7 @@ static int w_spring(lua_State *L)
     s = tt_spring_create(w, &def);
     if (s.gen == 0)
         tl_check_result(L, w, TT_EINVAL);
-    push_spring(L, s);
+    tl_push_spring(L, s);
     return 1;
 }
 
@@ -53,8 +45,7 @@ static int w_remove_spring(lua_State *L)
 static int w_spring_is_valid(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    tt_spring s = tt_spring_from_u64(tl_checkhandle(L, 2, "spring"));
-    lua_pushboolean(L, tt_spring_is_valid(w, s));
+    lua_pushboolean(L, tl_handle_is_live(L, w, 2, TT_KIND_SPRING));
     return 1;
 }
 

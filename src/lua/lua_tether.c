@@ -4,6 +4,7 @@
  *   tether.integrators  {"euler", "symplectic_euler", "leapfrog", "verlet", "rk4"}
  *   tether.world(opts)  a new world (lua_world.c), its methods added below by
  *                       the lua_<concept>.c files
+ *   tether.clock(opts)  a fixed-step clock (lua_clock.c)
  *
  * Built into build/tether.so for stock lua5.4 and linked into the runner. */
 #include "lua_common.h"
@@ -35,6 +36,7 @@ TT_API int luaopen_tether(lua_State *L)
     lua_setfield(L, -2, "version");
     tl_push_integrators(L);
     lua_setfield(L, -2, "integrators");
+    tl_clock_register(L);
     tl_render_register(L);
     return 1;
 }

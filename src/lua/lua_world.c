@@ -56,15 +56,6 @@ tt_world *tl_toworld(lua_State *L, int idx)
     return u && !u->dead ? u->w : NULL;
 }
 
-/* The handle checker: a live particle (or spring) of w at arg. */
-tt_particle tl_check_particle(lua_State *L, tt_world *w, int arg)
-{
-    tt_particle p = tt_particle_from_u64(tl_checkhandle(L, arg, "particle"));
-    if (!tt_particle_is_valid(w, p))
-        tl_argerror(L, arg, "stale particle handle");
-    return p;
-}
-
 /* A failed C call: raises "method: <tt_last_error>". */
 void tl_check_result(lua_State *L, const tt_world *w, tt_result r)
 {
@@ -77,11 +68,6 @@ void tl_check_result(lua_State *L, const tt_world *w, tt_result r)
         const char *colon = strncmp(msg, "tt_", 3) == 0 ? strstr(msg, ": ") : NULL;
         tl_error(L, "%s", colon ? colon + 2 : msg);
     }
-}
-
-void tl_push_particle(lua_State *L, tt_particle p)
-{
-    lua_pushinteger(L, (lua_Integer)tt_particle_to_u64(p));
 }
 
 void *tl_scratch(lua_State *L, size_t bytes)

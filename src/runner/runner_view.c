@@ -341,14 +341,15 @@ static void drag_release(session *s, drag *d)
     tl_render_drag_end(s->L);
 }
 
-static void status_line(tt_canvas *c, bool paused, double speed, double fps, bool dragging)
+static void status_line(tt_canvas *c, const tt_clock *clock, double fps, bool dragging)
 {
     char buf[256];
     int w, h, scale;
     tt_canvas_size(c, &w, &h);
     scale = h >= 700 ? 2 : 1;
-    snprintf(buf, sizeof buf, "%s x%g  %.0f fps%s | space pause  s step  -/+ speed  0 normal  r reset  drag: move",
-             paused ? "PAUSED" : "running", speed, fps, dragging ? "  [dragging]" : "");
+    snprintf(buf, sizeof buf, "%s x%g  %.0f fps%s%s | space pause  s step  -/+ speed  0 normal  r reset  drag: move",
+             clock->paused ? "PAUSED" : "running", clock->scale, fps, clock->capped ? "  [too slow: time dropped]" : "",
+             dragging ? "  [dragging]" : "");
     tt_canvas_set_layer(c, TT_LAYER_SCREEN);
     tt_canvas_set_color(c, (tt_color){ 0, 0, 0, 160 });
     tt_vec2 box[4] = { { 0, h - 12.0 * scale }, { (double)w, h - 12.0 * scale }, { (double)w, (double)h }, { 0, (double)h } };
@@ -360,8 +361,8 @@ static void status_line(tt_canvas *c, bool paused, double speed, double fps, boo
 
 /* What the window's loop keeps from frame to frame besides the script. */
 typedef struct window_state {
-    bool quit, paused, step_once, has_update;
-    double speed, acc;     /* simulated seconds per real one; simulated time not yet stepped */
+    bool quit, has_update;
+    tt_clock clock;        /* real frame time into steps of the script's dt: pause, speed, single steps */
     long steps;
     drag d;
 } window_state;
@@ -385,11 +386,11 @@ static bool on_key(window_state *ws, SDL_Keycode key)
     bool reset = false;
     switch (key) {
     case SDLK_ESCAPE: case SDLK_q: ws->quit = true; break;
-    case SDLK_SPACE: case SDLK_p: ws->paused = !ws->paused; break;
-    case SDLK_s: case SDLK_RIGHT: ws->paused = true; ws->step_once = true; break;
-    case SDLK_MINUS: case SDLK_KP_MINUS: ws->speed = ws->speed > 1.0 / 16 ? ws->speed / 2 : ws->speed; break;
-    case SDLK_PLUS: case SDLK_EQUALS: case SDLK_KP_PLUS: ws->speed = ws->speed < 8 ? ws->speed * 2 : ws->speed; break;
-    case SDLK_0: case SDLK_1: ws->speed = 1.0; break;
+    case SDLK_SPACE: case SDLK_p: tt_clock_set_paused(&ws->clock, !ws->clock.paused); break;
+    case SDLK_s: case SDLK_RIGHT: tt_clock_set_paused(&ws->clock, true); tt_clock_request_step(&ws->clock); break;
+    case SDLK_MINUS: case SDLK_KP_MINUS: tt_clock_set_scale(&ws->clock, fmax(ws->clock.scale / 2, 1.0 / 16)); break;
+    case SDLK_PLUS: case SDLK_EQUALS: case SDLK_KP_PLUS: tt_clock_set_scale(&ws->clock, fmin(ws->clock.scale * 2, 8)); break;
+    case SDLK_0: case SDLK_1: tt_clock_set_scale(&ws->clock, 1.0); break;
     case SDLK_r: reset = true; break;
     default: break;
     }
@@ -461,7 +462,10 @@ static bool restart(session *s, const options *o, window_state *ws)
     ws->has_update = ok && tr_get_callback(s->L, s->module, "update", &bad);
     if (ws->has_update)
         lua_pop(s->L, 1);
-    ws->acc = 0.0;
+    const tt_clock was = ws->clock; /* a fresh start keeps the speed and the pause */
+    tt_clock_init(&ws->clock, o->dt, 8);
+    tt_clock_set_scale(&ws->clock, was.scale);
+    tt_clock_set_paused(&ws->clock, was.paused);
     return ok;
 }
 
@@ -471,27 +475,15 @@ static bool advance(session *s, const options *o, window_state *ws, double real)
     bool ok = true;
     if (ws->d.active) {
         ws->d.prev = ws->d.pos;
-        ws->d.vt = real * ws->speed;
+        ws->d.vt = real * ws->clock.scale;
     }
     drag_apply(s, &ws->d);
-    /* fixed-rate physics: the accumulator holds simulated time not yet stepped */
-    if (!ws->paused)
-        ws->acc += real * ws->speed;
-    int n = 0;
-    while (ok && ws->acc >= o->dt && n < 8) {
-        drag_apply(s, &ws->d);
-        ok = update_once(s, o, &ws->has_update);
-        ws->acc -= o->dt;
-        n++;
-        ws->steps++;
-    }
-    if (n == 8)
-        ws->acc = 0.0; /* slower than real time: drop the rest */
-    if (ok && ws->step_once) {
+    uint32_t n = 0;
+    tt_clock_advance(&ws->clock, real, &n); /* at most 8 steps: slower than real time, the rest is dropped */
+    for (uint32_t k = 0; ok && k < n; k++) {
         drag_apply(s, &ws->d);
         ok = update_once(s, o, &ws->has_update);
         ws->steps++;
-        ws->step_once = false;
     }
     return ok;
 }
@@ -519,7 +511,7 @@ int tr_run_window(session *s, const options *o)
     ws.has_update = ok && tr_get_callback(s->L, s->module, "update", &bad);
     if (ws.has_update)
         lua_pop(s->L, 1);
-    ws.speed = 1.0;
+    tt_clock_init(&ws.clock, o->dt, 8);
     double t_prev = tr_now_s(), t0 = t_prev, fps = 0.0;
     long frames = 0;
     size_t nevents = 0, next_event = 0;
@@ -548,7 +540,7 @@ int tr_run_window(session *s, const options *o)
         if (dw > 0 && dh > 0)
             tt_canvas_resize(c, dw, dh);
         ok = draw_frame(s, c);
-        status_line(c, ws.paused, ws.speed, fps, ws.d.active);
+        status_line(c, &ws.clock, fps, ws.d.active);
         frames++;
         bool last = o->frames > 0 && frames >= o->frames;
         if (tt_window_present(win, c, last ? o->screenshot : NULL) != TT_OK) {

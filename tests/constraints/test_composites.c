@@ -102,7 +102,7 @@ TEST(each_builder_makes_what_it_documents)
     tt_world *w = tt_world_create(NULL);
     tt_rope_def rd = tt_rope_def_default();
     rd.segments = 7;
-    rd.pin_end = true;
+    rd.pin_finish = true;
     tt_composite rope = tt_rope_create(w, &rd);
     uint32_t np, nc;
     tt_composite_get_particles(w, rope, NULL, 0, &np);
@@ -268,8 +268,8 @@ static tt_world *lived_in(bool constraints, uint32_t max_particles)
     return w;
 }
 
-/* A handle without its world's tag (a generation's high byte): twins hand out the same. */
-static uint64_t untagged(uint32_t index, uint32_t gen) { return (uint64_t)(gen & 0xFFFFFFu) << 32 | index; }
+/* A handle without its world's tag (the generation's bits above TT_HANDLE_GEN_BITS): twins hand out the same. */
+static uint64_t untagged(uint32_t index, uint32_t gen) { return (uint64_t)(gen & ((1u << TT_HANDLE_GEN_BITS) - 1)) << 32 | index; }
 
 static bool same_pairs_excluded(const tt_world *a, const tt_world *b)
 {
@@ -300,7 +300,7 @@ static void make_the_same(tt_world *w, uint64_t out[6])
     tt_constraint c = tt_distance_create(w, &dd);
     tt_rope_def rd = tt_rope_def_default();
     rd.start = (tt_vec2){-1, 3};
-    rd.end = (tt_vec2){1, 3};
+    rd.finish = (tt_vec2){1, 3};
     rd.segments = 4;
     tt_composite r = tt_rope_create(w, &rd);
     tt_spring_def kd = tt_spring_def_default();
@@ -427,7 +427,7 @@ static bool rope_past_the_edge(tt_world *w)
 {
     tt_rope_def d = tt_rope_def_default();
     d.start = (tt_vec2){-152580229995.33337, 0};
-    d.end = (tt_vec2){TT_MAX_VALUE, 0};
+    d.finish = (tt_vec2){TT_MAX_VALUE, 0};
     d.segments = 9; /* start + (end − start)·1 rounds to 1e12 + 1.2e-4: the last particle */
     return tt_rope_create(w, &d).gen == 0;
 }
@@ -517,7 +517,7 @@ static bool make_soft_body(tt_world *w)
 {
     tt_soft_body_def d = tt_soft_body_def_default();
     d.center = (tt_vec2){-2, 3};
-    d.radius = 0.5;
+    d.ring_radius = 0.5;
     return tt_soft_body_create(w, &d).gen == 0;
 }
 
@@ -542,7 +542,7 @@ static bool make_rope(tt_world *w)
 {
     tt_rope_def d = tt_rope_def_default();
     d.start = (tt_vec2){-3, 4};
-    d.end = (tt_vec2){-1, 4};
+    d.finish = (tt_vec2){-1, 4};
     return tt_rope_create(w, &d).gen == 0;
 }
 

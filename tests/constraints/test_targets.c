@@ -1,12 +1,14 @@
-/* Targets the script moves between steps (a rope's length, a pin's anchor)
- * must move across the substeps of the next step, not jump in the first:
- * a particle reeled in or dragged at 1 m/s moves at 1 m/s in every substep,
- * at 1, 4 and 8 substeps. The per-substep motion is read by a test group
+/* Targets the script moves between steps (a rope's length, a pin's anchor,
+ * a kinematic shape's transform) must move across the substeps of the next
+ * step, not jump in the first: a particle reeled in, dragged or carried at
+ * 1 m/s moves at 1 m/s in every substep, at 1, 4 and 8 substeps. The per-substep motion is read by a test group
  * whose end hook the solver calls after every substep, so what is measured
  * is what the engine did inside the step, not what a reading after it implies. */
 #include "test.h"
 #include "alloc_fail.h"
 #include "constraints/constraint_internal.h"
+
+#include <math.h>
 
 static const double DT = 1.0 / 60.0;
 
@@ -164,6 +166,57 @@ TEST(targets_dragged_pin_moves_at_the_drag_speed_in_every_substep)
         ENSURE_NEAR(r[k].hi, 1.0, 0.02);
         ENSURE_NEAR(fastest[k], 1.0, 0.02);
     }
+}
+
+/* A particle resting on a box (friction 1) that the script moves at 1 m/s,
+ * sideways (friction carries it) or up (the contact lifts it). The box
+ * starts at once, so the particle first catches up (0.1 s at μ = 1); from
+ * then on it must move with the box in every substep. */
+static void carry(uint32_t substeps, bool up, range *after_step, double *fastest)
+{
+    tt_world *w = world_with(substeps);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = cs.friction_kinetic = 1.0;
+    tt_world_set_collision(w, &cs);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_BOX;
+    sd.half_extents = (tt_vec2){50.0, 0.5};
+    sd.friction_static = sd.friction_kinetic = 1.0;
+    tt_shape box = tt_shape_create(w, &sd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){0.0, 0.6};
+    pd.radius = 0.1;
+    tt_particle p = tt_particle_create(w, &pd);
+    for (int s = 0; s < 30; s++) tt_world_step(w, DT); /* at rest on the box */
+    watch o;
+    *after_step = (range){INFINITY, -INFINITY};
+    for (int s = 1; s <= 120; s++) {
+        if (s == 31) watch_start(w, &o, p); /* caught up: from here on every substep counts */
+        double d = DT * s;
+        tt_shape_set_transform(w, box, up ? (tt_vec2){0.0, d} : (tt_vec2){d, 0.0}, 0.0);
+        tt_world_step(w, DT);
+        if (s > 30) widen(after_step, speed(w, p));
+    }
+    *fastest = o.fastest;
+    tt_world_destroy(w);
+}
+
+TEST(targets_a_kinematic_box_carries_a_resting_particle_at_its_speed_in_every_substep)
+{
+    range r[2][3];
+    double fastest[2][3];
+    for (int up = 0; up < 2; up++)
+        for (int k = 0; k < 3; k++) {
+            carry(SUBSTEPS[k], up, &r[up][k], &fastest[up][k]);
+            printf("    box moving %s, %u substeps: w:velocity %.4f…%.4f m/s, fastest substep %.4f m/s\n",
+                   up ? "up" : "sideways", SUBSTEPS[k], r[up][k].lo, r[up][k].hi, fastest[up][k]);
+        }
+    for (int up = 0; up < 2; up++)
+        for (int k = 0; k < 3; k++) {
+            ENSURE_NEAR(r[up][k].lo, 1.0, 0.02);
+            ENSURE_NEAR(r[up][k].hi, 1.0, 0.02);
+            ENSURE_NEAR(fastest[up][k], 1.0, 0.02);
+        }
 }
 
 /* A winch: a max rope made 2 m shorter at once, limited to 1 m/s, takes 2 s

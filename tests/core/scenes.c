@@ -185,7 +185,7 @@ static bool zoo_composites(scene *sc)
     tt_world *w = sc->w;
     tt_rope_def rd = tt_rope_def_default();
     rd.start = (tt_vec2){6, 9};
-    rd.end = (tt_vec2){9, 9};
+    rd.finish = (tt_vec2){9, 9};
     rd.segments = 12;
     rd.common.radius = 0.1;
     rd.slack = true;
@@ -196,7 +196,7 @@ static bool zoo_composites(scene *sc)
     ok = ok && tt_ragdoll_create(w, &gd).gen;
     tt_soft_body_def sb = tt_soft_body_def_default();
     sb.center = (tt_vec2){2, 12};
-    sb.radius = 1;
+    sb.ring_radius = 1;
     sb.segments = 12;
     sb.pressure = 1.1;
     sb.common.radius = 0.2;

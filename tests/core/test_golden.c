@@ -4,7 +4,10 @@
  * what the hash covers, must be deliberate: it changes these constants in
  * the same commit, which says why. The positions digests were recorded
  * before the hash became the hash of the snapshot stream and did not change
- * with it: that change of definition moved no particle. */
+ * with it: that change of definition moved no particle. The cloth and zoo
+ * scenes, whose script moves a kinematic shape, moved when main's kinematic
+ * shapes began to travel across the substeps (second foundation, point 2):
+ * pinned again at the merge, main's own build giving the same positions. */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -17,8 +20,8 @@ static const struct {
     uint64_t hash;
 } golden[SCENE_COUNT] = {
     [SCENE_POUR] = {0x49313d37792194fdull, 0xc0765fe268f570a8ull},
-    [SCENE_CLOTH] = {0xca2e7434da8a9057ull, 0x6829a9eef4f491c5ull},
-    [SCENE_ZOO] = {0xbd08a0bb5657eec7ull, 0xc4ea9d7177c03d52ull},
+    [SCENE_CLOTH] = {0xb5c92190124ff72cull, 0x2df33b8cb8f8c25bull},
+    [SCENE_ZOO] = {0xda1bb7093eff55caull, 0x662aba1fdbc427c4ull},
     [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0xf37b3f16a0d686ceull},
 };
 

@@ -73,8 +73,10 @@ local learn
 -- later calls get past the checks more often and reach deeper: into the
 -- option tables (where the hostile reads wait), the steps and the events.
 local wants = {}
-local KINDS = { { "tether.world", "world" }, { "tether.image", "image" }, { "handle", "handle" },
-                { "integer", "integer" }, { "number", "number" }, { "table", "table" },
+local KINDS = { { "tether.world", "world" }, { "tether.image", "image" }, { "table", "table" },
+                { "particle", "handle1" }, { "spring", "handle2" }, { "constraint", "handle3" },
+                { "shape", "handle4" }, { "composite", "handle5" }, { "handle", "handle" },
+                { "integer", "integer" }, { "number", "number" },
                 { "string", "string" }, { "boolean", "boolean" } }
 learn = function(name, msg)
   if type(msg) ~= "string" then return end
@@ -126,9 +128,9 @@ local STRINGS = { "", "x", "rigid", "max", "min", "fill", "line", "world", "scre
 local KEYS = { "mass", "radius", "vx", "vy", "pinned", "user", "category", "mask", "restitution", "friction",
                "friction_static", "friction_kinetic", "stiffness", "damping", "rest", "length", "mode",
                "compliance", "break_strain", "collide", "anchor", "particles", "outside", "min", "max", "area",
-               "pressure", "start", "finish", "segments", "pin_start", "pin_end", "slack", "origin", "width",
+               "pressure", "start", "finish", "segments", "pin_start", "pin_finish", "slack", "origin", "width",
                "height", "columns", "rows", "shear_stiffness", "bend_stiffness", "pin_top_corners",
-               "pin_top_row", "position", "limits", "center", "size", "area_stiffness", "area_compliance",
+               "pin_top_row", "position", "limits", "center", "ring_radius", "area_stiffness", "area_compliance",
                "angle", "points", "box", "sensor", "loop", "integrator", "gravity", "wind", "substeps",
                "iterations", "tolerance", "solver", "dt_hint", "capacity", "max_particles", "cell_size",
                "broadphase", "shapes", "constraints", "springs", "color", "min_radius", "bullet", "events",
@@ -149,9 +151,17 @@ local function world_src()
   return F.W[i], "W[" .. i .. "]"
 end
 
-local function handle()
+-- A handle, mostly a recent one; of kind k (tether/base.h: bits 52…50) when
+-- k is given and one is found among the last 40 tried.
+local function handle(k)
   if #F.H == 0 or rand(10) == 1 then local v = pick(NUMBERS); return v, num_src(v) end
   local i = #F.H - rand(math.min(#F.H, 40)) + 1 -- mostly recent ones
+  if k and rand(8) > 1 then
+    for _ = 1, 40 do
+      local j = #F.H - rand(math.min(#F.H, 200)) + 1
+      if F.H[j] >> 50 == k then i = j; break end
+    end
+  end
   return F.H[i], "H[" .. i .. "]"
 end
 
@@ -210,6 +220,7 @@ local function wanted(kind)
   if kind == "number" then local v = number(); return v, num_src(v)
   elseif kind == "integer" then local v = rand(8) - 1; return v, tostring(v)
   elseif kind == "handle" then return handle()
+  elseif kind:match("^handle%d$") then return handle(tonumber(kind:sub(-1)))
   elseif kind == "world" then return world_src()
   elseif kind == "image" and #F.IMG > 0 then local i = rand(#F.IMG); return F.IMG[i], "IMG[" .. i .. "]"
   elseif kind == "table" and rand(3) == 1 then -- an option table whose reads act on a world

@@ -45,11 +45,23 @@ local function integer_bad(range, out_of_range)
   return bad
 end
 
+-- Every handle carries its kind (tether/base.h): bits 52…50. Integers that
+-- are no handle: 0 (null), no kind, a kind past the last, past 2^53, negative.
+local NOT_HANDLES = { 0, 987654321, 7 << 50, (1 << 53) | 1, -1, math.maxinteger, math.mininteger }
+local HANDLES = {} -- one live handle of each kind, by kind name (filled below)
+
+-- The bad values of a handle argument of `kind`. stale: handles of that kind
+-- the world must refuse as stale (nil for is_valid-like calls, which answer
+-- false instead, as they do for integers that are no handle).
 local function handle_bad(kind, stale)
   local bad = {}
   for _, t in ipairs(WRONG_TYPES) do bad[#bad + 1] = { t[1], kind .. " handle expected, got " .. t[2] } end
   for _, v in ipairs { 1.5, NAN, INF, -INF, 1e300 } do bad[#bad + 1] = { v, kind .. " handle expected, got " } end
+  for other, h in pairs(HANDLES) do
+    if other ~= kind then bad[#bad + 1] = { h, kind .. " expected, got " .. other } end
+  end
   if stale then
+    for _, v in ipairs(NOT_HANDLES) do bad[#bad + 1] = { v, kind .. " handle expected, got " .. v } end
     for _, v in ipairs(stale) do bad[#bad + 1] = { v, "stale " .. kind .. " handle" } end
   end
   return bad
@@ -70,9 +82,9 @@ W:remove(gone)                   -- also removes gone_s
 local SH1 = W:segment(-50, -5, 50, -5)                 -- collisions (lua_collide.c)
 local gone_sh = W:circle(20, 20, 1)
 W:remove_shape(gone_sh)
-local STALE_SH = { gone_sh, 0, 987654321, -1, math.maxinteger, SH1 + (1 << 40) }
-local STALE_P = { gone, 0, 987654321, -1, math.maxinteger, math.mininteger, (3 << 32) | 1 }
-local STALE_S = { gone_s, 0, 987654321, -1, math.maxinteger, S1 + (1 << 40) }
+local STALE_SH = { gone_sh, SH1 + (1 << 40), SH1 + (1 << 24) } -- removed, another world's tag, another generation
+local STALE_P = { gone, P1 + (1 << 40), P1 + (1 << 24), P1 + 1000 }
+local STALE_S = { gone_s, S1 + (1 << 40), S1 + (1 << 24) }
 local C1 = W:distance(P1, P2)      -- constraints and composites (lua_constraints.c, lua_composites.c)
 local PIN1 = W:pin(P3)
 local H1 = W:lattice { center = { 20, 20 } }
@@ -80,8 +92,9 @@ local gone_c = W:distance(P1, P3)
 W:remove_constraint(gone_c)
 local gone_h = W:rope { start = { 30, 30 }, finish = { 31, 30 }, segments = 1 }
 W:remove_composite(gone_h)
-local STALE_C = { gone_c, 0, 987654321, -1, math.maxinteger, C1 + (1 << 40) }
-local STALE_H = { gone_h, 0, 987654321, -1, math.maxinteger, H1 + (1 << 40) }
+local STALE_C = { gone_c, C1 + (1 << 40), C1 + (1 << 24) }
+local STALE_H = { gone_h, H1 + (1 << 40), H1 + (1 << 24) }
+HANDLES.particle, HANDLES.spring, HANDLES.constraint, HANDLES.shape, HANDLES.composite = P1, S1, C1, SH1, H1
 local N_FIXTURES = W:count()
 W:step(1 / 60, 5)
 

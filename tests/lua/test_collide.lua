@@ -166,4 +166,31 @@ T.test("deterministic: same script, same hash", function()
   T.eq(run(), run(), "hash")
 end)
 
+T.test("a turning plank carries a resting particle with the point it rests on", function()
+  -- The plank turns at 0.1 rad/s about its centre; the particle, 2 m out,
+  -- must move with the plank's point under it (particles do not roll):
+  -- v = ω × (contact point), at every substep count.
+  for _, sub in ipairs { 1, 4, 8 } do
+    local w = tether.world { substeps = sub }
+    w:set_collision { friction = 1 }
+    local b = w:box(0, 0, 5, 0.5, { friction = 1 })
+    local p = w:particle(2, 0.6, { radius = 0.1 })
+    w:step(1 / 60, 30)
+    local worst = 0
+    for s = 1, 120 do
+      local a = 0.1 * s / 60
+      w:set_shape_transform(b, 0, 0, a)
+      w:step(1 / 60)
+      if s > 30 then -- caught up with the plank
+        local x, y = w:position(p)
+        local vx, vy = w:velocity(p)
+        local cx, cy = x + math.sin(a) * 0.1, y - math.cos(a) * 0.1
+        local ex, ey = -0.1 * cy, 0.1 * cx
+        worst = math.max(worst, math.sqrt((vx - ex) ^ 2 + (vy - ey) ^ 2) / math.sqrt(ex ^ 2 + ey ^ 2))
+      end
+    end
+    T.ok(worst < 0.01, ("%d substeps: velocity off the plank's by %.2f %%"):format(sub, worst * 100))
+  end
+end)
+
 T.done()

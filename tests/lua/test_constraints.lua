@@ -4,6 +4,19 @@ package.path = "tests/lua/?.lua;" .. package.path
 local T = require "harness"
 local tether = require "tether"
 
+T.test("options are named as in C: a rope's start and finish, a soft body's ring_radius", function()
+  local w = tether.world()
+  local r = w:rope { start = { 0, 0 }, finish = { 4, 0 }, segments = 4, pin_start = true, pin_finish = true }
+  local ps = w:composite_particles(r)
+  w:step(1 / 60, 30)
+  T.eq(select(2, w:position(ps[5])), 0, "pin_finish holds the last particle")
+  T.ok(select(2, w:position(ps[3])) < -0.01, "the middle sags")
+  local s = w:soft_body { center = { 10, 0 }, ring_radius = 2, radius = 0.1, segments = 8 }
+  local x = w:position(w:composite_particles(s)[1])
+  T.near(x, 12, 1e-12, "ring_radius is the ring's, radius each particle's")
+  T.checkerror("unknown option 'pin_end'", w.rope, w, { pin_end = true })
+end)
+
 T.test("a rope hangs at its rest lengths", function()
   local w = tether.world { iterations = 100, damping = 2 }
   local r = w:rope { start = { 0, 0 }, finish = { 4, 0 }, segments = 4 }
@@ -137,7 +150,7 @@ end)
 T.test("ragdoll and soft body are built and stay finite on a floor", function()
   local w = tether.world { damping = 0.5 }
   local r = w:ragdoll { position = { 0, 3 } }
-  local s = w:soft_body { center = { 3, 3 }, size = 0.5, pressure = 1.2, stiffness = 0.5 }
+  local s = w:soft_body { center = { 3, 3 }, ring_radius = 0.5, pressure = 1.2, stiffness = 0.5 }
   w:bounds(-10, 0, 10, 20, { friction = 0.5 })
   T.eq(#w:composite_particles(r), 11)
   w:step(1 / 60, 300)

@@ -419,25 +419,57 @@ T.test("a core refusal names the Lua function once", function()
   T.eq(msg, "set_velocity: the particle is pinned")
 end)
 
-T.test("handles carry their world: another world's handle is refused, in every tag range", function()
+T.test("handles carry their kind: the first of each kind differ, and a wrong kind is refused", function()
+  local w = tether.world()
+  local p, q = w:particle(0, 0), w:particle(1, 0)
+  local h = {
+    particle = p, spring = w:spring(p, q), constraint = w:distance(p, q),
+    shape = w:circle(0, -5, 1), composite = w:rope { start = { 0, 2 }, finish = { 1, 2 }, segments = 2 },
+  }
+  local seen, keyed, n = {}, {}, 0
+  for kind, v in pairs(h) do
+    T.eq(math.type(v), "integer", kind)
+    T.ok(v > 0 and v < 2 ^ 53 and (v + 0.0) == v, kind .. " handle is exact as a double")
+    T.ok(not seen[v], kind .. " handle equals another kind's")
+    seen[v] = kind
+    keyed[v] = kind
+    n = n + 1
+  end
+  for v, kind in pairs(keyed) do T.eq(seen[v], kind, "handles as table keys") end
+  T.eq(n, 5)
+  T.checkerror("bad argument #2 to 'remove' (particle expected, got constraint)", w.remove, w, h.constraint)
+  T.checkerror("bad argument #2 to 'position' (particle expected, got shape)", w.position, w, h.shape)
+  T.checkerror("bad argument #2 to 'remove_shape' (shape expected, got particle)", w.remove_shape, w, h.particle)
+  T.checkerror("bad argument #2 to 'remove_constraint' (constraint expected, got composite)",
+               w.remove_constraint, w, h.composite)
+  T.checkerror("bad argument #2 to 'is_valid' (particle expected, got spring)", w.is_valid, w, h.spring)
+  T.eq(w:count(), 2 + 3) -- nothing was removed by the refused calls
+  -- A handle that went through a float (LuaJIT, JSON, a saved game) still works.
+  T.eq(w:position(p + 0.0), 0)
+  T.eq(w:is_valid(0), false, "the null handle names nothing")
+end)
+
+T.test("handles carry their world: the next 1022 worlds refuse a world's handles", function()
+  -- The promise of tether/base.h: worlds take tags 1…1023 in turn, so the
+  -- 1023rd world made after `a` is the first that could take its handles.
   local a = tether.world()
   local pa = a:particle(1, 1)
-  local function tag(h) return (h >> 56) & 0xFF end -- the world tag: high byte of the generation
-  local refused = 0
-  for i = 1, 300 do -- tags wrap at 255, and half of them make negative integers
+  local sa = a:circle(0, 0, 1)
+  local function tag(h) return (h >> 40) & 0x3FF end
+  local tags = { [tag(pa)] = true }
+  a:destroy()
+  for i = 1, 1022 do
     local w = tether.world()
     local p = w:particle(i, 2)
-    local x = w:position(p)
-    T.eq(x, i)
-    T.ok(w:is_valid(p))
-    if tag(p) ~= tag(pa) then -- one world in 255 shares a's tag: the guard cannot tell those apart
-      T.ok(not w:is_valid(pa))
-      T.checkerror("stale particle handle", w.position, w, pa)
-      refused = refused + 1
-    end
+    local s = w:circle(0, 0, 1)
+    T.eq(w:position(p), i)
+    T.ok(not tags[tag(p)], "a tag came back before 1023 worlds")
+    tags[tag(p)] = true
+    if not T.ok(not w:is_valid(pa) and not w:shape_is_valid(sa), "world " .. i .. " took a's handles") then break end
+    T.checkerror("stale particle handle", w.position, w, pa)
+    T.ok(p < 2 ^ 53 and s < 2 ^ 53 and p + 0.0 == p, "handles are exact as doubles")
     w:destroy()
   end
-  T.ok(refused >= 298)
 end)
 
 T.done()
