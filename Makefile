@@ -209,8 +209,9 @@ memcheck: all $(TEST_C)
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
 # (tests/fuzz/); on a failure it prints the seed and a replay script and
-# shortens it. Then the PNG loader's fuzzer for half as long.
-fuzz: all $(FUZZ_PNG)
+# shortens it. Then the PNG loader's fuzzer and the snapshot stream reader's
+# (tests/fuzz/fuzz_stream.c), each for half as long.
+fuzz: all $(FUZZ_PNG) $(TEST_C)
 	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 # The mask section compares with Debian's python3-pygame (pygame.mask): installed

@@ -178,6 +178,7 @@ static const struct {
     {"render", bench_render},
     {"constraints", bench_constraints},
     {"mask", bench_mask},
+    {"snapshot", bench_snapshot},
 };
 
 int main(int argc, char **argv)

@@ -17,5 +17,6 @@ void bench_collide(const char *dir);
 void bench_render(const char *dir);
 void bench_constraints(const char *dir);
 void bench_mask(const char *dir);
+void bench_snapshot(const char *dir);
 
 #endif

@@ -52,6 +52,20 @@ local tether = {}
 ---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
+---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
+
+---A world's whole state at one moment (w:snapshot()): the engine's versioned,
+---checksummed stream, and a copy of the particles' user values. `#s` is its size in bytes.
+---@class tether.snapshot
+local snapshot = {}
+
+---The snapshot as a string, for a file: with the user values (plain data only:
+---booleans, numbers, strings, tables of them; anything else raises) unless users
+---is false, when it is the engine stream alone and a world restored or loaded
+---from it has no user values.
+---@param users? boolean default true
+---@return string
+function snapshot:bytes(users) end
 
 ---Makes a new world. Unknown option keys raise ("tether.world: unknown option 'gravty' ...").
 ---@param opts? tether.world_options
@@ -373,9 +387,24 @@ function world:energy() end
 ---@return tether.memory
 function world:memory() end
 
----The state hash (FNV-1a 64 of the simulation state) as 16 hex digits.
+---The state hash as 16 hex digits: the hash of the stream w:snapshot() holds (the
+---world's tag left out), so it covers exactly what a snapshot saves.
 ---@return string
 function world:hash() end
+
+---The whole state of the world now (see tether.snapshot), to restore later or to
+---save (s:bytes()) and load as a new world (tether.world{snapshot = s}).
+---@return tether.snapshot
+function world:snapshot() end
+
+---Makes this world bit-exactly the one saved in s (a snapshot, or its bytes): the
+---same steps then give the same states; each particle's user value is what it was
+---when s was taken (none from s:bytes(false)). A truncated, corrupted or foreign stream
+---returns nil and the reason, and the world is unchanged.
+---@param s tether.snapshot|string
+---@return true|nil ok
+---@return string? reason
+function world:restore(s) end
 
 ---Live particle handles in slot order. Reuses t if given (entries past n are cleared).
 ---@param t? tether.particle[]

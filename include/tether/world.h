@@ -131,10 +131,33 @@ TT_API tt_result tt_world_get_stats(const tt_world *w, tt_stats *out);
 TT_API tt_result tt_world_get_energy(const tt_world *w, tt_energy *out);
 /// Memory now (see tt_memory).
 TT_API tt_result tt_world_get_memory(const tt_world *w, tt_memory *out);
-/// 64-bit FNV-1a hash of the simulation state (live particles' positions,
-/// velocity state, masses, springs, settings, time): equal hashes ⇔ same state
-/// for the purpose of determinism checks.
+/// 64-bit hash of the world's state: of the stream tt_world_save writes
+/// (its body), with the world tag left out, so two worlds built alike hash
+/// alike. Equal hashes ⇔ same state, for determinism checks.
 TT_API uint64_t tt_world_hash(const tt_world *w);
+
+/// Snapshots: the whole state of a world (settings, counters, particles,
+/// springs, constraints and their moving targets, composites, shapes,
+/// collision settings, contact records of the last step and events, handle
+/// pools with their free lists and generations) as a versioned byte stream
+/// with a checksum, in this machine's byte order. Per-step scratch (grids,
+/// batches, caches) is not in it and is rebuilt. Writes the stream into
+/// buf[0..cap) and its size into *size (may be NULL); with cap too small
+/// (buf NULL and cap 0 to ask) it sets *size, returns TT_ENOMEM and leaves
+/// buf[0..cap) partly written, never past cap. One pass, no allocation.
+TT_API tt_result tt_world_save(const tt_world *w, void *buf, size_t cap, size_t *size);
+/// Makes w bit-exactly the saved world, in place (w keeps its address):
+/// stepping both gives the same states. The world then has the saved
+/// world's tag, so handles saved with the game stay valid. A truncated,
+/// corrupted, foreign or other-version stream is refused (TT_EINVAL,
+/// tt_last_error says why) and w is left unchanged: the stream is read and
+/// checked whole into new memory before anything of w changes.
+TT_API tt_result tt_world_restore(tt_world *w, const void *data, size_t size);
+/// A new world from a stream (a saved game); NULL when refused
+/// (tt_last_error(NULL) says why). It takes the saved world's tag: handles
+/// saved with the game work in it, and if the saving world still lives,
+/// each accepts the other's handles.
+TT_API tt_world *tt_world_load(const void *data, size_t size);
 
 /// The last error raised by a call on this world, or by tt_world_create when
 /// w is NULL (per thread). "" when none.

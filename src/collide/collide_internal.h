@@ -184,6 +184,10 @@ typedef struct tt__record {  /* one contact of the step, for events */
     tt_contact_event ev;
 } tt__record;
 
+/* State: what contacts.c saves (settings, shapes, materials, bullets,
+ * switched-off pairs, the last step's records and events, and the last
+ * substep's end positions while valid). The primitives and static index,
+ * the grid, pairs, batches and the other per-substep arrays are rebuilt. */
 typedef struct tt__collide {
     tt_collision_settings set;
     /* shapes */
@@ -257,6 +261,10 @@ void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);
 void tt__contacts_after_step(tt_world *w, void *self);
 size_t tt__contacts_memory(const tt_world *w, const void *self);
+void tt__contacts_destroy(tt_world *w, void *self);
+/* The group's section of the snapshot stream (contacts.c). */
+void tt__contacts_save(const tt_world *w, const void *self, struct tt__sink *s);
+void *tt__contacts_load(tt_world *w, struct tt__source *s);
 
 /* Keys of a step's contacts: a particle pair, or a shape and a particle
  * (bit 63 set, the shape slot in bits 32..62). */
@@ -318,6 +326,8 @@ bool tt__brute_pairs(tt_world *w, tt__collide *c);
 
 /* Shapes (shapes.c; primitives and the static index: static_index.c). */
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
+/* What tt_shape_create accepts (a snapshot's shapes pass the same test). */
+tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const char *fn);
 /* Places the shapes the script moved where they are at the end of the
  * world's current substep, on their way from `from` to their def's
  * transform (the static index holds their whole path: no rebuild). */

@@ -14,6 +14,7 @@
  * a world without collisions pays nothing. This file holds the group's
  * registration and bookkeeping; the public settings are in collide.c. */
 #include "collide_internal.h"
+#include "core/stream.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -43,38 +44,6 @@ static void particle_removed(tt_world *w, void *self, uint32_t i)
     c->nprev = k;
 }
 
-static uint64_t hash(const tt_world *w, const void *self, uint64_t h)
-{
-    const tt__collide *c = self;
-    const tt_collision_settings *s = &c->set;
-    uint32_t flags = (uint32_t)s->particles | ((uint32_t)s->broadphase << 1) | (s->events << 8);
-    h = tt__fnv(h, &flags, sizeof flags);
-    h = tt__fnv(h, &s->cell_size, sizeof s->cell_size);
-    h = tt__fnv(h, &s->restitution, sizeof s->restitution);
-    h = tt__fnv(h, &s->friction_static, sizeof s->friction_static);
-    h = tt__fnv(h, &s->friction_kinetic, sizeof s->friction_kinetic);
-    h = tt__fnv(h, &s->restitution_threshold, sizeof s->restitution_threshold);
-    for (uint32_t i = 0; i < c->spool.count; i++) {
-        const tt__shape *sh = &c->shapes[i];
-        if (!sh->alive) continue;
-        const tt_shape_def *d = &sh->def;
-        uint32_t f = (uint32_t)d->type | ((uint32_t)d->sensor << 8) | ((uint32_t)d->category << 16);
-        h = tt__fnv(h, &i, sizeof i);
-        h = tt__fnv(h, &f, sizeof f);
-        h = tt__fnv(h, &d->mask, sizeof d->mask);
-        h = tt__fnv(h, &d->position, sizeof d->position);
-        h = tt__fnv(h, &d->angle, sizeof d->angle);
-        h = tt__fnv(h, &d->restitution, sizeof d->restitution);
-        h = tt__fnv(h, &d->friction_static, sizeof d->friction_static);
-        h = tt__fnv(h, &d->friction_kinetic, sizeof d->friction_kinetic);
-    }
-    if (c->nexcl) h = tt__fnv(h, c->excl, (size_t)c->nexcl * sizeof *c->excl);
-    uint32_t n = w->ppool.count;
-    if (c->mat) h = tt__fnv(h, c->mat, (size_t)(n < c->matcap ? n : c->matcap) * 3 * sizeof *c->mat);
-    if (c->bullet) h = tt__fnv(h, c->bullet, (size_t)(n < c->bulletcap ? n : c->bulletcap));
-    return h;
-}
-
 size_t tt__contacts_memory(const tt_world *w, const void *self)
 {
     (void)w;
@@ -89,7 +58,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     return b;
 }
 
-static void destroy(tt_world *w, void *self)
+void tt__contacts_destroy(tt_world *w, void *self)
 {
     (void)w;
     tt__collide *c = self;
@@ -114,10 +83,16 @@ const tt__group_ops tt__contacts_ops = {
     .end = tt__contacts_end,
     .after_step = tt__contacts_after_step,
     .particle_removed = particle_removed,
-    .hash = hash,
     .memory = tt__contacts_memory,
-    .destroy = destroy,
+    .destroy = tt__contacts_destroy,
+    .id = TT__ID('C', 'O', 'L', 'L'),
+    .save = tt__contacts_save,
+    .load = tt__contacts_load,
 };
+
+/* Known to the snapshot reader before any world collides (a saved game
+ * with shapes loads in a program that has made none yet). */
+__attribute__((constructor)) static void register_feature(void) { tt__feature_register(&tt__contacts_ops); }
 
 tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn)
 {
@@ -138,4 +113,285 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn)
         return NULL;
     }
     return c;
+}
+
+/* --- the snapshot section ("COLL") ------------------------------------------
+ * Settings, shapes with their points (a shape the script moved since the
+ * last step with where that step left it), per-particle materials and bullets,
+ * switched-off pairs, the contact records of the last step (what the next
+ * step's begin/persist/end events compare with), the events published, and
+ * for integrators that keep velocities, the last substep's end positions
+ * while they are still valid (the next substep starts from them). The
+ * static index, the grid, pairs, batches and every per-substep array are
+ * rebuilt. */
+
+static void put_event(tt__sink *s, const tt_contact_event *e)
+{
+    tt__put_u32(s, e->kind);
+    tt__put_u8(s, e->sensor);
+    tt__put_u32(s, e->a.index);
+    tt__put_gen(s, e->a.gen);
+    tt__put_u32(s, e->b.index);
+    tt__put_gen(s, e->b.gen);
+    tt__put_u32(s, e->shape.index);
+    tt__put_gen(s, e->shape.gen);
+    tt__put(s, &e->point, sizeof e->point);
+    tt__put(s, &e->normal, sizeof e->normal);
+    tt__put_f64(s, e->impulse);
+}
+
+static void save_shape(tt__sink *s, const tt__shape *sh)
+{
+    const tt_shape_def *d = &sh->def;
+    tt__put_u8(s, sh->alive);
+    if (!sh->alive) return;
+    tt__put_u8(s, sh->moved);
+    if (sh->moved) { /* the next step carries it from where the last one left it */
+        tt__put(s, &sh->from, sizeof sh->from);
+        tt__put_f64(s, sh->from_angle);
+    }
+    tt__put_u32(s, (uint32_t)d->type);
+    tt__put(s, &d->position, sizeof d->position);
+    tt__put_f64(s, d->angle);
+    tt__put(s, &d->a, sizeof d->a);
+    tt__put(s, &d->b, sizeof d->b);
+    tt__put(s, &d->half_extents, sizeof d->half_extents);
+    tt__put_f64(s, d->radius);
+    tt__put_u32(s, d->count);
+    tt__put(s, sh->pts, (size_t)d->count * sizeof *sh->pts);
+    tt__put_u8(s, d->loop);
+    tt__put_f64(s, d->restitution);
+    tt__put_f64(s, d->friction_static);
+    tt__put_f64(s, d->friction_kinetic);
+    tt__put_u16(s, d->category);
+    tt__put_u16(s, d->mask);
+    tt__put_u8(s, d->sensor);
+    tt__put_u64(s, d->user);
+}
+
+static void save_particle_data(const tt_world *w, const tt__collide *c, tt__sink *s)
+{
+    const uint32_t n = w->ppool.count;
+    static const float none[3] = {-1.0f, -1.0f, -1.0f};
+    tt__put_u8(s, c->mat != NULL);
+    if (c->mat) {
+        uint32_t have = n < c->matcap ? n : c->matcap;
+        tt__put(s, c->mat, (size_t)have * 3 * sizeof *c->mat);
+        for (uint32_t i = have; i < n; i++) tt__put(s, none, sizeof none);
+    }
+    tt__put_u8(s, c->bullet != NULL);
+    if (c->bullet) {
+        uint32_t have = n < c->bulletcap ? n : c->bulletcap;
+        tt__put(s, c->bullet, have);
+        for (uint32_t i = have; i < n; i++) tt__put_u8(s, 0);
+    }
+    tt__put_u32(s, c->nexcl);
+    tt__put(s, c->excl, (size_t)c->nexcl * sizeof *c->excl);
+    /* valid as contact_detect.c's substep_start reads them: the next substep starts from them */
+    bool ends = w->integrator != TT_VERLET && c->sx0 && c->s_epoch == w->epoch && c->s_count == n;
+    tt__put_u8(s, ends);
+    if (ends) {
+        tt__put(s, c->sx0, (size_t)n * sizeof *c->sx0);
+        tt__put(s, c->sy0, (size_t)n * sizeof *c->sy0);
+    }
+}
+
+void tt__contacts_save(const tt_world *w, const void *self, tt__sink *s)
+{
+    const tt__collide *c = self;
+    const tt_collision_settings *set = &c->set;
+    tt__put_u8(s, set->particles);
+    tt__put_u32(s, (uint32_t)set->broadphase);
+    tt__put_f64(s, set->cell_size);
+    tt__put_f64(s, set->restitution);
+    tt__put_f64(s, set->friction_static);
+    tt__put_f64(s, set->friction_kinetic);
+    tt__put_f64(s, set->restitution_threshold);
+    tt__put_u32(s, set->events);
+    tt__put_pool(s, &c->spool);
+    for (uint32_t i = 0; i < c->spool.count; i++) save_shape(s, &c->shapes[i]);
+    save_particle_data(w, c, s);
+    tt__put_u32(s, c->nprev);
+    for (uint32_t k = 0; k < c->nprev; k++) {
+        tt__put_u64(s, c->prev[k].key);
+        put_event(s, &c->prev[k].ev);
+    }
+    tt__put_u32(s, c->nevents);
+    for (uint32_t k = 0; k < c->nevents; k++) put_event(s, &c->events[k]);
+}
+
+/* A record (record: its kind is not set yet, 0) or a published event. */
+static bool get_event(tt__source *s, tt_contact_event *e, bool record)
+{
+    e->kind = tt__get_u32(s);
+    e->sensor = tt__get_bool(s, "event sensor");
+    e->a.index = tt__get_u32(s);
+    e->a.gen = tt__get_u32(s);
+    e->b.index = tt__get_u32(s);
+    e->b.gen = tt__get_u32(s);
+    e->shape.index = tt__get_u32(s);
+    e->shape.gen = tt__get_u32(s);
+    e->point.x = tt__get_num(s, -1e300, 1e300, "event point");
+    e->point.y = tt__get_num(s, -1e300, 1e300, "event point");
+    e->normal.x = tt__get_num(s, -2, 2, "event normal");
+    e->normal.y = tt__get_num(s, -2, 2, "event normal");
+    e->impulse = tt__get_num(s, -1e300, 1e300, "event impulse");
+    if (!s->failed && !(record && e->kind == 0) && e->kind != TT_EVENT_BEGIN && e->kind != TT_EVENT_PERSIST && e->kind != TT_EVENT_END)
+        tt__src_fail(s, "contact event kind %u", e->kind);
+    return !s->failed;
+}
+
+static bool load_shape(tt_world *w, tt__shape *sh, tt__source *s)
+{
+    tt_shape_def *d = &sh->def;
+    *d = tt_shape_def_default();
+    sh->alive = tt__get_bool(s, "shape alive");
+    if (!sh->alive) return !s->failed;
+    sh->moved = tt__get_bool(s, "shape moved");
+    if (sh->moved) {
+        sh->from.x = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "shape start");
+        sh->from.y = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "shape start");
+        sh->from_angle = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "shape start angle");
+    }
+    d->type = (tt_shape_type)tt__get_u32(s);
+    tt__get(s, &d->position, sizeof d->position);
+    d->angle = tt__get_num(s, -1e300, 1e300, "shape angle");
+    tt__get(s, &d->a, sizeof d->a);
+    tt__get(s, &d->b, sizeof d->b);
+    d->half_extents.x = tt__get_num(s, -1e300, 1e300, "box half extent");
+    d->half_extents.y = tt__get_num(s, -1e300, 1e300, "box half extent");
+    d->radius = tt__get_num(s, -1e300, 1e300, "shape radius");
+    d->count = tt__get_count(s, sizeof(tt_vec2), "shape points");
+    if (s->failed) return false;
+    if (d->count && !(sh->pts = malloc((size_t)d->count * sizeof *sh->pts))) return tt__src_fail(s, "out of memory");
+    tt__get(s, sh->pts, (size_t)d->count * sizeof *sh->pts);
+    d->loop = tt__get_bool(s, "chain loop");
+    d->restitution = tt__get_num(s, -1e300, 1e300, "shape restitution");
+    d->friction_static = tt__get_num(s, -1e300, 1e300, "shape friction");
+    d->friction_kinetic = tt__get_num(s, -1e300, 1e300, "shape friction");
+    d->category = tt__get_u16(s);
+    d->mask = tt__get_u16(s);
+    d->sensor = tt__get_bool(s, "shape sensor");
+    d->user = tt__get_u64(s);
+    if (s->failed) return false;
+    if (!sh->moved) {
+        sh->from = d->position;
+        sh->from_angle = d->angle;
+    }
+    d->points = sh->pts;
+    bool ok = tt__shape_check_def(w, d, "snapshot") == TT_OK;
+    bool with_points = d->type == TT_SHAPE_CHAIN || d->type == TT_SHAPE_POLYGON;
+    d->points = NULL;
+    if (!ok || (!with_points && d->count)) return tt__src_fail(s, "shape: %s", tt_last_error(w));
+    return true;
+}
+
+static bool load_shapes(tt_world *w, tt__collide *c, tt__source *s)
+{
+    if (!tt__get_pool(s, &c->spool, TT_MAX_SHAPES, w->tag, "shapes")) return false;
+    const uint32_t n = c->spool.count;
+    if (n > s->len - s->at) return tt__src_fail(s, "shapes: %u slots are more than the stream holds", n);
+    if (!(c->shapes = calloc(n ? n : 1, sizeof *c->shapes))) return tt__src_fail(s, "out of memory");
+    c->shcap = n;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!load_shape(w, &c->shapes[i], s)) return false;
+        c->shapes_alive += c->shapes[i].alive;
+        c->any_moved |= c->shapes[i].moved;
+    }
+    for (uint32_t k = 0; k < c->spool.free_count; k++)
+        if (c->shapes[c->spool.free_list[k]].alive) return tt__src_fail(s, "shape %u is alive and free", c->spool.free_list[k]);
+    c->dirty = true;
+    return true;
+}
+
+static bool load_particle_data(tt_world *w, tt__collide *c, tt__source *s)
+{
+    const uint32_t n = w->ppool.count, cap = w->pcap;
+    if (tt__get_bool(s, "materials")) {
+        if (!(c->mat = malloc((size_t)cap * 3 * sizeof *c->mat))) return tt__src_fail(s, "out of memory");
+        c->matcap = cap;
+        for (uint32_t i = 0; i < 3 * cap; i++) c->mat[i] = -1.0f;
+        tt__get(s, c->mat, (size_t)n * 3 * sizeof *c->mat);
+        for (uint32_t i = 0; i < 3 * n && !s->failed; i++)
+            if (!(c->mat[i] == -1.0f || (c->mat[i] >= 0.0f && c->mat[i] <= (float)TT_MAX_VALUE)) ||
+                (c->mat[i] != -1.0f && i % 3 == 0 && c->mat[i] > 1.0f))
+                tt__src_fail(s, "particle %u: material %g", i / 3, c->mat[i]);
+    }
+    if (tt__get_bool(s, "bullets")) {
+        c->bullet = calloc(cap, 1);
+        c->ccd_prim = malloc((size_t)cap * sizeof *c->ccd_prim);
+        if (!c->bullet || !c->ccd_prim) return tt__src_fail(s, "out of memory");
+        c->bulletcap = cap;
+        tt__get(s, c->bullet, n);
+        for (uint32_t i = 0; i < cap; i++) {
+            c->ccd_prim[i] = -1;
+            if (c->bullet[i] > 1 || (c->bullet[i] && !(w->flags[i] & TT_PF_ALIVE))) return tt__src_fail(s, "bullet %u", i);
+            c->nbullets += c->bullet[i];
+        }
+    }
+    c->nexcl = c->exclcap = tt__get_count(s, 8, "switched-off pairs");
+    if (s->failed || !(c->excl = malloc((size_t)(c->nexcl ? c->nexcl : 1) * sizeof *c->excl))) return tt__src_fail(s, "out of memory");
+    tt__get(s, c->excl, (size_t)c->nexcl * sizeof *c->excl);
+    for (uint32_t k = 0; k < c->nexcl && !s->failed; k++) {
+        uint32_t a = (uint32_t)(c->excl[k] >> 32), b = (uint32_t)c->excl[k];
+        if (a >= b || b >= n || (k && c->excl[k - 1] >= c->excl[k])) tt__src_fail(s, "switched-off pair %u", k);
+    }
+    if (tt__get_bool(s, "end positions")) {
+        if (w->integrator == TT_VERLET) return tt__src_fail(s, "end positions in a Verlet world");
+        if (!(c->sx0 = malloc((size_t)cap * sizeof *c->sx0)) || !(c->sy0 = malloc((size_t)cap * sizeof *c->sy0)))
+            return tt__src_fail(s, "out of memory");
+        c->scap = cap;
+        tt__get(s, c->sx0, (size_t)n * sizeof *c->sx0);
+        tt__get(s, c->sy0, (size_t)n * sizeof *c->sy0);
+        for (uint32_t i = 0; i < n && !s->failed; i++)
+            if (!(fabs(c->sx0[i]) <= 1e3 * TT_DIVERGED && fabs(c->sy0[i]) <= 1e3 * TT_DIVERGED)) tt__src_fail(s, "end position %u", i);
+        c->s_count = n;
+        c->s_epoch = w->epoch;
+    } else {
+        c->s_epoch = w->epoch - 1;
+    }
+    return !s->failed;
+}
+
+/* The last step's contact records, sorted by key as the events' merge needs. */
+static bool load_records(tt_world *w, tt__collide *c, tt__source *s)
+{
+    c->nprev = c->prevcap = tt__get_count(s, 77, "contact records");
+    if (s->failed || !(c->prev = malloc((size_t)(c->nprev ? c->nprev : 1) * sizeof *c->prev))) return tt__src_fail(s, "out of memory");
+    for (uint32_t k = 0; k < c->nprev; k++) {
+        uint64_t key = c->prev[k].key = tt__get_u64(s);
+        if (!get_event(s, &c->prev[k].ev, true)) return false;
+        uint32_t hi = (uint32_t)(key >> 32) & 0x7FFFFFFFu, lo = (uint32_t)key;
+        bool ok = (key >> 63) ? hi < c->spool.count && lo < w->ppool.count : hi < lo && lo < w->ppool.count;
+        if (!ok || (k && c->prev[k - 1].key >= key)) return tt__src_fail(s, "contact record %u", k);
+    }
+    c->nevents = c->evcap = tt__get_count(s, 69, "contact events");
+    if (s->failed || !(c->events = malloc((size_t)(c->nevents ? c->nevents : 1) * sizeof *c->events))) return tt__src_fail(s, "out of memory");
+    for (uint32_t k = 0; k < c->nevents; k++)
+        if (!get_event(s, &c->events[k], false)) return false;
+    return true;
+}
+
+void *tt__contacts_load(tt_world *w, tt__source *s)
+{
+    tt__collide *c = calloc(1, sizeof *c);
+    if (!c) { tt__src_fail(s, "out of memory"); return NULL; }
+    c->grid.epoch = UINT64_MAX;
+    c->spool.tag = w->tag;
+    tt_collision_settings *set = &c->set;
+    set->particles = tt__get_bool(s, "particle collisions");
+    set->broadphase = (tt_broadphase)tt__get_u32(s);
+    set->cell_size = tt__get_num(s, 0.0, TT_MAX_VALUE, "cell size");
+    set->restitution = tt__get_num(s, 0.0, 1.0, "restitution");
+    set->friction_static = tt__get_num(s, 0.0, TT_MAX_VALUE, "static friction");
+    set->friction_kinetic = tt__get_num(s, 0.0, TT_MAX_VALUE, "kinetic friction");
+    set->restitution_threshold = tt__get_num(s, -1.0, TT_MAX_VALUE, "restitution threshold");
+    set->events = tt__get_u32(s);
+    if (!s->failed && ((unsigned)set->broadphase > TT_BROADPHASE_BRUTE || set->events > 7 ||
+                       (set->restitution_threshold < 0 && set->restitution_threshold != -1.0)))
+        tt__src_fail(s, "collision settings");
+    if (!s->failed && load_shapes(w, c, s) && load_particle_data(w, c, s) && load_records(w, c, s)) return c;
+    tt__src_fail(s, "collisions");
+    tt__contacts_destroy(w, c);
+    return NULL;
 }

@@ -71,9 +71,8 @@ uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex)
     return n;
 }
 
-static tt_result check_def(const tt_world *w, const tt_shape_def *d)
+tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const char *fn)
 {
-    const char *fn = "tt_shape_create";
     if (!d) return tt__fail(w, TT_EINVAL, "%s: def is NULL", fn);
     if ((unsigned)d->type >= TT_SHAPE_TYPE_COUNT) return tt__fail(w, TT_EINVAL, "%s: unknown shape type %d", fn, (int)d->type);
     if (!tt__vec_ok(d->position)) return tt__fail(w, TT_EINVAL, "%s: position must be finite, |x| <= %g", fn, TT_MAX_VALUE);
@@ -118,7 +117,7 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
 {
     tt_shape none = {0, 0};
     if (!w) { tt__fail(NULL, TT_EINVAL, "tt_shape_create: world is NULL"); return none; }
-    if (check_def(w, def) != TT_OK) return none;
+    if (tt__shape_check_def(w, def, "tt_shape_create") != TT_OK) return none;
     tt_vec2 *pts = NULL;
     uint32_t npts = (def->type == TT_SHAPE_CHAIN || def->type == TT_SHAPE_POLYGON) ? def->count : 0;
     if (npts) {

@@ -161,22 +161,3 @@ size_t tt__composites_memory(const tt__cgroup *g)
     }
     return b;
 }
-
-uint64_t tt__composites_hash(const tt__cgroup *g, uint64_t h)
-{
-    h = tt__fnv(h, &g->comps_alive, sizeof g->comps_alive);
-    for (uint32_t i = 0; i < comp_slots(g); i++) {
-        const tt__composite *k = &g->comps[i];
-        if (!k->alive) continue;
-        h = tt__fnv(h, &i, sizeof i);
-        for (uint32_t j = 0; j < k->np; j++) { /* indices and generations, without the world's tag */
-            uint32_t v[2] = {k->parts[j].index, k->parts[j].gen & TT_POOL_GEN_MASK};
-            h = tt__fnv(h, v, sizeof v);
-        }
-        for (uint32_t j = 0; j < k->nc; j++) {
-            uint32_t v[2] = {k->cons[j].index, k->cons[j].gen & TT_POOL_GEN_MASK};
-            h = tt__fnv(h, v, sizeof v);
-        }
-    }
-    return h;
-}

@@ -1,7 +1,7 @@
 /* tether — private storage of the constraints feature, and what its files
  * share: constraints.c (the group, slots, removal), constraint_pairs.c,
  * constraint_create.c, constraint_access.c, constraint_relax.c (with the
- * targets the script moves), distance_sweep.c, constraint_breaks.c, constraint_hash.c; composites.c
+ * targets the script moves), distance_sweep.c, constraint_breaks.c, constraint_hash.c (the snapshot section); composites.c
  * (handles, queries), composite_builder.c, composite_kinds.c. */
 #ifndef TETHER_CONSTRAINT_INTERNAL_H
 #define TETHER_CONSTRAINT_INTERNAL_H
@@ -69,6 +69,11 @@ typedef struct tt__composite {
     double *rest;      /* 2·np: rest offsets from the rest centre of mass */
 } tt__composite;
 
+/* State: what constraint_hash.c saves (pool, slots, links and their cold
+ * halves but lambda, the other kinds, moving targets, published break
+ * events, composites). Everything else here is derived (counts, refs,
+ * excluded pairs) or per-step scratch (plan, pk, hot copies, grad, new
+ * events), rebuilt after a restore. */
 typedef struct tt__cgroup {
     tt_pool pool;
     tt__cslot *slots;
@@ -174,8 +179,11 @@ double tt__cgroup_relax(tt_world *w, void *self, double h);                /* co
 void tt__cgroup_sweeps_done(tt_world *w, void *self);                       /* distance_sweep.c */
 void tt__cgroup_end(tt_world *w, void *self, double h);                    /* constraint_relax.c */
 void tt__cgroup_after_step(tt_world *w, void *self);                        /* constraint_breaks.c */
+/* the group's section of the snapshot stream (constraint_hash.c) */
+void tt__cgroup_save(const tt_world *w, const void *self, struct tt__sink *s);
+void *tt__cgroup_load(tt_world *w, struct tt__source *s);
+void tt__cgroup_destroy(tt_world *w, void *self); /* constraints.c */
 bool tt__cgroup_reserve(tt_world *w, void *self);                           /* constraint_breaks.c */
-uint64_t tt__cgroup_hash(const tt_world *w, const void *self, uint64_t h); /* constraint_hash.c */
 
 /* ---- the distance links' sweep (distance_sweep.c) -------------------------- */
 /* Sets w's mode; false (and no change) when this build or processor lacks it. */
@@ -193,7 +201,6 @@ bool tt__target_move(tt__cgroup *g, uint32_t slot, const double to[2]);
 void tt__targets_substep(tt_world *w, tt__cgroup *g, double h);
 /* The slot's constraint goes: forget its move. */
 void tt__target_forget(tt__cgroup *g, uint32_t slot);
-uint64_t tt__targets_hash(const tt__cgroup *g, uint64_t h);
 
 /* ---- breaking (constraint_breaks.c) ---------------------------------------- */
 void tt__cgroup_break_links(tt_world *w, tt__cgroup *g);
@@ -201,7 +208,6 @@ void tt__cgroup_break_links(tt_world *w, tt__cgroup *g);
 /* ---- composites: the group's hooks (composites.c) ------------------------- */
 void tt__composites_free(tt__cgroup *g);
 size_t tt__composites_memory(const tt__cgroup *g);
-uint64_t tt__composites_hash(const tt__cgroup *g, uint64_t h);
 
 /* ---- composites: the builder (composite_builder.c), used by composite_kinds.c */
 

@@ -171,18 +171,6 @@ void tt__targets_substep(tt_world *w, tt__cgroup *g, double h)
     }
 }
 
-uint64_t tt__targets_hash(const tt__cgroup *g, uint64_t h)
-{
-    /* hashed only while something moves, so worlds that never move a target keep their hashes */
-    for (uint32_t k = 0; k < g->nmoving; k++) {
-        const tt__mover *m = &g->moving[k];
-        h = tt__fnv(h, &m->slot, sizeof m->slot);
-        h = tt__fnv(h, m->at, sizeof m->at);
-        h = tt__fnv(h, m->to, sizeof m->to);
-    }
-    return h;
-}
-
 /* ---- the relaxation group -------------------------------------------------- */
 
 void tt__cgroup_begin(tt_world *w, void *self, double h)

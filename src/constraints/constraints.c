@@ -4,6 +4,7 @@
  * the relaxation, the vector plan and break events live in the files that
  * constraint_internal.h lists, so each can be read on its own. */
 #include "constraint_internal.h"
+#include "core/stream.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -12,7 +13,6 @@
 
 static void group_particle_removed(tt_world *w, void *self, uint32_t index);
 static size_t group_memory(const tt_world *w, const void *self);
-static void group_destroy(tt_world *w, void *self);
 
 static const tt__group_ops constraint_ops = {
     .name = "constraints", .rank = TT__RANK_CONSTRAINTS,
@@ -24,10 +24,16 @@ static const tt__group_ops constraint_ops = {
     .end = tt__cgroup_end,
     .after_step = tt__cgroup_after_step,
     .particle_removed = group_particle_removed,
-    .hash = tt__cgroup_hash,
     .memory = group_memory,
-    .destroy = group_destroy,
+    .destroy = tt__cgroup_destroy,
+    .id = TT__ID('C', 'O', 'N', 'S'),
+    .save = tt__cgroup_save,
+    .load = tt__cgroup_load,
 };
+
+/* Known to the snapshot reader before any world uses constraints: a saved
+ * game with constraints loads in a program that has made none yet. */
+__attribute__((constructor)) static void register_feature(void) { tt__feature_register(&constraint_ops); }
 
 const tt__cgroup *tt__cgroup_peek(const tt_world *w)
 {
@@ -195,7 +201,7 @@ static size_t group_memory(const tt_world *w, const void *self)
     return b + tt__composites_memory(g);
 }
 
-static void group_destroy(tt_world *w, void *self)
+void tt__cgroup_destroy(tt_world *w, void *self)
 {
     (void)w;
     tt__cgroup *g = self;

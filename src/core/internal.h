@@ -43,6 +43,9 @@ enum { TT_SCRATCH_AX, TT_SCRATCH_AY, TT_SCRATCH_RK4_FIRST, TT_SCRATCH_COUNT = TT
  * sweep (README "Solver order"). Ties (tests' own groups) keep their order. */
 enum { TT__RANK_TEST = 0, TT__RANK_CONSTRAINTS = 10, TT__RANK_CONTACTS = 20 };
 
+struct tt__sink;
+struct tt__source;
+
 typedef struct tt__group_ops {
     const char *name;
     int rank;             /* TT__RANK_*: groups run in increasing rank */
@@ -63,7 +66,16 @@ typedef struct tt__group_ops {
     /* after the whole step, outside every loop: gather events (booked as TT_STAGE_EVENTS) */
     void (*after_step)(tt_world *w, void *self);
     void (*particle_removed)(tt_world *w, void *self, uint32_t index); /* drop what refers to it */
-    uint64_t (*hash)(const tt_world *w, const void *self, uint64_t h); /* fold state into the world hash */
+    /* Snapshots (snapshot.c): the group's persistent state is its section
+     * of the stream, id four ASCII letters (TT__ID). save writes it (and is
+     * what the world hash covers); load reads it into a new self for w,
+     * whose particles are already loaded, validating every field and
+     * rebuilding what is derived, or returns NULL with the source failed.
+     * Per-step scratch is neither saved nor hashed. A group without save
+     * makes the world unsaveable (tests' own groups). */
+    uint32_t id;
+    void (*save)(const tt_world *w, const void *self, struct tt__sink *s);
+    void *(*load)(tt_world *w, struct tt__source *src);
     size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
     void (*destroy)(tt_world *w, void *self);
 } tt__group_ops;
@@ -75,6 +87,11 @@ typedef struct tt__group {
 
 enum { TT_MAX_GROUPS = 8 };
 
+/* What of a world is state (saved, restored, hashed) and what is per-step
+ * scratch (rebuilt) is decided in one place per part: snapshot.c's
+ * save_settings/save_particles/save_springs for this struct, each group's
+ * save hook for its own. A new persistent field is written there, or it
+ * is not state. */
 struct tt_world {
     /* settings */
     tt_vec2 gravity, wind;
@@ -147,7 +164,6 @@ static inline void tt__zero(void *dst, size_t bytes)
     if (bytes) memset(dst, 0, bytes);
 }
 double tt__now_ms(void);
-uint64_t tt__fnv(uint64_t h, const void *data, size_t n); /* FNV-1a step, for group hashes */
 
 /* Particles. */
 tt_result tt__particles_reserve(tt_world *w, uint32_t cap);
@@ -203,7 +219,6 @@ void tt__group_remove(tt_world *w, const tt__group_ops *ops);
 void tt__solve(tt_world *w, double h);
 void tt__solver_after_step(tt_world *w);
 void tt__solver_particle_removed(tt_world *w, uint32_t index);
-uint64_t tt__solver_hash(const tt_world *w, uint64_t h);
 size_t tt__solver_memory(const tt_world *w);
 void tt__solver_free(tt_world *w);
 /* Moves particle i by (dx, dy), weighted by the caller: in place under

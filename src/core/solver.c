@@ -264,13 +264,6 @@ void tt__solver_particle_removed(tt_world *w, uint32_t index)
         if (w->groups[g].ops->particle_removed) w->groups[g].ops->particle_removed(w, w->groups[g].self, index);
 }
 
-uint64_t tt__solver_hash(const tt_world *w, uint64_t h)
-{
-    for (int g = 0; g < w->group_count; g++)
-        if (w->groups[g].ops->hash) h = w->groups[g].ops->hash(w, w->groups[g].self, h);
-    return h;
-}
-
 size_t tt__solver_memory(const tt_world *w)
 {
     size_t bytes = (size_t)w->jcap * (2 * sizeof(double) + sizeof(uint32_t)) + (size_t)w->bcap * 2 * sizeof(double);

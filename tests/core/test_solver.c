@@ -223,3 +223,17 @@ TEST(groups_relax_in_a_fixed_order_whatever_the_order_of_calls)
     }
     ENSURE(x[0].y >= 0.5 - 1e-6); /* resting on the floor, not through it */
 }
+
+TEST(a_group_without_snapshot_hooks_makes_the_world_unsaveable_but_hashable)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle_create(w, &pd);
+    uint64_t h = tt_world_hash(w);
+    tt__group_add(w, &floor_ops, NULL);
+    size_t n = 0;
+    ENSURE(tt_world_save(w, NULL, 0, &n) == TT_ESTATE);
+    ENSURE(strstr(tt_last_error(w), "'floor' group keeps no snapshot state"));
+    ENSURE(tt_world_hash(w) == h); /* the hash covers what a snapshot would hold */
+    tt_world_destroy(w);
+}

@@ -4,7 +4,9 @@
 # prints the seed and the replay script, shortens it with minimise.lua
 # (FUZZ_MIN_SECONDS, default 120; 0 skips it) and exits 1.
 # Then the mask PNG loader's fuzzer ($BUILD/fuzz_png, tests/fuzz/fuzz_png.c)
-# for FUZZ_PNG_SECONDS (default half of FUZZ_SECONDS) from the same seed.
+# for FUZZ_PNG_SECONDS and the snapshot stream reader's (tests/fuzz/
+# fuzz_stream.c, a C test in $BUILD/test_c) for FUZZ_STREAM_SECONDS (each by
+# default half of FUZZ_SECONDS), from the same seed.
 # Environment: BUILD (build or build-san).
 BUILD=${BUILD:-build}
 RUNNER="$BUILD/tether"
@@ -29,13 +31,25 @@ if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/log.txt"; then
     "$BUILD/fuzz_png" "$PNG_SECONDS" "$SEED" "$OUT/png-last.bin" >"$OUT/png-log.txt" 2>&1
     rc=$?
     grep '^fuzz_png: \|passed, \|ERROR:\|runtime error' "$OUT/png-log.txt" | head -20
-    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/png-log.txt"; then
+    if [ "$rc" -ne 0 ] || ! grep -q '^1 passed, 0 failed$' "$OUT/png-log.txt"; then
+        echo "fuzz: the PNG fuzzer FAILED (exit $rc), seed $SEED; its last input: $OUT/png-last.bin"
+        echo "fuzz: replay: $BUILD/fuzz_png $PNG_SECONDS $SEED"
+        tail -n 30 "$OUT/png-log.txt" | sed 's/^/    | /'
+        echo "1 passed, 1 failed"
+        exit 1
+    fi
+    STREAM_SECONDS=${FUZZ_STREAM_SECONDS:-$((SECONDS_ / 2))}
+    echo "fuzz: snapshot stream reader, seed $SEED, $STREAM_SECONDS s"
+    FUZZ_SEED=$SEED FUZZ_STREAM_SECONDS=$STREAM_SECONDS "$BUILD/test_c" fuzz_stream_reader >"$OUT/stream.txt" 2>&1
+    src=$?
+    grep 'fuzz_stream\|passed, \|runtime error\|ERROR' "$OUT/stream.txt" | head -20
+    if [ "$src" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/stream.txt"; then
+        echo "3 passed, 0 failed"
         exit 0
     fi
-    echo "fuzz: the PNG fuzzer FAILED (exit $rc), seed $SEED; its last input: $OUT/png-last.bin"
-    echo "fuzz: replay: $BUILD/fuzz_png $PNG_SECONDS $SEED"
-    tail -n 30 "$OUT/png-log.txt" | sed 's/^/    | /'
-    echo "0 passed, 1 failed"
+    echo "fuzz: the stream fuzzer FAILED, seed $SEED: FUZZ_SEED=$SEED FUZZ_STREAM_SECONDS=$STREAM_SECONDS $BUILD/test_c fuzz_stream_reader"
+    tail -n 30 "$OUT/stream.txt" | sed 's/^/    | /'
+    echo "2 passed, 1 failed"
     exit 1
 fi
 calls=$(grep -o -- '-- [0-9]*$' "$OUT/replay.lua" | tail -n 1 | tr -dc 0-9)

@@ -173,6 +173,10 @@ K.points.good = function() return { 0, 0, 1, 0, 0, 1 } end
 K.mask = { good = function() return tether.mask.rect(4, 4) end, bad = {} }
 for _, t in ipairs(WRONG_TYPES) do K.mask.bad[#K.mask.bad + 1] = { t[1], "tether.mask expected, got " .. t[2] } end
 K.mopts = table_kind(true, "table or nil")
+-- w:restore: a snapshot or its bytes; a refused stream returns nil, msg (tests/lua/test_snapshot.lua)
+K.snap = { good = function() return tether.world():snapshot() end, bad = {
+  { 42, "tether.snapshot or string expected, got number" }, { NIL, "tether.snapshot or string expected, got nil" },
+  { {}, "tether.snapshot or string expected, got table" } } }
 
 -- Every method and the kinds of its arguments after self.
 local METHODS = {
@@ -225,6 +229,8 @@ local METHODS = {
   { "energy" },
   { "memory" },
   { "hash" },
+  { "snapshot" },
+  { "restore", "snap" },
   { "particles", "opttable" },
   { "positions", "opttable" },
   { "set_positions", "handles", "xy", "mode" },

@@ -1,0 +1,357 @@
+/* tether — snapshots (src/core/snapshot.c and the features' sections): a
+ * restored world continues bit for bit as the original, in place and as a
+ * new world; a bad stream is refused with the world unchanged; the hash
+ * covers what the stream holds. */
+#include "test.h"
+#include "core/scenes.h"
+#include "core/stream.h" /* tt__hash_bytes: to forge valid checksums */
+
+#include <stdlib.h>
+#include <string.h>
+
+/* The world's stream in a new buffer (NULL on failure). */
+static unsigned char *save(const tt_world *w, size_t *size)
+{
+    size_t n = 0;
+    if (tt_world_save(w, NULL, 0, &n) != TT_ENOMEM || n == 0) return NULL;
+    unsigned char *b = malloc(n);
+    if (b && tt_world_save(w, b, n, size) != TT_OK) {
+        free(b);
+        return NULL;
+    }
+    return b;
+}
+
+static bool same_stream(const tt_world *w, const unsigned char *b, size_t n)
+{
+    size_t m;
+    unsigned char *c = save(w, &m);
+    bool same = c && m == n && memcmp(b, c, n) == 0;
+    free(c);
+    return same;
+}
+
+static void run(scene *sc, int steps)
+{
+    for (int s = 0; s < steps; s++) scene_step(sc);
+}
+
+/* Counts what the run went through, so the test shows it exercised tearing and events. */
+static void run_counting(scene *sc, int steps, uint32_t *breaks, uint32_t *events)
+{
+    for (int s = 0; s < steps; s++) {
+        scene_step(sc);
+        uint32_t n = 0;
+        const tt_break_event *be;
+        if (tt_world_get_break_events(sc->w, &be, &n) == TT_OK) *breaks += n;
+        tt_world_get_contact_events(sc->w, &n);
+        *events += n;
+    }
+}
+
+TEST(snapshot_restore_in_place_repeats_the_same_1000_steps)
+{
+    uint32_t breaks = 0, events = 0;
+    for (int k = 0; k < SCENE_COUNT; k++) {
+        scene sc;
+        ENSURE(scene_build(&sc, (scene_kind)k));
+        run(&sc, 40);
+        size_t n;
+        unsigned char *b = save(sc.w, &n);
+        ENSURE(b);
+        uint64_t h0 = tt_world_hash(sc.w);
+        run_counting(&sc, 1000, &breaks, &events);
+        uint64_t h1 = tt_world_hash(sc.w), p1 = scene_positions_digest(sc.w);
+        ENSURE(h1 != h0);
+        ENSURE_OK(tt_world_restore(sc.w, b, n));
+        ENSURE(tt_world_hash(sc.w) == h0);
+        ENSURE(same_stream(sc.w, b, n));
+        run(&sc, 1000);
+        ENSURE(tt_world_hash(sc.w) == h1);
+        ENSURE(scene_positions_digest(sc.w) == p1);
+        free(b);
+        tt_world_destroy(sc.w);
+    }
+    ENSURE(breaks > 0);  /* the cloth tore */
+    ENSURE(events > 0);  /* contacts were reported */
+}
+
+TEST(snapshot_into_a_new_world_continues_as_the_original)
+{
+    for (int k = 0; k < SCENE_COUNT; k++) {
+        scene sc;
+        ENSURE(scene_build(&sc, (scene_kind)k));
+        run(&sc, 77);
+        size_t n;
+        unsigned char *b = save(sc.w, &n);
+        ENSURE(b);
+        scene copy = sc;
+        copy.w = tt_world_load(b, n);
+        ENSURE(copy.w);
+        ENSURE(same_stream(copy.w, b, n));
+        ENSURE(tt_world_hash(copy.w) == tt_world_hash(sc.w));
+        run(&sc, 1000);
+        run(&copy, 1000); /* the driver uses the handles of the original: valid in the loaded world */
+        ENSURE(tt_world_hash(copy.w) == tt_world_hash(sc.w));
+        ENSURE(scene_positions_digest(copy.w) == scene_positions_digest(sc.w));
+        free(b);
+        tt_world_destroy(sc.w);
+        tt_world_destroy(copy.w);
+    }
+}
+
+TEST(snapshot_saved_handles_work_in_the_loaded_world)
+{
+    tt_world *a = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle p = tt_particle_create(a, &pd);
+    tt_particle gone = tt_particle_create(a, &pd);
+    ENSURE_OK(tt_particle_destroy(a, gone));
+    size_t n;
+    unsigned char *b = save(a, &n);
+    ENSURE(b);
+    tt_world_destroy(a);
+    tt_world *other = tt_world_create(NULL); /* takes the next tag */
+    tt_particle mine = tt_particle_create(other, &pd);
+    ENSURE(mine.index == p.index && mine.gen != p.gen); /* same slot, another world's tag */
+    tt_world *c = tt_world_load(b, n);
+    ENSURE(c);
+    ENSURE(tt_particle_is_valid(c, p));
+    ENSURE(!tt_particle_is_valid(c, gone));
+    ENSURE(!tt_particle_is_valid(other, p));
+    ENSURE(!tt_particle_is_valid(c, mine));
+    /* restored in place, another world becomes the saved one, tag included */
+    ENSURE_OK(tt_world_restore(other, b, n));
+    ENSURE(tt_particle_is_valid(other, p));
+    ENSURE(!tt_particle_is_valid(other, mine)); /* its own handles of before are stale now */
+    /* the free list came back: the next particle takes the removed one's slot, with a new generation */
+    tt_particle q = tt_particle_create(c, &pd);
+    ENSURE(q.index == gone.index && q.gen != gone.gen);
+    free(b);
+    tt_world_destroy(c);
+    tt_world_destroy(other);
+}
+
+TEST(snapshot_save_asks_for_room_and_writes_nothing_short)
+{
+    scene sc;
+    ENSURE(scene_build(&sc, SCENE_ZOO));
+    size_t n = 0, m = 0;
+    ENSURE(tt_world_save(sc.w, NULL, 0, &n) == TT_ENOMEM && n > 32);
+    unsigned char *b = malloc(n + 8);
+    ENSURE(b);
+    memset(b, 0xAB, n + 8);
+    ENSURE(tt_world_save(sc.w, b, n - 1, &m) == TT_ENOMEM && m == n);
+    ENSURE(tt_world_save(sc.w, b, n + 8, &m) == TT_OK && m == n);
+    ENSURE(b[n] == 0xAB);
+    ENSURE(tt_world_save(NULL, b, n, &m) == TT_EINVAL);
+    ENSURE(tt_world_save(sc.w, NULL, 5, &m) == TT_EINVAL);
+    free(b);
+    tt_world_destroy(sc.w);
+}
+
+TEST(snapshot_truncated_corrupted_or_foreign_streams_are_refused_with_the_world_unchanged)
+{
+    tt_world *src = scene_small_world(), *w = scene_small_world();
+    ENSURE(src && w);
+    tt_world_step(w, 0.01); /* w differs from src */
+    size_t n, wn;
+    unsigned char *b = save(src, &n), *before = save(w, &wn);
+    ENSURE(b && before);
+    for (size_t len = 0; len < n; len++) {
+        if (tt_world_restore(w, b, len) != TT_EINVAL) { tt_test_fail(__FILE__, __LINE__, "truncated to %zu accepted", len); break; }
+    }
+    for (size_t i = 0; i < n; i++) {
+        b[i] ^= 0x5A;
+        bool refused = tt_world_restore(w, b, n) == TT_EINVAL && tt_world_load(b, n) == NULL;
+        b[i] ^= 0x5A;
+        if (!refused) { tt_test_fail(__FILE__, __LINE__, "byte %zu flipped: accepted", i); break; }
+    }
+    ENSURE(strstr(tt_last_error(w), "unchanged"));
+    ENSURE(tt_world_restore(w, "TTSS but not really a snapshot", 31) == TT_EINVAL);
+    unsigned char *foreign = malloc(n);
+    memcpy(foreign, b, n);
+    foreign[0] = 'X'; /* another format */
+    ENSURE(tt_world_restore(w, foreign, n) == TT_EINVAL && strstr(tt_last_error(w), "not a tether snapshot"));
+    memcpy(foreign, b, n);
+    foreign[4] = 2; /* another version */
+    ENSURE(tt_world_restore(w, foreign, n) == TT_EINVAL && strstr(tt_last_error(w), "version 2"));
+    memcpy(foreign, b, n);
+    uint32_t swapped = 0x04030201u; /* written on a machine of the other byte order */
+    memcpy(foreign + 8, &swapped, 4);
+    ENSURE(tt_world_restore(w, foreign, n) == TT_EINVAL && strstr(tt_last_error(w), "byte order"));
+    ENSURE(tt_world_restore(w, NULL, n) == TT_EINVAL);
+    ENSURE(tt_world_restore(NULL, b, n) == TT_EINVAL);
+    ENSURE(same_stream(w, before, wn));
+    ENSURE_OK(tt_world_restore(w, b, n)); /* and the real one still works */
+    ENSURE(tt_world_hash(w) == tt_world_hash(src));
+    free(foreign);
+    free(b);
+    free(before);
+    tt_world_destroy(src);
+    tt_world_destroy(w);
+}
+
+/* Hostile bytes behind a valid checksum: every byte of the body changed in
+ * turn, the checksum made to match. Each stream is refused with the world
+ * unchanged, or is a valid world that steps without harm (ASan, UBSan). */
+static void reseal(unsigned char *b, size_t n)
+{
+    uint64_t sum = tt__hash_bytes(b + 32, n - 32);
+    memcpy(b + 24, &sum, 8);
+}
+
+TEST(snapshot_reader_survives_every_byte_changed_behind_a_valid_checksum)
+{
+    tt_world *w = scene_small_world();
+    ENSURE(w);
+    size_t n, wn;
+    unsigned char *b = save(w, &n), *before = save(w, &wn);
+    ENSURE(b && before);
+    uint32_t accepted = 0;
+    for (size_t i = 32; i < n; i++) {
+        static const unsigned char flips[] = {0x01, 0x80, 0xFF};
+        for (int f = 0; f < 3; f++) {
+            b[i] ^= flips[f];
+            reseal(b, n);
+            if (tt_world_restore(w, b, n) == TT_OK) {
+                accepted++;
+                for (int s = 0; s < 3; s++) tt_world_step(w, 1.0 / 60);
+                size_t m;
+                unsigned char *again = save(w, &m);
+                ENSURE(again);
+                free(again);
+                ENSURE_OK(tt_world_restore(w, before, wn));
+            } else if (!same_stream(w, before, wn)) {
+                tt_test_fail(__FILE__, __LINE__, "byte %zu ^ 0x%02x: refused, but the world changed", i, flips[f]);
+                return;
+            }
+            b[i] ^= flips[f];
+        }
+    }
+    ENSURE(accepted > 0 && accepted < 3 * (n - 32)); /* some changes are valid states (a position's low bit), most not */
+    free(b);
+    free(before);
+    tt_world_destroy(w);
+}
+
+TEST(snapshot_refuses_a_spring_joining_a_removed_particle)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle a = tt_particle_create(w, &pd), b = tt_particle_create(w, &pd), c = tt_particle_create(w, &pd);
+    tt_spring_def sd = tt_spring_def_default();
+    sd.a = a;
+    sd.b = b;
+    ENSURE(tt_spring_create(w, &sd).gen);
+    ENSURE_OK(tt_particle_destroy(w, c));
+    size_t n;
+    unsigned char *s = save(w, &n);
+    ENSURE(s);
+    /* the spring record is the last 33 bytes of the world section's springs: b is at offset 5 */
+    unsigned char *rec = NULL;
+    for (size_t i = 32; i + 33 <= n; i++) {
+        uint32_t ia, ib;
+        memcpy(&ia, s + i + 1, 4);
+        memcpy(&ib, s + i + 5, 4);
+        if (s[i] == 1 && ia == a.index && ib == b.index) rec = s + i;
+    }
+    ENSURE(rec);
+    memcpy(rec + 5, &c.index, 4);
+    reseal(s, n);
+    ENSURE(tt_world_restore(w, s, n) == TT_EINVAL);
+    ENSURE(strstr(tt_last_error(w), "spring 0 joins particles 0 and 2"));
+    free(s);
+    tt_world_destroy(w);
+}
+
+TEST(hash_covers_collision_filters_shape_points_and_free_lists)
+{
+    /* before the hash was the stream's, each of these pairs hashed alike */
+    tt_world *w1 = tt_world_create(NULL), *w2 = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle p1 = tt_particle_create(w1, &pd), p2 = tt_particle_create(w2, &pd);
+    ENSURE(tt_world_hash(w1) == tt_world_hash(w2)); /* worlds differ in tag only */
+    tt_particle_set_filter(w2, p2, 1, 0xFFFE);
+    ENSURE(tt_world_hash(w1) != tt_world_hash(w2));
+    tt_particle_set_filter(w2, p2, 1, 0xFFFF);
+    ENSURE(tt_world_hash(w1) == tt_world_hash(w2));
+    /* free lists: the same live particles, slots freed in another order */
+    tt_particle q1 = tt_particle_create(w1, &pd), q2 = tt_particle_create(w2, &pd);
+    tt_particle_destroy(w1, p1);
+    tt_particle_destroy(w1, q1);
+    tt_particle_destroy(w2, q2);
+    tt_particle_destroy(w2, p2);
+    ENSURE(tt_world_hash(w1) != tt_world_hash(w2));
+    tt_world_destroy(w1);
+    tt_world_destroy(w2);
+    static const tt_vec2 c1[] = {{0, 0}, {1, 0}, {2, 1}}, c2[] = {{0, 0}, {1, 0}, {2, 2}};
+    tt_world *a = tt_world_create(NULL), *b = tt_world_create(NULL);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_CHAIN;
+    sd.count = 3;
+    sd.points = c1;
+    ENSURE(tt_shape_create(a, &sd).gen);
+    sd.points = c2;
+    ENSURE(tt_shape_create(b, &sd).gen);
+    ENSURE(tt_world_hash(a) != tt_world_hash(b));
+    tt_world_destroy(a);
+    tt_world_destroy(b);
+}
+
+TEST(snapshot_restore_is_exact_for_every_integrator_with_contacts)
+{
+    /* the velocity integrators carry the last substep's end positions into the next step */
+    for (int i = 0; i < TT_INTEGRATOR_COUNT; i++) {
+        scene sc;
+        ENSURE(scene_build(&sc, SCENE_POUR));
+        ENSURE_OK(tt_world_set_integrator(sc.w, (tt_integrator)i));
+        ENSURE_OK(tt_world_set_substeps(sc.w, 2));
+        run(&sc, 30);
+        size_t n;
+        unsigned char *b = save(sc.w, &n);
+        ENSURE(b);
+        run(&sc, 200);
+        uint64_t h1 = tt_world_hash(sc.w);
+        ENSURE_OK(tt_world_restore(sc.w, b, n));
+        run(&sc, 200);
+        ENSURE(tt_world_hash(sc.w) == h1);
+        free(b);
+        tt_world_destroy(sc.w);
+    }
+}
+
+TEST(snapshot_between_a_shape_move_and_the_step_keeps_the_shapes_path)
+{
+    /* a kinematic box moved by the script travels from where the last step
+     * left it across the next step's substeps, carrying what rests on it:
+     * that start is state */
+    tt_world *w = tt_world_create(NULL);
+    tt_world_set_substeps(w, 4);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_BOX;
+    sd.half_extents = (tt_vec2){2, 0.5};
+    sd.friction_static = sd.friction_kinetic = 1.0;
+    tt_shape box = tt_shape_create(w, &sd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.25;
+    pd.position = (tt_vec2){0, 0.75};
+    tt_particle p = tt_particle_create(w, &pd);
+    for (int s = 0; s < 30; s++) tt_world_step(w, 1.0 / 60);
+    ENSURE_OK(tt_shape_set_transform(w, box, (tt_vec2){0.05, 0}, 0));
+    size_t n;
+    unsigned char *b = save(w, &n);
+    ENSURE(b);
+    tt_world_step(w, 1.0 / 60);
+    tt_vec2 v1, v2;
+    ENSURE_OK(tt_particle_get_velocity(w, p, &v1));
+    uint64_t h1 = tt_world_hash(w);
+    ENSURE(v1.x > 0.05); /* friction drags it along with the box */
+    ENSURE_OK(tt_world_restore(w, b, n));
+    tt_world_step(w, 1.0 / 60);
+    ENSURE_OK(tt_particle_get_velocity(w, p, &v2));
+    ENSURE(v2.x == v1.x);
+    ENSURE(tt_world_hash(w) == h1);
+    free(b);
+    tt_world_destroy(w);
+}

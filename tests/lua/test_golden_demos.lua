@@ -1,0 +1,74 @@
+-- tests/lua/test_golden_demos.lua — every demo, driven as the runner drives
+-- it (tether.load, then tether.update(1/60) STEPS times), ends with these
+-- positions (FNV-1a of their bits, read with w:positions(), apart from
+-- w:hash()) and these world hashes. A change of results, or of what the
+-- hash covers, changes the constants in a commit that says why. The
+-- positions were recorded before the hash became the hash of the snapshot
+-- stream and did not move with it.
+package.path = "tests/lua/?.lua;" .. package.path
+local T = require "harness"
+local tether = require "tether"
+
+local STEPS = 120
+local golden = {
+  cloth = { "bf95991b563e9272", "6525abdc094c4633" },
+  fountain = { "25b1064dba2bae74", "35dd04c21e572d21" },
+  galton = { "cef42891f80af0e6", "1fb7c6dd5bb42c67" },
+  hourglass = { "91992223c1eeadff", "35b3ba854e353f86" },
+  integrators = { "72823523ba511575", "3621fcd6145aab93,26f29bf1c1082c37,95cb19c7b2324695,8ccc75868e811135,ea6678e9ca425f4c" },
+  ragdoll = { "74016491e8b45d88", "b967998d6d910302" },
+  rope_bridge = { "73fa3817e5c476a7", "1695e8d069c351f6" },
+  soft_bodies = { "19d58e45566a5e66", "4b2e506a54a39d80" },
+  spring_net = { "dbb870a369c6c0a1", "d1cc7b63aa998e09" },
+  terrain = { "1db0fd03fee478a9", "4499408a99387c2e" },
+}
+
+local function digest(h, xy)
+  for i = 1, #xy do
+    local s = string.pack("<d", xy[i])
+    for k = 1, #s do h = (h ~ s:byte(k)) * 0x100000001b3 end
+  end
+  return h
+end
+
+local function run(path)
+  local made = {}
+  local make = tether.world
+  tether.world = function(...)
+    local w = make(...)
+    made[#made + 1] = w
+    return w
+  end
+  tether.load, tether.update, tether.draw = nil, nil, nil
+  local real_print = print
+  print = function() end -- the demos' own reports are not under test
+  local ok, err = pcall(function()
+    dofile(path)
+    if tether.load then tether.load({}) end
+    for _ = 1, STEPS do tether.update(1 / 60) end
+  end)
+  print, tether.world = real_print, make
+  if not ok then error(err, 0) end
+  local pos, hashes = 0xcbf29ce484222325, {}
+  for _, w in ipairs(made) do
+    pos = digest(pos, w:positions())
+    hashes[#hashes + 1] = w:hash()
+  end
+  return ("%016x"):format(pos), table.concat(hashes, ",")
+end
+
+local names = {}
+for _, n in ipairs { "cloth", "fountain", "galton", "hourglass", "integrators", "ragdoll", "rope_bridge",
+  "soft_bodies", "spring_net", "terrain" } do names[#names + 1] = n end
+
+T.test("every demo keeps its positions and hashes", function()
+  for _, n in ipairs(names) do
+    local pos, h = run("demos/" .. n .. ".lua")
+    local g = golden[n]
+    if not g or g[1] ~= pos or g[2] ~= h then
+      T.ok(false, ("%s = { %q, %q },"):format(n, pos, h))
+    end
+  end
+end)
+
+T.done()
