@@ -120,14 +120,14 @@ static const luaL_Reg clock_methods[] = {
     {"paused", c_paused}, {"set_paused", c_set_paused}, {"step_once", c_step_once}, {"info", c_info},
     {NULL, NULL}};
 
+static const luaL_Reg clock_meta[] = {{"__tostring", c_tostring}, {NULL, NULL}};
 static const luaL_Reg clock_funcs[] = {{"clock", clock_new}, {NULL, NULL}};
 
 /* Adds tether.clock to the module table on top of the stack. */
 void tl_clock_register(lua_State *L)
 {
     if (luaL_newmetatable(L, TL_CLOCK_CLASS)) { /* sets __name */
-        lua_pushcfunction(L, c_tostring);
-        lua_setfield(L, -2, "__tostring");
+        tl_setfuncs(L, clock_meta, ""); /* named: its errors say '__tostring', as every function's do */
         lua_createtable(L, 0, 9);
         tl_setfuncs(L, clock_methods, "");
         lua_setfield(L, -2, "__index");

@@ -42,7 +42,7 @@ replay:write(string.format([[
 -- replay of fuzz_api.lua, seed %d: build/tether --headless --frames 1000000 --every 20 --size 96x72 --out DIR THIS_FILE
 package.path = "tests/fuzz/?.lua;" .. package.path
 local F = require "fuzz_lib"
-local W, H, IMG, MASK = F.W, F.H, F.IMG, F.MASK
+local W, H, IMG, MASK, CLK = F.W, F.H, F.IMG, F.MASK, F.CLK
 local NAN, INF = F.NAN, F.INF
 local UP, DR, u, d = {}, {}, 0, 0
 local function at(t, k, f) t[k] = t[k] or {}; table.insert(t[k], f) end
@@ -55,6 +55,8 @@ F.register("world", wm.__index); F.register("world", wm)
 F.register("mask", tether.mask)
 local mm = getmetatable(tether.mask.new(1, 1))
 F.register("masks", mm.__index); F.register("masks", mm)
+local cm = getmetatable(tether.clock())
+F.register("clocks", cm.__index); F.register("clocks", cm)
 function tether.update()
   u = u + 1
   for _, f in ipairs(UP[u] or {}) do f() end
@@ -76,7 +78,7 @@ local learn
 -- later calls get past the checks more often and reach deeper: into the
 -- option tables (where the hostile reads wait), the steps and the events.
 local wants = {}
-local KINDS = { { "tether.world", "world" }, { "tether.image", "image" }, { "tether.mask", "mask" }, { "table", "table" },
+local KINDS = { { "tether.world", "world" }, { "tether.image", "image" }, { "tether.mask", "mask" }, { "tether.clock", "clock" }, { "table", "table" },
                 { "particle", "handle1" }, { "spring", "handle2" }, { "constraint", "handle3" },
                 { "shape", "handle4" }, { "composite", "handle5" }, { "handle", "handle" },
                 { "integer", "integer" }, { "number", "number" },
@@ -228,6 +230,7 @@ local function wanted(kind)
   elseif kind == "world" then return world_src()
   elseif kind == "image" and #F.IMG > 0 then local i = rand(#F.IMG); return F.IMG[i], "IMG[" .. i .. "]"
   elseif kind == "mask" and #F.MASK > 0 then local i = rand(#F.MASK); return F.MASK[i], "MASK[" .. i .. "]"
+  elseif kind == "clock" and #F.CLK > 0 then local i = rand(#F.CLK); return F.CLK[i], "CLK[" .. i .. "]"
   elseif kind == "table" and rand(3) == 1 then -- an option table whose reads act on a world
     local w, ws = world_src()
     local what = pick(ACTIONS)
@@ -273,7 +276,10 @@ F.register("mask", tether.mask)
 local mm = getmetatable(tether.mask.new(1, 1))
 F.register("masks", mm.__index)
 F.register("masks", mm)
-list_of("tether"); list_of("world"); list_of("mask"); list_of("masks")
+local cm = getmetatable(tether.clock())
+F.register("clocks", cm.__index)
+F.register("clocks", cm)
+list_of("tether"); list_of("world"); list_of("mask"); list_of("masks"); list_of("clocks")
 -- The update phase: world methods and module functions, steps weighted up.
 local start = os.clock()
 local updates, draws = 0, 0
@@ -296,6 +302,9 @@ function tether.update()
       emit("world.destroy", 1, { w }, { ws })
     elseif rand(10) == 1 then
       one_call("tether", nil, nil)
+    elseif rand(12) == 1 and #F.CLK > 0 then -- clocks: tether.clock makes them (one_call "tether")
+      local i = rand(#F.CLK)
+      one_call("clocks", F.CLK[i], "CLK[" .. i .. "]")
     elseif rand(5) == 1 then -- masks: made from small sizes often enough to be used
       if #F.MASK == 0 or rand(6) == 1 then
         local wd, ht, full = rand(140), rand(70), rand(2) == 1

@@ -12,6 +12,7 @@ local F = {}
 
 F.W, F.H, F.IMG = {}, {}, {}   -- worlds, integer handles, images: in the order made
 F.MASK = {}                    -- masks, in the order made
+F.CLK = {}                     -- clocks, in the order made
 F.callbacks = 0                -- bumped by every hostile callback that runs
 F.counts = {}                  -- calls per function, "world.particle" = 12
 F.fns = {}                     -- "world.particle" → the function
@@ -60,6 +61,10 @@ local function is_mask(v)
   return type(v) == "userdata" and tostring(v):find("^tether.mask") ~= nil
 end
 
+local function is_clock(v)
+  return type(v) == "userdata" and tostring(v):find("^tether.clock") ~= nil
+end
+
 local function alive(w)
   return is_world(w) and not tostring(w):find("destroyed", 1, true)
 end
@@ -74,6 +79,7 @@ local function keep(r)
     elseif is_world(v) then F.W[#F.W + 1] = v
     elseif is_image(v) then F.IMG[#F.IMG + 1] = v
     elseif is_mask(v) then F.MASK[#F.MASK + 1] = v
+    elseif is_clock(v) then F.CLK[#F.CLK + 1] = v
     end
   end
 end

@@ -49,6 +49,8 @@ T.test("a clock refuses bad input", function()
   T.checkerror("bad argument #2 to 'set_paused' (boolean expected, got number)", c.set_paused, c, 1)
   T.eq(c:info().steps, 0, "nothing changed")
   T.ok(tostring(c):find("tether.clock", 1, true))
+  -- found by the fuzzer: the metamethod's error named '?'
+  T.checkerror("bad argument #1 to '__tostring' (tether.clock expected, got number)", getmetatable(c).__tostring, 5)
 end)
 
 T.done()
