@@ -59,7 +59,10 @@ RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
-TEST_SRC := $(wildcard tests/*.c tests/*/*.c)
+# tests/fuzz/ holds the fuzzers, programs of their own (not part of test_c).
+TEST_SRC := $(filter-out tests/fuzz/%,$(wildcard tests/*.c tests/*/*.c))
+FUZZ_C_SRC := $(wildcard tests/fuzz/*.c)
+FUZZ_C_OBJ := $(FUZZ_C_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
 
@@ -69,6 +72,7 @@ RENDER_A := $(BUILD)/libtether_render.a
 LUA_MOD := $(BUILD)/tether.so
 RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
+FUZZ_C  := $(BUILD)/fuzz_c
 BENCH   := $(BUILD)/bench
 
 .PHONY: all deps demo pictures test test-c test-lua fuzz memcheck bench install uninstall clean
@@ -142,6 +146,10 @@ TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc
 $(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(TEST_WRAP) $(RENDER_LIBS) -lm
 
+# The C API fuzzer (tests/fuzz/fuzz_c*.c): the engine only, no allocation wrapping.
+$(FUZZ_C): $(FUZZ_C_OBJ) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
+
 # Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
 BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
 $(BOX2D_OBJ): bench/box2d_scene.cpp | deps
@@ -184,7 +192,7 @@ pictures: all
 	  convert -delay 7 -loop 0 $(BUILD)/pictures/gif/frame_*.png -layers Optimize docs/img/demo.gif && echo "docs/img/demo.gif" || \
 	  echo "docs/img/demo.gif: not made (needs ImageMagick's convert)"
 
-test: all $(TEST_C)
+test: all $(TEST_C) $(FUZZ_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh
 
 # `make memcheck`: the C tests under valgrind memcheck; any error or leak
@@ -194,10 +202,10 @@ memcheck: all $(TEST_C)
 	  --suppressions=tests/valgrind.supp $(TEST_C) >$(BUILD)/memcheck.log 2>&1; rc=$$?; \
 	  grep -v '^ok ' $(BUILD)/memcheck.log | tail -n 40; exit $$rc
 
-# `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
-# (tests/fuzz/); on a failure it prints the seed and a replay script and
-# shortens it.
-fuzz: all
+# `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: every fuzz target
+# of tests/fuzz/run.sh (the Lua API fuzzer, the C API fuzzer, ...), each for
+# its share of FUZZ_SECONDS; on a failure each prints its seed and replay.
+fuzz: all $(FUZZ_C)
 	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 bench: deps $(BENCH) $(RUNNER)
