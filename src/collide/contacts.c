@@ -43,9 +43,22 @@ static void particle_removed(tt_world *w, void *self, uint32_t i)
     c->nprev = k;
 }
 
+/* A query of a world that never used collisions makes the collision state
+ * for its grid; left as made, that state is the world without collisions
+ * and hashes as nothing, so reading a world never changes its hash. */
+static bool pristine(const tt__collide *c)
+{
+    const tt_collision_settings *s = &c->set, d = tt_collision_settings_default();
+    return !s->particles && s->broadphase == d.broadphase && s->cell_size == d.cell_size &&
+           s->restitution == d.restitution && s->friction_static == d.friction_static &&
+           s->friction_kinetic == d.friction_kinetic && s->restitution_threshold == d.restitution_threshold &&
+           s->events == d.events && c->shapes_alive == 0 && c->nexcl == 0 && !c->mat && !c->bullet;
+}
+
 static uint64_t hash(const tt_world *w, const void *self, uint64_t h)
 {
     const tt__collide *c = self;
+    if (pristine(c)) return h;
     const tt_collision_settings *s = &c->set;
     uint32_t flags = (uint32_t)s->particles | ((uint32_t)s->broadphase << 1) | (s->events << 8);
     h = tt__fnv(h, &flags, sizeof flags);
