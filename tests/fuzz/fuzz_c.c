@@ -30,9 +30,16 @@ static fz *g_fz; /* for the crash handlers */
 
 void fz_hit(fz *f, enum fz_api_id id) { f->hits[id]++; }
 
+/* The world's last error, for the log of a failed call. */
+static const char *why(const fz *f)
+{
+    return tt_last_error(f->cur >= 0 ? f->slots[f->cur].w : NULL);
+}
+
 void fz_res(fz *f, tt_result r)
 {
     fz_log_more(f, " -> %s", fz_res_name(r));
+    if (r != TT_OK) fz_log_more(f, " \"%.200s\"", why(f));
     if ((unsigned)r > TT_ESTATE) fz_fail(f, "the call returned %d, not a tt_result", (int)r);
     if (r != TT_OK) f->failed = true;
 }
@@ -41,7 +48,10 @@ void fz_res(fz *f, tt_result r)
 void fz_hres(fz *f, tt_kind kind, fz_h h)
 {
     fz_log_more(f, " -> %s", fz_hn(h, kind));
-    if (h.index == 0 && h.gen == 0) f->failed = true;
+    if (h.index == 0 && h.gen == 0) {
+        f->failed = true;
+        fz_log_more(f, " \"%.200s\"", why(f));
+    }
     else fz_remember(f, kind, h);
 }
 
@@ -147,7 +157,8 @@ static void check_unchanged(fz *f, const char *what)
 /* The invariants of one call, after it. */
 static void after_call(fz *f)
 {
-    if (f->must_fail && !f->failed) fz_fail(f, "the call succeeded with %s", f->why_must);
+    if (f->must_fail && !f->failed)
+        fz_fail(f, "the call succeeded with %s: %s", f->why_must, f->why_must[0] == 'a' && f->why_must[2] == 'N' ? "" : fz_hn(f->must_h, f->must_k));
     if (f->cur < 0 || !f->slots[f->cur].w) return;
     fz_world *s = &f->slots[f->cur];
     if (f->failed) check_unchanged(f, "a call that failed");

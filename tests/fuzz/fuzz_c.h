@@ -62,6 +62,8 @@ typedef struct fz {
     int cur;                 /* slot used, −1 none (NULL world or no world) */
     bool failed, must_fail, readonly, stepped;
     const char *why_must;    /* what made must_fail */
+    fz_h must_h;             /* the handle that did, if one did */
+    tt_kind must_k;
 } fz;
 
 typedef void (*fz_fn)(fz *f);
@@ -105,6 +107,7 @@ uint32_t fz_polygon(fz *f, tt_vec2 *pts, uint32_t max);
 void fz_log(fz *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void fz_log_more(fz *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void fz_log_dump(int fd, unsigned lines);
+void fz_log_ids(fz *f, const tt_particle *ids, uint32_t n);
 const char *fz_d(double v);
 const char *fz_u(unsigned long long v);
 const char *fz_v(tt_vec2 v);
@@ -131,13 +134,21 @@ extern const fz_entry fz_composite_entries[];
 extern const fz_entry fz_collide_entries[];
 extern const fz_entry fz_scene_entries[];
 
-/* Handle conversions: all five structs share fz_h's layout. */
-#define FZ_P(h) ((tt_particle){(h).index, (h).gen})
-#define FZ_S(h) ((tt_spring){(h).index, (h).gen})
-#define FZ_C(h) ((tt_constraint){(h).index, (h).gen})
-#define FZ_SH(h) ((tt_shape){(h).index, (h).gen})
-#define FZ_CO(h) ((tt_composite){(h).index, (h).gen})
-#define FZ_H(x) ((fz_h){(x).index, (x).gen})
+/* Handle conversions: all five structs share fz_h's layout. Functions, not
+ * macros, so an argument with draws in it is evaluated once. */
+static inline tt_particle FZ_P(fz_h h) { return (tt_particle){ h.index, h.gen }; }
+static inline tt_spring FZ_S(fz_h h) { return (tt_spring){ h.index, h.gen }; }
+static inline tt_constraint FZ_C(fz_h h) { return (tt_constraint){ h.index, h.gen }; }
+static inline tt_shape FZ_SH(fz_h h) { return (tt_shape){ h.index, h.gen }; }
+static inline tt_composite FZ_CO(fz_h h) { return (tt_composite){ h.index, h.gen }; }
+/* And back, once per argument: FZ_H(tt_particle_create(...)) makes one particle. */
+static inline fz_h fz_h_p(tt_particle x) { return (fz_h){ x.index, x.gen }; }
+static inline fz_h fz_h_s(tt_spring x) { return (fz_h){ x.index, x.gen }; }
+static inline fz_h fz_h_c(tt_constraint x) { return (fz_h){ x.index, x.gen }; }
+static inline fz_h fz_h_sh(tt_shape x) { return (fz_h){ x.index, x.gen }; }
+static inline fz_h fz_h_co(tt_composite x) { return (fz_h){ x.index, x.gen }; }
+#define FZ_H(x) _Generic((x), tt_particle: fz_h_p, tt_spring: fz_h_s, tt_constraint: fz_h_c, tt_shape: fz_h_sh, \
+                              tt_composite: fz_h_co)(x)
 
 /* Marks a call as made (for "N of M functions reached"). */
 #define FZ_HIT(f, name) fz_hit((f), FZ_##name)

@@ -231,9 +231,13 @@ static fz_h from_u64(fz *f, tt_kind kind, uint64_t u)
     }
 }
 
-static void must(fz *f, const char *why)
+static void must(fz *f, const char *why, tt_kind kind, fz_h h)
 {
-    if (!f->must_fail) f->why_must = why;
+    if (!f->must_fail) {
+        f->why_must = why;
+        f->must_h = h;
+        f->must_k = kind;
+    }
     f->must_fail = true;
 }
 
@@ -252,7 +256,7 @@ static fz_h turned(fz *f, tt_kind kind)
     fz_h r = from_u64(f, kind, u);
     if (other != kind || !u) {
         if (r.index || r.gen) fz_fail(f, "an integer of kind %d decoded as a handle of kind %d", (int)other, (int)kind);
-        must(f, "a handle of another kind (through tt_*_from_u64)");
+        must(f, "a handle of another kind (through tt_*_from_u64)", kind, r);
     }
     return r;
 }
@@ -264,7 +268,7 @@ static fz_h foreign(fz *f, tt_kind kind)
         if (i != f->cur && f->slots[i].w && f->slots[i].live[kind].n && (other < 0 || fz_chance(f, 50))) other = i;
     fz_h h = other >= 0 && fz_chance(f, 70) ? from_list(f, &f->slots[other].live[kind]) : from_list(f, &f->foreign[kind]);
     /* Tags are reused after 1023 worlds: only before that is refusal promised. */
-    if ((h.index || h.gen) && f->names < 1000) must(f, "a handle of another world");
+    if ((h.index || h.gen) && f->names < 1000) must(f, "a handle of another world", kind, h);
     return h;
 }
 
@@ -273,8 +277,9 @@ fz_h fz_handle(fz *f, tt_kind kind)
     unsigned r = fz_below(f, 100);
     if (r < 72) return fz_live(f, kind);
     if (r < 80 && f->cur >= 0 && f->slots[f->cur].stale[kind].n) {
-        must(f, "a stale handle (of an object removed by this fuzzer)");
-        return from_list(f, &f->slots[f->cur].stale[kind]);
+        fz_h h = from_list(f, &f->slots[f->cur].stale[kind]);
+        must(f, "a stale handle (of an object removed by this fuzzer)", kind, h);
+        return h;
     }
     if (r < 86) return foreign(f, kind);
     if (r < 91) return turned(f, kind);
@@ -282,7 +287,7 @@ fz_h fz_handle(fz *f, tt_kind kind)
         if (fz_chance(f, 50)) return (fz_h){ fz_below(f, 64), fz_below(f, 1u << 20) };
         return (fz_h){ (uint32_t)fz_rand(f), (uint32_t)fz_rand(f) };
     }
-    must(f, "the null handle");
+    must(f, "the null handle", kind, (fz_h){ 0, 0 });
     return (fz_h){ 0, 0 };
 }
 

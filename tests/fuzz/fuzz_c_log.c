@@ -48,6 +48,15 @@ void fz_log_more(fz *f, const char *fmt, ...)
     }
 }
 
+/* The first handles of a bulk call's array, appended to its line. */
+void fz_log_ids(fz *f, const tt_particle *ids, uint32_t n)
+{
+    if (!ids) return;
+    fz_log_more(f, " /* ids");
+    for (uint32_t i = 0; i < n && i < 24; i++) fz_log_more(f, " {%u, %#x}", ids[i].index, ids[i].gen);
+    fz_log_more(f, "%s */", n > 24 ? " ..." : "");
+}
+
 static void put(int fd, const char *s)
 {
     size_t n = strlen(s);

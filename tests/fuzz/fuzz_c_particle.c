@@ -222,6 +222,7 @@ static void c_particles_get_positions(fz *f)
     double *xy;
     uint32_t n = bulk_n(f, &ids, &xy, false);
     fz_log(f, "tt_particles_get_positions(%s, %s, %u, %s)", fz_wn(f, w), ids ? "ids" : "NULL", n, xy ? "xy" : "NULL");
+    fz_log_ids(f, ids, n);
     FZ_HIT(f, tt_particles_get_positions);
     fz_res(f, tt_particles_get_positions(w, ids, n, xy));
     for (uint32_t i = 0; !f->failed && xy && i < 2 * n; i++) fz_finite(f, xy[i], "a bulk position");
@@ -238,6 +239,7 @@ static void c_particles_set_positions(fz *f)
     tt_move_mode mode = (tt_move_mode)fz_enum(f, 2);
     fz_log(f, "tt_particles_set_positions(%s, %s, %u, %s, %d) /* xy[0..1] %s %s */", fz_wn(f, w), ids ? "ids" : "NULL",
            n, xy ? "xy" : "NULL", (int)mode, xy && n ? fz_d(xy[0]) : "-", xy && n ? fz_d(xy[1]) : "-");
+    fz_log_ids(f, ids, n);
     FZ_HIT(f, tt_particles_set_positions);
     fz_res(f, tt_particles_set_positions(w, ids, n, xy, mode));
     free(ids);
