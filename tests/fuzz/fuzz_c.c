@@ -28,6 +28,13 @@ static const char *const api_names[FZ_API_COUNT] = {
 
 static fz *g_fz; /* for the crash handlers */
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
 void fz_hit(fz *f, enum fz_api_id id) { f->hits[id]++; }
 
 /* The world's last error, for the log of a failed call. */
@@ -118,6 +125,7 @@ static void install_crash_report(void)
 static const fz_entry *entries[512];
 static unsigned entry_count, total_weight;
 static uint64_t entry_calls[512];
+static double entry_seconds[512];
 
 static void gather(void)
 {
@@ -174,7 +182,7 @@ static void after_call(fz *f)
 /* World 0 always exists, so most calls have a world to work on. */
 static void ensure_world(fz *f)
 {
-    if ((f->call & 15) == 0) fz_world_too_big(f);
+    fz_world_too_big(f);
     if (f->slots[0].w) return;
     f->slots[0].w = tt_world_create(NULL);
     f->slots[0].name = f->names++;
@@ -184,12 +192,6 @@ static void ensure_world(fz *f)
     if (!f->slots[0].w) fz_fail(f, "tt_world_create(NULL) failed: %s", tt_last_error(NULL));
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
 
 static unsigned long long env_u64(const char *name, unsigned long long dflt)
 {
@@ -216,7 +218,8 @@ static int report(fz *f, double seconds, bool replay)
     printf("fuzz_c: %llu calls in %.0f s, seed %llu, %u of %u functions reached\n", (unsigned long long)f->call,
            seconds, (unsigned long long)f->seed, reached, (unsigned)FZ_API_COUNT);
     if (getenv("FUZZ_COUNTS"))
-        for (unsigned i = 0; i < entry_count; i++) printf("    %10llu %s\n", (unsigned long long)entry_calls[i], entries[i]->name);
+        for (unsigned i = 0; i < entry_count; i++)
+            printf("    %10llu %8.2f s %s\n", (unsigned long long)entry_calls[i], entry_seconds[i], entries[i]->name);
     if (reached < FZ_API_COUNT && !replay) {
         for (unsigned i = 0; i < FZ_API_COUNT; i++)
             if (!f->hits[i]) printf("fuzz_c: never reached: %s\n", api_names[i]);
@@ -254,8 +257,10 @@ int main(int argc, char **argv)
         f->failed = f->must_fail = f->readonly = f->stepped = false;
         unsigned e = pick_entry(f);
         entry_calls[e]++;
+        double t0 = now_s();
         entries[e]->fn(f);
         after_call(f);
+        entry_seconds[e] += now_s() - t0;
         if ((f->call & 63) == 0) elapsed = now_s() - start;
     }
     cleanup(f);

@@ -151,8 +151,8 @@ static void c_world_destroy(fz *f)
 void fz_world_too_big(fz *f)
 {
     for (int i = 0; i < FZ_WORLDS; i++) {
-        if (!f->slots[i].w || tt_world_particle_count(f->slots[i].w) <= 8000) continue;
-        fz_log(f, "tt_world_destroy(w%d) /* over 8000 particles: a fresh start */", f->slots[i].name);
+        if (!f->slots[i].w || tt_world_particle_count(f->slots[i].w) <= 5000) continue;
+        fz_log(f, "tt_world_destroy(w%d) /* over 5000 particles: a fresh start */", f->slots[i].name);
         FZ_HIT(f, tt_world_destroy);
         retire(f, i);
     }
@@ -164,7 +164,7 @@ static bool too_costly(fz *f, tt_world *w)
 {
     double n = tt_world_particle_count(w) + 2.0 * tt_world_constraint_count(w) + tt_world_spring_count(w) + 16.0;
     double cost = n * tt_world_get_substeps(w) * tt_world_get_iterations(w);
-    if (cost < 3e6) return false;
+    if (cost < 1e6) return false;
     uint32_t v = 1 + fz_below(f, 12);
     bool sub = tt_world_get_substeps(w) > 8 && fz_chance(f, 50);
     fz_log(f, "%s(%s, %u) /* the step would cost %.3g */", sub ? "tt_world_set_substeps" : "tt_world_set_iterations",

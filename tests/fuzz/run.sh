@@ -1,36 +1,102 @@
 #!/bin/sh
-# tests/fuzz/run.sh — `make fuzz`: the Lua API fuzzer for FUZZ_SECONDS
-# (default 60) from seed FUZZ_SEED (default: the clock). On a failure it
-# prints the seed and the replay script, shortens it with minimise.lua
-# (FUZZ_MIN_SECONDS, default 120; 0 skips it) and exits 1.
-# Environment: BUILD (build or build-san).
+# tests/fuzz/run.sh — `make fuzz`: every fuzz target, each for its share of
+# FUZZ_SECONDS (default 60), from seed FUZZ_SEED (default: the clock). One
+# summary line per target, then "N passed, M failed" (one per target); exit
+# 1 if any failed. A failed target prints its seed, the failing call and how
+# to replay it.
+# Environment: BUILD (build or build-san), FUZZ_TARGETS (names to run,
+# default all), FUZZ_MIN_SECONDS (the Lua minimiser's budget, default 120;
+# 0 skips it), FUZZ_CALLS (replay: stop after this call; with one target).
+#
+# Adding a target: a function target_NAME taking (SECONDS SEED DIR) that
+# prints one line and returns 0 when it passed, and NAME:WEIGHT in TARGETS.
+TARGETS="lua_api:1 c_api:1"
+
 BUILD=${BUILD:-build}
-RUNNER="$BUILD/tether"
 SECONDS_=${FUZZ_SECONDS:-60}
 SEED=${FUZZ_SEED:-$(date +%s)}
 OUT="$BUILD/fuzz"
-rm -rf "$OUT"
-mkdir -p "$OUT/frames"
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 export UBSAN_OPTIONS LSAN_OPTIONS
 
-echo "fuzz: seed $SEED, $SECONDS_ s, $RUNNER"
-FUZZ_SEED=$SEED FUZZ_SECONDS=$SECONDS_ FUZZ_REPLAY="$OUT/replay.lua" \
-    "$RUNNER" --headless --frames 1000000 --every 20 --size 96x72 --out "$OUT/frames" tests/fuzz/fuzz_api.lua \
-    >"$OUT/log.txt" 2>&1
-rc=$?
-grep -v 'frames, ETA' "$OUT/log.txt" | grep '^fuzz:\|passed, \|FUZZ FAILURE\|ERROR:\|runtime error' | head -20
-if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/log.txt"; then
-    exit 0
-fi
-calls=$(grep -o -- '-- [0-9]*$' "$OUT/replay.lua" | tail -n 1 | tr -dc 0-9)
-echo "fuzz: FAILED (exit $rc) at call $calls, seed $SEED"
-echo "fuzz: replay: $RUNNER --headless --frames 1000000 --every 20 --size 96x72 --out /tmp/x $OUT/replay.lua"
-echo "fuzz: or: FUZZ_SEED=$SEED FUZZ_CALLS=$calls sh tests/fuzz/run.sh"
-tail -n 30 "$OUT/log.txt" | grep -v 'frames, ETA' | sed 's/^/    | /'
-if [ "${FUZZ_MIN_SECONDS:-120}" != 0 ] && [ -n "$calls" ] && command -v lua5.4 >/dev/null 2>&1; then
-    lua5.4 tests/fuzz/minimise.lua "$RUNNER" "$SEED" "$calls" "$OUT"
-fi
-echo "0 passed, 1 failed"
-exit 1
+# --- the Lua API fuzzer (tests/fuzz/fuzz_api.lua, under the runner) -------------
+target_lua_api() {
+    secs=$1 seed=$2 dir=$3 runner="$BUILD/tether"
+    mkdir -p "$dir/frames"
+    FUZZ_SEED=$seed FUZZ_SECONDS=$secs FUZZ_REPLAY="$dir/replay.lua" \
+        "$runner" --headless --frames 1000000 --every 20 --size 96x72 --out "$dir/frames" tests/fuzz/fuzz_api.lua \
+        >"$dir/log.txt" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz lua_api: $(grep '^fuzz: .* calls' "$dir/log.txt" | tail -n 1 | sed 's/^fuzz: //') ($secs s)"
+        return 0
+    fi
+    calls=$(grep -o -- '-- [0-9]*$' "$dir/replay.lua" | tail -n 1 | tr -dc 0-9)
+    echo "fuzz lua_api: FAILED (exit $rc) at call $calls, seed $seed"
+    grep -v 'frames, ETA' "$dir/log.txt" | grep 'FUZZ FAILURE\|ERROR:\|runtime error' | head -5 | sed 's/^/    | /'
+    echo "    replay: $runner --headless --frames 1000000 --every 20 --size 96x72 --out /tmp/x $dir/replay.lua"
+    echo "    or: FUZZ_TARGETS=lua_api FUZZ_SEED=$seed FUZZ_CALLS=$calls sh tests/fuzz/run.sh"
+    tail -n 30 "$dir/log.txt" | grep -v 'frames, ETA' | sed 's/^/    | /'
+    if [ "${FUZZ_MIN_SECONDS:-120}" != 0 ] && [ -n "$calls" ] && command -v lua5.4 >/dev/null 2>&1; then
+        lua5.4 tests/fuzz/minimise.lua "$runner" "$seed" "$calls" "$dir" | sed 's/^/    /'
+    fi
+    return 1
+}
+
+# --- the C API fuzzer (tests/fuzz/fuzz_c*.c) --------------------------------------
+# Every public function of tether.h must have a wrapper: the fuzzer's list
+# is checked against the headers first (the static inline handle helpers
+# included), so a new function without one fails here.
+c_api_names() {
+    for h in base world particle spring constraint composite collide; do
+        sed -n 's/^TT_API[^(]*[ *]\(tt_[a-z0-9_]*\)(.*/\1/p' "include/tether/$h.h"
+    done
+    grep -q 'static inline tt_kind tt_handle_kind' include/tether/base.h && echo tt_handle_kind
+    sed -n 's/^TT__HANDLE_U64(\(tt_[a-z]*\), .*/\1_to_u64\n\1_from_u64/p' include/tether/base.h
+}
+
+target_c_api() {
+    secs=$1 seed=$2 dir=$3 bin="$BUILD/fuzz_c"
+    c_api_names | sort >"$dir/headers.txt"
+    "$bin" --list | sort >"$dir/wrapped.txt"
+    if ! cmp -s "$dir/headers.txt" "$dir/wrapped.txt"; then
+        echo "fuzz c_api: FAILED: tests/fuzz/fuzz_c_api.h and the headers disagree (< headers, > fuzzer):"
+        diff "$dir/headers.txt" "$dir/wrapped.txt" | grep '^[<>]' | sed 's/^/    /'
+        return 1
+    fi
+    FUZZ_SEED=$seed FUZZ_SECONDS=$secs "$bin" >"$dir/log.txt" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz c_api: $(grep '^fuzz_c: .* calls' "$dir/log.txt" | tail -n 1 | sed 's/^fuzz_c: //')"
+        return 0
+    fi
+    echo "fuzz c_api: FAILED (exit $rc), seed $seed"
+    grep 'FUZZ FAILURE\|FUZZ CRASH\|ERROR: \|runtime error\|never reached' "$dir/log.txt" | head -5 | sed 's/^/    | /'
+    grep 'replay: ' "$dir/log.txt" | head -n 1 | sed 's/^fuzz_c: /    /'
+    tail -n 50 "$dir/log.txt" | cut -c1-300 | sed 's/^/    | /'
+    return 1
+}
+
+# --- driver ---------------------------------------------------------------------------
+selected=""
+total_weight=0
+for t in $TARGETS; do
+    name=${t%%:*}
+    case " ${FUZZ_TARGETS:-$name} " in *" $name "*) ;; *) continue ;; esac
+    selected="$selected $t"
+    total_weight=$((total_weight + ${t#*:}))
+done
+echo "fuzz: seed $SEED, $SECONDS_ s over:$(for t in $selected; do printf ' %s' "${t%%:*}"; done)"
+pass=0
+fail=0
+for t in $selected; do
+    name=${t%%:*}
+    share=$((SECONDS_ * ${t#*:} / total_weight))
+    [ "$share" -ge 1 ] || share=1
+    rm -rf "${OUT:?}/$name"
+    mkdir -p "$OUT/$name"
+    if "target_$name" "$share" "$SEED" "$OUT/$name"; then pass=$((pass + 1)); else fail=$((fail + 1)); fi
+done
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
