@@ -20,7 +20,7 @@ static tt_particle_def particle_def(fz *f)
     d.position = fz_point(f);
     if (fz_chance(f, 30)) d.velocity = fz_vec(f, -10, 10);
     d.mass = mass(f);
-    d.radius = fz_chance(f, 40) ? 0.0 : fz_real(f, 0.0, fz_chance(f, 80) ? 0.5 : 20.0);
+    d.radius = fz_chance(f, 40) ? 0.0 : fz_real(f, 0.0, fz_chance(f, 95) ? 0.5 : 20.0);
     d.pinned = fz_chance(f, 8);
     if (fz_chance(f, 20)) d.category = fz_bits16(f);
     if (fz_chance(f, 20)) d.mask = fz_bits16(f);

@@ -151,20 +151,24 @@ static void c_world_destroy(fz *f)
 void fz_world_too_big(fz *f)
 {
     for (int i = 0; i < FZ_WORLDS; i++) {
-        if (!f->slots[i].w || tt_world_particle_count(f->slots[i].w) <= 5000) continue;
-        fz_log(f, "tt_world_destroy(w%d) /* over 5000 particles: a fresh start */", f->slots[i].name);
+        if (!f->slots[i].w || tt_world_particle_count(f->slots[i].w) <= 2500) continue;
+        fz_log(f, "tt_world_destroy(w%d) /* over 2500 particles: a fresh start */", f->slots[i].name);
         FZ_HIT(f, tt_world_destroy);
         retire(f, i);
     }
 }
 
 /* A step that would take too long (10 000 sweeps of thousands of
- * particles) becomes a call that brings substeps or iterations down. */
+ * particles and contacts) becomes a call that brings substeps or iterations
+ * down: the fuzzer's time goes to many calls, not to a few long steps. */
 static bool too_costly(fz *f, tt_world *w)
 {
-    double n = tt_world_particle_count(w) + 2.0 * tt_world_constraint_count(w) + tt_world_spring_count(w) + 16.0;
+    tt_collision_stats cs = { 0 };
+    tt_world_get_collision_stats(w, &cs);
+    double n = tt_world_particle_count(w) + 2.0 * tt_world_constraint_count(w) + tt_world_spring_count(w) + 16.0 +
+               4.0 * (cs.pair_contacts + cs.shape_contacts);
     double cost = n * tt_world_get_substeps(w) * tt_world_get_iterations(w);
-    if (cost < 1e6) return false;
+    if (cost < 4e5) return false;
     uint32_t v = 1 + fz_below(f, 12);
     bool sub = tt_world_get_substeps(w) > 8 && fz_chance(f, 50);
     fz_log(f, "%s(%s, %u) /* the step would cost %.3g */", sub ? "tt_world_set_substeps" : "tt_world_set_iterations",
