@@ -13,6 +13,8 @@
  * reached" and "1 passed, 0 failed" (a function never reached fails). */
 #include "fuzz_c.h"
 
+#include <ctype.h>
+#include <setjmp.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,6 +29,27 @@ static const char *const api_names[FZ_API_COUNT] = {
 };
 
 static fz *g_fz; /* for the crash handlers */
+/* FUZZ_KEEP_GOING=1 (a survey): each kind of failure is reported once and
+ * the run goes on with the next call. */
+static bool keep_going;
+static jmp_buf next_call;
+static unsigned failures;
+
+/* Whether a failure of this kind (its message without numbers) was reported. */
+static bool seen_before(const char *msg)
+{
+    static char kinds[64][64];
+    static unsigned nkinds;
+    char k[64];
+    unsigned n = 0;
+    for (const char *p = msg; *p && n < sizeof k - 1; p++)
+        if (!isdigit((unsigned char)*p) && *p != '.' && *p != '-' && *p != '+') k[n++] = *p;
+    k[n] = 0;
+    for (unsigned i = 0; i < nkinds; i++)
+        if (strcmp(kinds[i], k) == 0) return true;
+    if (nkinds < 64) memcpy(kinds[nkinds++], k, sizeof k);
+    return false;
+}
 
 static double now_s(void)
 {
@@ -84,6 +107,16 @@ void fz_fail(fz *f, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     fflush(stdout);
+    if (keep_going) {
+        failures++;
+        if (!seen_before(msg)) {
+            fprintf(stderr, "FUZZ FAILURE at call %llu, seed %llu: %s\n", (unsigned long long)f->call,
+                    (unsigned long long)f->seed, msg);
+            fz_log_dump(2, 6);
+        }
+        for (int i = 0; i < FZ_WORLDS; i++) f->slots[i].snap_valid = false;
+        longjmp(next_call, 1);
+    }
     fprintf(stderr, "FUZZ FAILURE at call %llu, seed %llu: %s\n", (unsigned long long)f->call,
             (unsigned long long)f->seed, msg);
     fz_log_dump(2, 40);
@@ -242,14 +275,16 @@ int main(int argc, char **argv)
     f->rng = f->seed ^ 0x9E3779B97F4A7C15ull;
     if (!f->rng) f->rng = 1;
     f->trace = getenv("FUZZ_TRACE") && strcmp(getenv("FUZZ_TRACE"), "1") == 0;
+    keep_going = getenv("FUZZ_KEEP_GOING") && strcmp(getenv("FUZZ_KEEP_GOING"), "1") == 0;
     const double seconds = (double)env_u64("FUZZ_SECONDS", 10);
     const unsigned long long max_calls = env_u64("FUZZ_CALLS", 0);
     g_fz = f;
     install_crash_report();
     gather();
     printf("fuzz_c: seed %llu, %.0f s, %u wrappers\n", (unsigned long long)f->seed, seconds, entry_count);
-    const double start = now_s();
-    double elapsed = 0.0;
+    static double start, elapsed;
+    start = now_s();
+    setjmp(next_call); /* FUZZ_KEEP_GOING: a failed call's run goes on from here */
     while (max_calls ? f->call < max_calls : elapsed < seconds) {
         f->call++;
         ensure_world(f);
@@ -264,5 +299,9 @@ int main(int argc, char **argv)
         if ((f->call & 63) == 0) elapsed = now_s() - start;
     }
     cleanup(f);
+    if (failures) {
+        printf("fuzz_c: %u failed calls (FUZZ_KEEP_GOING)\n0 passed, 1 failed\n", failures);
+        return 1;
+    }
     return report(f, now_s() - start, max_calls != 0);
 }
