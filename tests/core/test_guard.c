@@ -206,3 +206,31 @@ TEST(a_broken_zero_length_link_reports_a_finite_strain)
     ENSURE(ev[0].length == 2.0);
     tt_world_destroy(w);
 }
+
+/* Found by the C fuzzer: a rest length above 0 but tiny (a denormal) made
+ * length / rest overflow, and the strain of the break event was Inf. */
+TEST(a_broken_link_of_a_tiny_rest_length_reports_a_finite_strain)
+{
+    const double tiny[] = {4.9e-324, 1e-320, 1e-300};
+    for (int k = 0; k < 3; k++) {
+        tt_world *w = tt_world_create(NULL);
+        tt_particle_def pd = tt_particle_def_default();
+        pd.pinned = true;
+        tt_particle a = tt_particle_create(w, &pd);
+        tt_particle b = tt_particle_create(w, &pd);
+        tt_distance_def dd = tt_distance_def_default();
+        dd.a = a;
+        dd.b = b;
+        dd.length = tiny[k];
+        dd.break_strain = 1;
+        ENSURE(tt_distance_create(w, &dd).gen != 0);
+        ENSURE_OK(tt_particle_set_position(w, b, (tt_vec2){2, 0}, TT_MOVE_RESET_VELOCITY));
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        const tt_break_event *ev;
+        uint32_t n;
+        ENSURE_OK(tt_world_get_break_events(w, &ev, &n));
+        ENSURE(n == 1);
+        ENSURE(isfinite(ev[0].strain) && ev[0].strain > 0);
+        tt_world_destroy(w);
+    }
+}
