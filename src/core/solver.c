@@ -151,8 +151,9 @@ static bool any_past_guard(const tt_world *w, double h)
 /* The integrators stop a particle that passes TT_DIVERGED; constraints and
  * contacts can push one past it too (a pin dragged 1e12 m in one substep, a
  * tiny mass between stiff links), so the same rule holds after the sweeps:
- * the particle is stopped where the substep began (Verlet: x_old; the
- * others: where the integrator put it before the sweeps, in bx/by). */
+ * the particle is stopped where the sweeps began (bx/by: Verlet's start of
+ * the substep, where the integrator put the others); without that copy (no
+ * memory for it) at the nearest point inside the limit. */
 static void guard(tt_world *w, double h, bool have_start)
 {
     if (!any_past_guard(w, h)) return;
@@ -162,9 +163,9 @@ static void guard(tt_world *w, double h, bool have_start)
     for (uint32_t i = 0; i < n; i++) {
         if (w->inv_mass[i] == 0.0 || !past_guard(w, i, verlet, vmax)) continue;
         const double x = w->px[i], y = w->py[i];
-        if (verlet) {
-            w->px[i] = w->qx[i];
-            w->py[i] = w->qy[i];
+        if (verlet) { /* stopped: x_old = x */
+            w->px[i] = w->qx[i] = have_start ? w->bx[i] : fmax(-TT_DIVERGED, fmin(TT_DIVERGED, w->qx[i] == w->qx[i] ? w->qx[i] : 0.0));
+            w->py[i] = w->qy[i] = have_start ? w->by[i] : fmax(-TT_DIVERGED, fmin(TT_DIVERGED, w->qy[i] == w->qy[i] ? w->qy[i] : 0.0));
         } else {
             /* without the copy (no memory for it) the nearest point inside the limit; NaN becomes 0 */
             w->px[i] = have_start ? w->bx[i] : fmax(-TT_DIVERGED, fmin(TT_DIVERGED, x == x ? x : 0.0));
@@ -187,18 +188,23 @@ void tt__solve(tt_world *w, double h)
     }
     double t0 = tt__now_ms();
     const uint32_t n = w->ppool.count;
-    /* Velocity integrators learn about corrections from the positions before the sweeps. */
-    bool fix = w->integrator != TT_VERLET;
-    if (fix && w->bcap < n) {
-        if (grow_to((void **)&w->bx, sizeof(double), w->pcap) && grow_to((void **)&w->by, sizeof(double), w->pcap))
-            w->bcap = w->pcap;
-        else
-            fix = false;
+    /* Where each particle starts the sweeps, kept in bx/by: velocity
+     * integrators learn their corrections from it, and the guard stops a
+     * particle there. Verlet's x_old holds the substep's start too, but the
+     * contacts' velocity pass rewrites it, from a position that may be the
+     * very one that passed the guard, so Verlet keeps its own copy. */
+    const bool verlet = w->integrator == TT_VERLET;
+    bool have_start = w->bcap >= n;
+    if (!have_start && grow_to((void **)&w->bx, sizeof(double), w->pcap) &&
+        grow_to((void **)&w->by, sizeof(double), w->pcap)) {
+        w->bcap = w->pcap;
+        have_start = true;
     }
-    if (fix) {
-        tt__copy(w->bx, w->px, n * sizeof(double));
-        tt__copy(w->by, w->py, n * sizeof(double));
+    if (have_start) {
+        tt__copy(w->bx, verlet ? w->qx : w->px, n * sizeof(double));
+        tt__copy(w->by, verlet ? w->qy : w->py, n * sizeof(double));
     }
+    const bool fix = have_start && !verlet; /* velocity integrators learn about corrections */
     bool jacobi = w->order == TT_JACOBI && jacobi_arrays(w);
     if (!jacobi && w->jn) { /* tt__correct reads jn to pick the mode */
         free(w->jx); free(w->jy); free(w->jn);
@@ -232,7 +238,7 @@ void tt__solve(tt_world *w, double h)
     }
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->end) w->groups[g].ops->end(w, w->groups[g].self, h);
-    guard(w, h, fix);
+    guard(w, h, have_start);
     w->stats.stage_ms[TT_STAGE_SOLVE] += tt__now_ms() - t0;
 }
 
