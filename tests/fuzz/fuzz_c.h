@@ -124,6 +124,7 @@ void fz_finite(fz *f, double v, const char *what);
 void fz_finite_vec(fz *f, tt_vec2 v, const char *what);
 void fz_check_world(fz *f, tt_world *w);
 void fz_world_too_big(fz *f);
+tt_world *fz_world_fresh(fz *f, int slot);
 void *fz_buffer(fz *f, uint32_t *cap, uint32_t plausible, size_t size);
 
 /* the wrapper tables */

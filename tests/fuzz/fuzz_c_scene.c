@@ -92,7 +92,7 @@ static void make_particles(fz *f, tt_world *w, uint32_t n, uint32_t per_row, tt_
 /* Collisions switched on for the scene half the time, often with a tiny cell. */
 static void maybe_collide(fz *f, tt_world *w)
 {
-    if (fz_chance(f, 50)) return;
+    if (fz_chance(f, 35)) return;
     static const double cells[] = { 0.0, 0.0, 1e-3, 1e-300, 1e-12, 0.5 };
     tt_collision_settings s = tt_collision_settings_default();
     s.cell_size = cells[fz_below(f, sizeof cells / sizeof cells[0])];
@@ -111,7 +111,9 @@ static tt_world *scene_world(fz *f)
         fz_log(f, "tt_particle_create(NULL, &def)");
         FZ_HIT(f, tt_particle_create);
         fz_hres(f, PK, FZ_H(tt_particle_create(NULL, &(tt_particle_def){ .mass = 1 })));
+        return NULL;
     }
+    if (fz_chance(f, 40)) w = fz_world_fresh(f, f->cur);
     return w;
 }
 

@@ -134,6 +134,21 @@ static void retire(fz *f, int slot)
     memset(s, 0, sizeof *s);
 }
 
+/* The world in slot made afresh (default def): scenes start from one now
+ * and then, so a world can hold nothing but a scene's pattern (a row whose
+ * particles all share one y, as finding 1 needed). */
+tt_world *fz_world_fresh(fz *f, int slot)
+{
+    fz_log(f, "tt_world_destroy(w%d); w%d = tt_world_create(NULL)", f->slots[slot].name, f->names);
+    FZ_HIT(f, tt_world_destroy);
+    FZ_HIT(f, tt_world_create);
+    retire(f, slot);
+    f->slots[slot].w = tt_world_create(NULL);
+    f->slots[slot].name = f->names++;
+    if (!f->slots[slot].w) fz_fail(f, "tt_world_create(NULL) failed: %s", tt_last_error(NULL));
+    return f->slots[slot].w;
+}
+
 static void c_world_destroy(fz *f)
 {
     int slot = (int)fz_below(f, FZ_WORLDS + 1);
