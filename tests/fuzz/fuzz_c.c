@@ -3,7 +3,9 @@
  * hostile arguments and plausible scenes. `build/fuzz_c [--list]`.
  * Environment: FUZZ_SEED (default: the clock), FUZZ_SECONDS (default 10),
  * FUZZ_CALLS (stop right after this call: replay), FUZZ_TRACE=1 (print every
- * call as a C-like line as it is made).
+ * call as a C-like line as it is made), FUZZ_KEEP_GOING=1 (a survey: each
+ * kind of failure once, then on), FUZZ_COUNTS=1 (calls and seconds per
+ * wrapper at the end).
  * After every call: a call that failed, or only read, left its world's hash
  * and counts as they were; a call that had to fail (NULL world, stale,
  * foreign, null or kind-turned handle) failed; after every step every
