@@ -61,7 +61,7 @@ RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
 # tests/fuzz/ holds the fuzzers, programs of their own (not part of test_c).
 TEST_SRC := $(filter-out tests/fuzz/%,$(wildcard tests/*.c tests/*/*.c))
-FUZZ_C_SRC := $(wildcard tests/fuzz/*.c)
+FUZZ_C_SRC := $(wildcard tests/fuzz/fuzz_c*.c)
 FUZZ_C_OBJ := $(FUZZ_C_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
