@@ -62,8 +62,11 @@ RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
-# tests/fuzz/ holds fuzzers with their own main, built on their own
-TEST_SRC := $(filter-out tests/fuzz/%,$(wildcard tests/*.c tests/*/*.c))
+# tests/fuzz/ holds fuzzers with their own main, built on their own; the
+# snapshot stream reader's fuzzer is a test of test_c (make test runs 300 streams).
+TEST_SRC := $(filter-out tests/fuzz/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c
+FUZZ_C_SRC := $(wildcard tests/fuzz/fuzz_c*.c)
+FUZZ_C_OBJ := $(FUZZ_C_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
 
@@ -73,6 +76,7 @@ RENDER_A := $(BUILD)/libtether_render.a
 LUA_MOD := $(BUILD)/tether.so
 RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
+FUZZ_C  := $(BUILD)/fuzz_c
 BENCH   := $(BUILD)/bench
 
 .PHONY: all deps demo pictures test test-c test-lua fuzz memcheck bench install uninstall clean
@@ -155,6 +159,10 @@ FUZZ_PNG := $(BUILD)/fuzz_png
 $(FUZZ_PNG): tests/fuzz/fuzz_png.c $(LIB_A) | deps
 	$(CC) $(CFLAGS_ALL) $(PNG_CFLAGS) -o $@ $< $(LIB_A) $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
+# The C API fuzzer (tests/fuzz/fuzz_c*.c): the engine only, no allocation wrapping.
+$(FUZZ_C): $(FUZZ_C_OBJ) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
+
 # Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
 BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
 $(BOX2D_OBJ): bench/box2d_scene.cpp | deps
@@ -197,7 +205,7 @@ pictures: all
 	  convert -delay 7 -loop 0 $(BUILD)/pictures/gif/frame_*.png -layers Optimize docs/img/demo.gif && echo "docs/img/demo.gif" || \
 	  echo "docs/img/demo.gif: not made (needs ImageMagick's convert)"
 
-test: all $(TEST_C)
+test: all $(TEST_C) $(FUZZ_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh
 
 # `make memcheck`: the C tests under valgrind memcheck; any error or leak
@@ -207,11 +215,11 @@ memcheck: all $(TEST_C)
 	  --suppressions=tests/valgrind.supp $(TEST_C) >$(BUILD)/memcheck.log 2>&1; rc=$$?; \
 	  grep -v '^ok ' $(BUILD)/memcheck.log | tail -n 40; exit $$rc
 
-# `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: the Lua API fuzzer
-# (tests/fuzz/); on a failure it prints the seed and a replay script and
-# shortens it. Then the PNG loader's fuzzer and the snapshot stream reader's
-# (tests/fuzz/fuzz_stream.c), each for half as long.
-fuzz: all $(FUZZ_PNG) $(TEST_C)
+# `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: every fuzz target
+# of tests/fuzz/run.sh (the Lua API fuzzer, the C API fuzzer, the PNG
+# loader's, the snapshot stream reader's), each for its share of
+# FUZZ_SECONDS; on a failure each prints its seed and replay.
+fuzz: all $(FUZZ_C) $(FUZZ_PNG) $(TEST_C)
 	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 # The mask section compares with Debian's python3-pygame (pygame.mask): installed

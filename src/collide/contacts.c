@@ -44,6 +44,20 @@ static void particle_removed(tt_world *w, void *self, uint32_t i)
     c->nprev = k;
 }
 
+/* The collision state as tt__collide_get makes it, nothing set since: what
+ * a query of a world that never used collisions leaves behind. */
+static bool idle(const tt_world *w, const void *self)
+{
+    (void)w;
+    const tt__collide *c = self;
+    const tt_collision_settings *s = &c->set, d = tt_collision_settings_default();
+    return !s->particles && s->broadphase == d.broadphase && s->cell_size == d.cell_size &&
+           s->restitution == d.restitution && s->friction_static == d.friction_static &&
+           s->friction_kinetic == d.friction_kinetic && s->restitution_threshold == d.restitution_threshold &&
+           s->events == d.events && c->spool.count == 0 && c->nexcl == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
+           c->nevents == 0;
+}
+
 size_t tt__contacts_memory(const tt_world *w, const void *self)
 {
     (void)w;
@@ -87,6 +101,7 @@ const tt__group_ops tt__contacts_ops = {
     .destroy = tt__contacts_destroy,
     .id = TT__ID('C', 'O', 'L', 'L'),
     .save = tt__contacts_save,
+    .idle = idle,
     .load = tt__contacts_load,
 };
 

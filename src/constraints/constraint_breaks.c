@@ -33,8 +33,9 @@ void tt__cgroup_break_links(tt_world *w, tt__cgroup *g)
         if (x->break_strain <= 0.0) continue;
         double len = tt__constraint_dist_of(w, d->a, d->b), rest = x->mode == TT_DISTANCE_MIN ? d->lo : d->hi;
         if (!(len > rest * (1.0 + x->break_strain))) continue;
+        /* A denormal rest overflows len / rest: the strain is as unbounded as a zero rest's. */
         tt_break_event e = {tt__cgroup_handle(g, x->slot), tt__cgroup_particle(w, d->a), tt__cgroup_particle(w, d->b),
-                            len, rest > 0.0 ? len / rest - 1.0 : TT_MAX_VALUE};
+                            len, rest > 0.0 ? fmin(len / rest - 1.0, TT_MAX_VALUE) : TT_MAX_VALUE};
         if (!event_push(g, e)) tt__step_oom(w, "break events (the link broke, its event was dropped)");
         tt__cgroup_dist_remove(g, i);
     }

@@ -76,6 +76,11 @@ typedef struct tt__group_ops {
     uint32_t id;
     void (*save)(const tt_world *w, const void *self, struct tt__sink *s);
     void *(*load)(tt_world *w, struct tt__source *src);
+    /* optional: true while the group is as it was made, nothing set (a query
+     * makes the collision state for its grid): it is then saved and hashed
+     * as absent, which it is equivalent to, so reading a world never
+     * changes its hash */
+    bool (*idle)(const tt_world *w, const void *self);
     size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
     void (*destroy)(tt_world *w, void *self);
 } tt__group_ops;

@@ -121,6 +121,7 @@ static bool save_body(const tt_world *w, tt__sink *s, const char **unsaveable)
     tt__section_close(s, at);
     for (int g = 0; g < w->group_count; g++) {
         const tt__group_ops *ops = w->groups[g].ops;
+        if (ops->idle && ops->idle(w, w->groups[g].self)) continue;
         if (!ops->save) {
             if (unsaveable && !*unsaveable) *unsaveable = ops->name;
             continue;

@@ -69,7 +69,7 @@ bool tt__solver_reserve(tt_world *w)
             return false;
         w->jcap = w->pcap;
     }
-    if (w->integrator != TT_VERLET && w->bcap < n) {
+    if (w->bcap < n) { /* every integrator: the guard's start of the substep */
         if (!grow_to((void **)&w->bx, sizeof(double), w->pcap) || !grow_to((void **)&w->by, sizeof(double), w->pcap))
             return false;
         w->bcap = w->pcap;
@@ -164,8 +164,8 @@ static bool any_past_guard(const tt_world *w, double h)
 /* The integrators stop a particle that passes TT_DIVERGED; constraints and
  * contacts can push one past it too (a pin dragged 1e12 m in one substep, a
  * tiny mass between stiff links), so the same rule holds after the sweeps:
- * the particle is stopped where the substep began (Verlet: x_old; the
- * others: where the integrator put it before the sweeps, in bx/by). */
+ * the particle is stopped where the sweeps began (bx/by: Verlet's start of
+ * the substep, where the integrator put the others). */
 static void guard(tt_world *w, double h)
 {
     if (!any_past_guard(w, h)) return;
@@ -174,9 +174,9 @@ static void guard(tt_world *w, double h)
     const double vmax = velocity_limit(w, h);
     for (uint32_t i = 0; i < n; i++) {
         if (w->inv_mass[i] == 0.0 || !past_guard(w, i, verlet, vmax)) continue;
-        if (verlet) {
-            w->px[i] = w->qx[i];
-            w->py[i] = w->qy[i];
+        if (verlet) { /* stopped: x_old = x, at the start Verlet's x_old had before the velocity passes */
+            w->px[i] = w->qx[i] = w->bx[i];
+            w->py[i] = w->qy[i] = w->by[i];
         } else {
             w->px[i] = w->bx[i];
             w->py[i] = w->by[i];
@@ -186,9 +186,18 @@ static void guard(tt_world *w, double h)
     }
 }
 
+/* Groups as they were made, nothing set (a query's collision state): the
+ * substep is that of a world without them, stats included. */
+static bool all_idle(const tt_world *w)
+{
+    for (int g = 0; g < w->group_count; g++)
+        if (!w->groups[g].ops->idle || !w->groups[g].ops->idle(w, w->groups[g].self)) return false;
+    return true;
+}
+
 void tt__solve(tt_world *w, double h)
 {
-    if (w->group_count == 0) return;
+    if (w->group_count == 0 || all_idle(w)) return;
     for (int g = 0; g < w->group_count; g++) {
         const tt__group_ops *ops = w->groups[g].ops;
         if (!ops->begin) continue;
@@ -198,12 +207,15 @@ void tt__solve(tt_world *w, double h)
     }
     double t0 = tt__now_ms();
     const uint32_t n = w->ppool.count;
-    /* Velocity integrators learn about corrections from the positions before the sweeps. */
-    const bool fix = w->integrator != TT_VERLET;
-    if (fix) {
-        tt__copy(w->bx, w->px, n * sizeof(double));
-        tt__copy(w->by, w->py, n * sizeof(double));
-    }
+    /* Where each particle starts the sweeps, kept in bx/by: velocity
+     * integrators learn their corrections from it, and the guard stops a
+     * particle there. Verlet's x_old holds the substep's start too, but a
+     * bounds constraint's friction and the contacts' velocity pass rewrite it
+     * from a position that may be the very one that passed the guard, so
+     * Verlet keeps its own copy. */
+    const bool verlet = w->integrator == TT_VERLET, fix = !verlet;
+    tt__copy(w->bx, verlet ? w->qx : w->px, n * sizeof(double));
+    tt__copy(w->by, verlet ? w->qy : w->py, n * sizeof(double));
     const bool jacobi = w->order == TT_JACOBI;
     if (jacobi) jacobi_zero(w);
     if (!jacobi && w->jn) { /* tt__correct reads jn to pick the mode */

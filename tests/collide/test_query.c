@@ -245,3 +245,45 @@ TEST(a_ray_along_a_segment_hits_its_nearer_end)
     ENSURE(hit.hit);
     ENSURE_NEAR(hit.point.x, 0, 1e-12);
 }
+
+/* Found by the C fuzzer: a query on a world that never used collisions made
+ * the collision state on the way (for its grid), and that state entered the
+ * hash, so two worlds in the same state hashed differently after one of
+ * them was only read. */
+TEST(a_query_of_a_world_without_collisions_leaves_its_hash)
+{
+    tt_world *a = tt_world_create(NULL), *b = tt_world_create(NULL);
+    for (int i = 0; i < 10; i++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.position = (tt_vec2){i * 0.5, 1.0 + i};
+        pd.radius = 0.2;
+        tt_particle_create(a, &pd);
+        tt_particle_create(b, &pd);
+    }
+    ENSURE(tt_world_hash(a) == tt_world_hash(b));
+    tt_ray_hit hit;
+    uint32_t np = 0, ns = 0;
+    ENSURE_OK(tt_world_raycast(a, (tt_vec2){-5, 1}, (tt_vec2){5, 1}, 0xFFFF, &hit));
+    ENSURE(hit.hit);
+    ENSURE_OK(tt_world_query_point(a, (tt_vec2){0, 1}, 0xFFFF, NULL, 0, &np, NULL, 0, &ns));
+    ENSURE_OK(tt_world_query_aabb(a, (tt_vec2){-0.1, 0.9}, (tt_vec2){0.1, 1.1}, 0xFFFF, NULL, 0, &np, NULL, 0, &ns));
+    ENSURE(np == 1);
+    ENSURE(tt_world_hash(a) == tt_world_hash(b));
+    for (int s = 0; s < 30; s++) {
+        ENSURE_OK(tt_world_step(a, 1.0 / 60));
+        ENSURE_OK(tt_world_step(b, 1.0 / 60));
+    }
+    ENSURE(tt_world_hash(a) == tt_world_hash(b));
+    /* Once collisions are switched on, both are the same world again. */
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.restitution = 0.5;
+    ENSURE_OK(tt_world_set_collision(a, &cs));
+    ENSURE_OK(tt_world_set_collision(b, &cs));
+    for (int s = 0; s < 30; s++) {
+        ENSURE_OK(tt_world_step(a, 1.0 / 60));
+        ENSURE_OK(tt_world_step(b, 1.0 / 60));
+    }
+    ENSURE(tt_world_hash(a) == tt_world_hash(b));
+    tt_world_destroy(a);
+    tt_world_destroy(b);
+}

@@ -206,3 +206,75 @@ TEST(a_broken_zero_length_link_reports_a_finite_strain)
     ENSURE(ev[0].length == 2.0);
     tt_world_destroy(w);
 }
+
+/* Found by the C fuzzer: a rest length above 0 but tiny (a denormal) made
+ * length / rest overflow, and the strain of the break event was Inf. */
+TEST(a_broken_link_of_a_tiny_rest_length_reports_a_finite_strain)
+{
+    const double tiny[] = {4.9e-324, 1e-320, 1e-300};
+    for (int k = 0; k < 3; k++) {
+        tt_world *w = tt_world_create(NULL);
+        tt_particle_def pd = tt_particle_def_default();
+        pd.pinned = true;
+        tt_particle a = tt_particle_create(w, &pd);
+        tt_particle b = tt_particle_create(w, &pd);
+        tt_distance_def dd = tt_distance_def_default();
+        dd.a = a;
+        dd.b = b;
+        dd.length = tiny[k];
+        dd.break_strain = 1;
+        ENSURE(tt_distance_create(w, &dd).gen != 0);
+        ENSURE_OK(tt_particle_set_position(w, b, (tt_vec2){2, 0}, TT_MOVE_RESET_VELOCITY));
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        const tt_break_event *ev;
+        uint32_t n;
+        ENSURE_OK(tt_world_get_break_events(w, &ev, &n));
+        ENSURE(n == 1);
+        ENSURE(isfinite(ev[0].strain) && ev[0].strain > 0);
+        tt_world_destroy(w);
+    }
+}
+
+/* Found by the C fuzzer: in a Verlet world the guard put a particle past
+ * TT_DIVERGED back at x_old, but a bounds constraint's friction (the end of
+ * the substep, after the sweeps) had already rewritten x_old from the very
+ * position that passed, and the particle stayed at 3e17 m. Here an area
+ * constraint on a flat triangle, swept after the bounds, flings a particle
+ * out of the box with friction. */
+TEST(guard_stops_a_verlet_particle_whose_x_old_friction_rewrote)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.integrator = TT_VERLET;
+    wd.iterations = 1;
+    tt_world *w = tt_world_create(&wd);
+    tt_particle p[3];
+    const tt_vec2 at[3] = {{0, 0}, {1, 1e-9}, {2, 0}};
+    for (int i = 0; i < 3; i++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.position = at[i];
+        p[i] = tt_particle_create(w, &pd);
+    }
+    tt_bounds_def bd = tt_bounds_def_default(); /* every particle inside (−10, −10)…(10, 10) */
+    bd.friction = 0.5;
+    ENSURE(tt_bounds_create(w, &bd).gen != 0);
+    tt_area_def ad = tt_area_def_default();
+    ad.particles = p;
+    ad.count = 3;
+    ad.use_current = false;
+    ad.area = 1e12;
+    ad.pressure = 1e6;
+    ENSURE(tt_area_create(w, &ad).gen != 0);
+    for (int s = 0; s < 3; s++) {
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        double xy[6];
+        ENSURE(tt_world_read_positions(w, xy, 3) == 3);
+        for (int i = 0; i < 6; i++) ENSURE(fabs(xy[i]) <= TT_DIVERGED);
+        for (int i = 0; i < 3; i++) { /* stopped where the substep began: inside the box */
+            ENSURE(fabs(xy[2 * i]) <= 10 && fabs(xy[2 * i + 1]) <= 10);
+        }
+    }
+    tt_stats st;
+    ENSURE_OK(tt_world_get_stats(w, &st));
+    ENSURE(st.diverged > 0);
+    tt_world_destroy(w);
+}

@@ -1,64 +1,132 @@
 #!/bin/sh
-# tests/fuzz/run.sh — `make fuzz`: the Lua API fuzzer for FUZZ_SECONDS
-# (default 60) from seed FUZZ_SEED (default: the clock). On a failure it
-# prints the seed and the replay script, shortens it with minimise.lua
-# (FUZZ_MIN_SECONDS, default 120; 0 skips it) and exits 1.
-# Then the mask PNG loader's fuzzer ($BUILD/fuzz_png, tests/fuzz/fuzz_png.c)
-# for FUZZ_PNG_SECONDS and the snapshot stream reader's (tests/fuzz/
-# fuzz_stream.c, a C test in $BUILD/test_c) for FUZZ_STREAM_SECONDS (each by
-# default half of FUZZ_SECONDS), from the same seed.
-# Environment: BUILD (build or build-san).
+# tests/fuzz/run.sh — `make fuzz`: every fuzz target, each for its share of
+# FUZZ_SECONDS (default 60), from seed FUZZ_SEED (default: the clock). One
+# summary line per target, then "N passed, M failed" (one per target); exit
+# 1 if any failed. A failed target prints its seed, the failing call and how
+# to replay it.
+# Environment: BUILD (build or build-san), FUZZ_TARGETS (names to run,
+# default all), FUZZ_MIN_SECONDS (the Lua minimiser's budget, default 120;
+# 0 skips it), FUZZ_CALLS (replay: stop after this call; with one target).
+#
+# Adding a target: a function target_NAME taking (SECONDS SEED DIR) that
+# prints one line and returns 0 when it passed, and NAME:WEIGHT in TARGETS.
+TARGETS="lua_api:2 c_api:2 png:1 stream:1"
+
 BUILD=${BUILD:-build}
-RUNNER="$BUILD/tether"
 SECONDS_=${FUZZ_SECONDS:-60}
 SEED=${FUZZ_SEED:-$(date +%s)}
 OUT="$BUILD/fuzz"
-rm -rf "$OUT"
-mkdir -p "$OUT/frames"
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-FUZZ_OUT="$OUT" # where m:save writes (tests/fuzz/fuzz_lib.lua)
-export UBSAN_OPTIONS LSAN_OPTIONS FUZZ_OUT
+export UBSAN_OPTIONS LSAN_OPTIONS
 
-echo "fuzz: seed $SEED, $SECONDS_ s, $RUNNER"
-FUZZ_SEED=$SEED FUZZ_SECONDS=$SECONDS_ FUZZ_REPLAY="$OUT/replay.lua" \
-    "$RUNNER" --headless --frames 1000000 --every 20 --size 96x72 --out "$OUT/frames" tests/fuzz/fuzz_api.lua \
-    >"$OUT/log.txt" 2>&1
-rc=$?
-grep -v 'frames, ETA' "$OUT/log.txt" | grep '^fuzz:\|passed, \|FUZZ FAILURE\|ERROR:\|runtime error' | head -20
-if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/log.txt"; then
-    PNG_SECONDS=${FUZZ_PNG_SECONDS:-$((SECONDS_ / 2))}
-    "$BUILD/fuzz_png" "$PNG_SECONDS" "$SEED" "$OUT/png-last.bin" >"$OUT/png-log.txt" 2>&1
+# --- the Lua API fuzzer (tests/fuzz/fuzz_api.lua, under the runner) -------------
+target_lua_api() {
+    secs=$1 seed=$2 dir=$3 runner="$BUILD/tether"
+    mkdir -p "$dir/frames"
+    FUZZ_OUT="$dir" FUZZ_SEED=$seed FUZZ_SECONDS=$secs FUZZ_REPLAY="$dir/replay.lua" \
+        "$runner" --headless --frames 1000000 --every 20 --size 96x72 --out "$dir/frames" tests/fuzz/fuzz_api.lua \
+        >"$dir/log.txt" 2>&1
     rc=$?
-    grep '^fuzz_png: \|passed, \|ERROR:\|runtime error' "$OUT/png-log.txt" | head -20
-    if [ "$rc" -ne 0 ] || ! grep -q '^1 passed, 0 failed$' "$OUT/png-log.txt"; then
-        echo "fuzz: the PNG fuzzer FAILED (exit $rc), seed $SEED; its last input: $OUT/png-last.bin"
-        echo "fuzz: replay: $BUILD/fuzz_png $PNG_SECONDS $SEED"
-        tail -n 30 "$OUT/png-log.txt" | sed 's/^/    | /'
-        echo "1 passed, 1 failed"
-        exit 1
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz lua_api: $(grep '^fuzz: .* calls' "$dir/log.txt" | tail -n 1 | sed 's/^fuzz: //') ($secs s)"
+        return 0
     fi
-    STREAM_SECONDS=${FUZZ_STREAM_SECONDS:-$((SECONDS_ / 2))}
-    echo "fuzz: snapshot stream reader, seed $SEED, $STREAM_SECONDS s"
-    FUZZ_SEED=$SEED FUZZ_STREAM_SECONDS=$STREAM_SECONDS "$BUILD/test_c" fuzz_stream_reader >"$OUT/stream.txt" 2>&1
-    src=$?
-    grep 'fuzz_stream\|passed, \|runtime error\|ERROR' "$OUT/stream.txt" | head -20
-    if [ "$src" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$OUT/stream.txt"; then
-        echo "3 passed, 0 failed"
-        exit 0
+    calls=$(grep -o -- '-- [0-9]*$' "$dir/replay.lua" | tail -n 1 | tr -dc 0-9)
+    echo "fuzz lua_api: FAILED (exit $rc) at call $calls, seed $seed"
+    grep -v 'frames, ETA' "$dir/log.txt" | grep 'FUZZ FAILURE\|ERROR:\|runtime error' | head -5 | sed 's/^/    | /'
+    echo "    replay: $runner --headless --frames 1000000 --every 20 --size 96x72 --out /tmp/x $dir/replay.lua"
+    echo "    or: FUZZ_TARGETS=lua_api FUZZ_SEED=$seed FUZZ_CALLS=$calls sh tests/fuzz/run.sh"
+    tail -n 30 "$dir/log.txt" | grep -v 'frames, ETA' | sed 's/^/    | /'
+    if [ "${FUZZ_MIN_SECONDS:-120}" != 0 ] && [ -n "$calls" ] && command -v lua5.4 >/dev/null 2>&1; then
+        lua5.4 tests/fuzz/minimise.lua "$runner" "$seed" "$calls" "$dir" | sed 's/^/    /'
     fi
-    echo "fuzz: the stream fuzzer FAILED, seed $SEED: FUZZ_SEED=$SEED FUZZ_STREAM_SECONDS=$STREAM_SECONDS $BUILD/test_c fuzz_stream_reader"
-    tail -n 30 "$OUT/stream.txt" | sed 's/^/    | /'
-    echo "2 passed, 1 failed"
-    exit 1
-fi
-calls=$(grep -o -- '-- [0-9]*$' "$OUT/replay.lua" | tail -n 1 | tr -dc 0-9)
-echo "fuzz: FAILED (exit $rc) at call $calls, seed $SEED"
-echo "fuzz: replay: $RUNNER --headless --frames 1000000 --every 20 --size 96x72 --out /tmp/x $OUT/replay.lua"
-echo "fuzz: or: FUZZ_SEED=$SEED FUZZ_CALLS=$calls sh tests/fuzz/run.sh"
-tail -n 30 "$OUT/log.txt" | grep -v 'frames, ETA' | sed 's/^/    | /'
-if [ "${FUZZ_MIN_SECONDS:-120}" != 0 ] && [ -n "$calls" ] && command -v lua5.4 >/dev/null 2>&1; then
-    lua5.4 tests/fuzz/minimise.lua "$RUNNER" "$SEED" "$calls" "$OUT"
-fi
-echo "0 passed, 1 failed"
-exit 1
+    return 1
+}
+
+# --- the C API fuzzer (tests/fuzz/fuzz_c*.c) --------------------------------------
+# Every public function of tether.h must have a wrapper: the fuzzer's list
+# is checked against the headers first (the static inline handle helpers
+# included), so a new function without one fails here.
+c_api_names() {
+    for h in base world particle spring constraint composite collide; do
+        sed -n 's/^TT_API[^(]*[ *]\(tt_[a-z0-9_]*\)(.*/\1/p' "include/tether/$h.h"
+    done
+    grep -q 'static inline tt_kind tt_handle_kind' include/tether/base.h && echo tt_handle_kind
+    sed -n 's/^TT__HANDLE_U64(\(tt_[a-z]*\), .*/\1_to_u64\n\1_from_u64/p' include/tether/base.h
+}
+
+target_c_api() {
+    secs=$1 seed=$2 dir=$3 bin="$BUILD/fuzz_c"
+    c_api_names | sort >"$dir/headers.txt"
+    "$bin" --list | sort >"$dir/wrapped.txt"
+    if ! cmp -s "$dir/headers.txt" "$dir/wrapped.txt"; then
+        echo "fuzz c_api: FAILED: tests/fuzz/fuzz_c_api.h and the headers disagree (< headers, > fuzzer):"
+        diff "$dir/headers.txt" "$dir/wrapped.txt" | grep '^[<>]' | sed 's/^/    /'
+        return 1
+    fi
+    FUZZ_SEED=$seed FUZZ_SECONDS=$secs "$bin" >"$dir/log.txt" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz c_api: $(grep '^fuzz_c: .* calls' "$dir/log.txt" | tail -n 1 | sed 's/^fuzz_c: //')"
+        return 0
+    fi
+    echo "fuzz c_api: FAILED (exit $rc), seed $seed"
+    grep 'FUZZ FAILURE\|FUZZ CRASH\|ERROR: \|runtime error\|never reached' "$dir/log.txt" | head -5 | sed 's/^/    | /'
+    grep 'replay: ' "$dir/log.txt" | head -n 1 | sed 's/^fuzz_c: /    /'
+    tail -n 50 "$dir/log.txt" | cut -c1-300 | sed 's/^/    | /'
+    return 1
+}
+
+# --- the mask PNG loader (tests/fuzz/fuzz_png.c) ---------------------------------------
+target_png() {
+    secs=$1 seed=$2 dir=$3
+    "$BUILD/fuzz_png" "$secs" "$seed" "$dir/png-last.bin" >"$dir/log.txt" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz png: $(grep '^fuzz_png: ' "$dir/log.txt" | tail -n 1 | sed 's/^fuzz_png: //')"
+        return 0
+    fi
+    echo "fuzz png: FAILED (exit $rc), seed $seed; its last input: $dir/png-last.bin"
+    echo "    replay: $BUILD/fuzz_png $secs $seed"
+    tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
+    return 1
+}
+
+# --- the snapshot stream reader (tests/fuzz/fuzz_stream.c, a test in test_c) -----------
+target_stream() {
+    secs=$1 seed=$2 dir=$3
+    FUZZ_SEED=$seed FUZZ_STREAM_SECONDS=$secs "$BUILD/test_c" fuzz_stream_reader >"$dir/log.txt" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz stream: $(grep 'fuzz_stream' "$dir/log.txt" | tail -n 1)"
+        return 0
+    fi
+    echo "fuzz stream: FAILED (exit $rc), seed $seed"
+    echo "    replay: FUZZ_SEED=$seed FUZZ_STREAM_SECONDS=$secs $BUILD/test_c fuzz_stream_reader"
+    tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
+    return 1
+}
+
+# --- driver ---------------------------------------------------------------------------
+selected=""
+total_weight=0
+for t in $TARGETS; do
+    name=${t%%:*}
+    case " ${FUZZ_TARGETS:-$name} " in *" $name "*) ;; *) continue ;; esac
+    selected="$selected $t"
+    total_weight=$((total_weight + ${t#*:}))
+done
+echo "fuzz: seed $SEED, $SECONDS_ s over:$(for t in $selected; do printf ' %s' "${t%%:*}"; done)"
+pass=0
+fail=0
+for t in $selected; do
+    name=${t%%:*}
+    share=$((SECONDS_ * ${t#*:} / total_weight))
+    [ "$share" -ge 1 ] || share=1
+    rm -rf "${OUT:?}/$name"
+    mkdir -p "$OUT/$name"
+    if "target_$name" "$share" "$SEED" "$OUT/$name"; then pass=$((pass + 1)); else fail=$((fail + 1)); fi
+done
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
