@@ -56,6 +56,7 @@ static void undo(tt__builder *b)
     for (uint32_t i = 0; i < b->c.np; i++) tt_pool_unalloc(&w->ppool, b->pmark, i, b->c.parts[i].index, b->c.parts[i].gen);
     tt_pool_rewind(&w->ppool, b->pmark);
     w->fresh_count = b->fresh_count;
+    w->epoch = b->epoch; /* the particles are as they were, so is what was computed from them */
     tt__cgroup_unmake(w, b->had_group);
     release(b);
 }
@@ -92,6 +93,7 @@ bool tt__builder_spawn(tt__builder *b)
     }
     b->pmark = tt_pool_mark_now(&w->ppool);
     b->fresh_count = w->fresh_count;
+    b->epoch = w->epoch;
     b->had_group = tt__cgroup_peek(w) != NULL;
     tt__cgroup *g = tt__cgroup_get(w, true); /* made here, it starts empty: a mark like any other */
     if (g) b->cmark = tt_pool_mark_now(&g->pool);

@@ -231,6 +231,7 @@ typedef struct tt__builder {
     /* the world before its first change, for undo */
     tt_pool_mark pmark, cmark;
     uint32_t fresh_count;
+    uint64_t epoch;         /* particles made and removed moved it on: caches keyed by it would be stale */
     bool had_group;         /* the constraint group was there before */
     bool failed;
 } tt__builder;

@@ -156,10 +156,10 @@ tt_particle tt_particle_create(tt_world *w, const tt_particle_def *d)
     tt_particle none = {0, 0};
     if (!w) { tt__fail(NULL, TT_EINVAL, "tt_particle_create: world is NULL"); return none; }
     if (check_def(w, d) != TT_OK) return none;
-    if (d->user && need_user(w) != TT_OK) return none;
     if (w->ppool.count == w->pcap && w->ppool.free_count == 0 &&
         tt__particles_reserve(w, w->pcap + 1) != TT_OK)
         return none; /* reserve said why */
+    if (d->user && need_user(w) != TT_OK) return none;
     bool grew;
     uint32_t i = tt_pool_alloc(&w->ppool, w->pcap, &grew);
     if (i == UINT32_MAX) {

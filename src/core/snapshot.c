@@ -29,6 +29,14 @@ static const char magic[4] = {'T', 'T', 'S', 'S'};
 
 /* arr[0..count) of elem bytes, with zeros for removed slots: what a slot
  * held before its particle went is not state. */
+static bool any_user(const tt_world *w)
+{
+    if (!w->user) return false;
+    for (uint32_t i = 0; i < w->ppool.count; i++)
+        if ((w->flags[i] & TT_PF_ALIVE) && w->user[i]) return true;
+    return false;
+}
+
 static void put_live(tt__sink *s, const tt_world *w, const void *arr, size_t elem)
 {
     static const unsigned char zeros[64];
@@ -91,8 +99,10 @@ static void save_particles(const tt_world *w, tt__sink *s)
         put_live(s, w, w->fx, sizeof *w->fx);
         put_live(s, w, w->fy, sizeof *w->fy);
     }
-    tt__put_u8(s, w->user != NULL);
-    if (w->user) put_live(s, w, w->user, sizeof *w->user);
+    /* the values are the state, not whether their array was ever made */
+    const bool user = any_user(w);
+    tt__put_u8(s, user);
+    if (user) put_live(s, w, w->user, sizeof *w->user);
     tt__put_u32(s, w->fresh_count);
     tt__put(s, w->fresh, (size_t)w->fresh_count * sizeof *w->fresh);
 }

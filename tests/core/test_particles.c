@@ -268,3 +268,21 @@ TEST(max_particles_is_enforced)
     ENSURE(strstr(tt_last_error(w), "full") != NULL);
     tt_world_destroy(w);
 }
+
+/* Found by the C fuzzer (seed 23, call 5167): a create refused because the
+ * world is full, with user data in its def, had already made the user
+ * array, and an array of zeros changed the world's stream and hash. The
+ * state is the values, not whether their array exists. */
+TEST(a_refused_create_with_user_data_leaves_the_hash)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.max_particles = 1;
+    tt_world *w = tt_world_create(&wd);
+    tt_particle_def d = tt_particle_def_default();
+    ENSURE(tt_particle_create(w, &d).gen != 0);
+    uint64_t h0 = tt_world_hash(w);
+    d.user = 42;
+    ENSURE(tt_particle_create(w, &d).gen == 0);
+    ENSURE(tt_world_hash(w) == h0);
+    tt_world_destroy(w);
+}
