@@ -43,6 +43,7 @@ typedef struct cc_report {
     int ncosts;
     bool quick;
     int runs;            /* timed runs of each small scene */
+    ts_tether_settings small; /* tether's setting for the six small scenes; default 1 × 8, lattice 4 */
 } cc_report;
 
 double cc_now_ms(void);
@@ -88,7 +89,7 @@ typedef void (*cc_probe)(const cc_pair *p, int step, void *ctx);
  * every step), the engines alternating step by step; when timed, adds the
  * cost: median and range of the runs' mean ms/step. */
 bool cc_run_small(cc_report *r, const ts_scene *s, bool timed, cc_probe probe, void *ctx, const char **why);
-/* Adds a row measured at tether's default setting (1 × 8). */
+/* Adds a row measured at r->small. */
 void cc_put(cc_report *r, const char *scene, const char *measure, const char *unit, double expected, double b2, double tt);
 /* Median, min and max of v[0..n) (sorted in place). */
 void cc_stats(double *v, int n, double *med, double *lo, double *hi);

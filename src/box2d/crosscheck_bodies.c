@@ -145,7 +145,7 @@ bool cc_spin(cc_report *r, const char **why)
 
 /* --- 6. pyramid ------------------------------------------------------------- */
 
-typedef struct { double drift[2], turn[2]; } pyramid_ctx;
+typedef struct { double drift[2], rise[2], turn[2]; } pyramid_ctx;
 
 static void pyramid_probe(const cc_pair *p, int step, void *ctx)
 {
@@ -157,8 +157,10 @@ static void pyramid_probe(const cc_pair *p, int step, void *ctx)
         for (int e = 0; e < 2; e++) {
             const double a = fabs(remainder(st[e].angle, M_PI / 2)) * 180 / M_PI;
             c->turn[e] = fmax(c->turn[e], a);
-            if (i == top && step == (int)p->scene.steps)
-                c->drift[e] = hypot(st[e].position.x - p->scene.bodies[top].position.x, st[e].position.y - p->scene.bodies[top].position.y);
+            if (i == top && step == (int)p->scene.steps) {
+                c->drift[e] = fabs(st[e].position.x - p->scene.bodies[top].position.x);
+                c->rise[e] = st[e].position.y - p->scene.bodies[top].position.y;
+            }
         }
     }
 }
@@ -172,8 +174,10 @@ bool cc_pyramid(cc_report *r, const char **why)
     const bool good = cc_run_small(r, &s, true, pyramid_probe, &c, why);
     if (good) {
         char m[48];
-        snprintf(m, sizeof m, "top box drift at %.0f s", s.steps * s.dt);
+        snprintf(m, sizeof m, "top box sideways drift at %.0f s", s.steps * s.dt);
         cc_put(r, "pyramid", m, "m", 0, c.drift[0], c.drift[1]);
+        snprintf(m, sizeof m, "top box height change at %.0f s", s.steps * s.dt);
+        cc_put(r, "pyramid", m, "m", 0, c.rise[0], c.rise[1]);
         cc_put(r, "pyramid", "largest box rotation, any step", "deg", 0, c.turn[0], c.turn[1]);
     }
     ts_scene_free(&s);

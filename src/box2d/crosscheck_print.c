@@ -145,10 +145,12 @@ void cc_print(const cc_report *r, FILE *out, const char *dir, const char *load_b
 
 static int usage(FILE *f, int status)
 {
-    fprintf(f, "usage: tether crosscheck [--quick] [--runs N] [--out DIR] [SCENE]\n"
+    fprintf(f, "usage: tether crosscheck [--quick] [--runs N] [--tether SxI] [--lattice N] [--out DIR] [SCENE]\n"
                "Runs SCENE (fall, pendulum, bounce, slope, spin, pyramid, pour; default all) in tether and in\n"
                "Box2D 2.4.1 and prints the comparison; --out DIR also writes crosscheck.csv and crosscheck.md.\n"
-               "--quick: the 1 000-circle pour and 2 timed runs (for tests); --runs N: timed runs of each small scene (1..50, default 5).\n");
+               "--quick: the 1 000-circle pour and 2 timed runs (for tests); --runs N: timed runs of each small scene (1..50, default 5);\n"
+               "--tether SxI: tether's substeps x iterations in the small scenes (default 1x8); --lattice N: particles along a box's\n"
+               "shorter side (2..64, default 4). The pour always runs its own list of settings.\n");
     return status;
 }
 
@@ -158,10 +160,14 @@ int tb_crosscheck_main(int argc, char **argv)
     const char *scene = NULL, *dir = NULL, *why = "";
     if (!r) return fprintf(stderr, "crosscheck: out of memory\n"), 1;
     r->runs = 5;
+    r->small = ts_tether_settings_default();
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick")) r->quick = true, r->runs = 2;
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) dir = argv[++i];
         else if (!strcmp(argv[i], "--runs") && i + 1 < argc) r->runs = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--tether") && i + 1 < argc) {
+            if (sscanf(argv[++i], "%ux%u", &r->small.substeps, &r->small.iterations) != 2) return free(r), usage(stderr, 2);
+        } else if (!strcmp(argv[i], "--lattice") && i + 1 < argc) r->small.lattice = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--help")) return free(r), usage(stdout, 0);
         else if (argv[i][0] == '-' || scene) return free(r), usage(stderr, 2);
         else scene = argv[i];

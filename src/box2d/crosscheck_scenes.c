@@ -1,8 +1,8 @@
 /* tether — the six small scenes of the cross-check: each run in both
  * engines, measured step by step against the analytic answer where there
  * is one, and timed over several runs. Box2D: 8 velocity / 3 position
- * iterations, sleeping off, continuous physics on; tether: 1 substep, 8
- * iterations, boxes as 4 × 4 lattices (ts_tether_settings_default). */
+ * iterations, sleeping off, continuous physics on; tether: r->small
+ * (by default 1 substep, 8 iterations, boxes as 4 × 4 lattices). */
 #include "box2d_scene.h"
 
 #include <math.h>
@@ -23,7 +23,7 @@ static void state(const cc_pair *p, uint32_t body, ts_state *b2, ts_state *tt)
 
 bool cc_run_small(cc_report *r, const ts_scene *s, bool timed, cc_probe probe, void *ctx, const char **why)
 {
-    const ts_tether_settings set = ts_tether_settings_default();
+    const ts_tether_settings set = r->small;
     const tb_world_def def = small_def();
     double b2[50], tt[50];
     const int runs = !timed ? 1 : r->runs < 50 ? r->runs : 50, steps = (int)s->steps;
@@ -41,8 +41,9 @@ bool cc_run_small(cc_report *r, const ts_scene *s, bool timed, cc_probe probe, v
         }
         cc_pair_close(&p);
     }
-    cc_cost *c = timed ? cc_add_cost(r, s->name, "1x8 lattice 4 / b2 8/3 no sleep") : NULL;
+    cc_cost *c = timed ? cc_add_cost(r, s->name, "") : NULL;
     if (c) {
+        snprintf(c->setting, sizeof c->setting, "%ux%u lattice %u vs b2 8/3 no sleep", set.substeps, set.iterations, set.lattice);
         cc_stats(b2, runs, &c->box2d_med, &c->box2d_min, &c->box2d_max);
         cc_stats(tt, runs, &c->tether_med, &c->tether_min, &c->tether_max);
         c->runs = runs;
@@ -55,7 +56,7 @@ void cc_put(cc_report *r, const char *scene, const char *measure, const char *un
 {
     cc_row *w = cc_add(r, scene, measure, unit);
     if (!w) return;
-    snprintf(w->setting, sizeof w->setting, "1x8");
+    snprintf(w->setting, sizeof w->setting, "%ux%u L%u", r->small.substeps, r->small.iterations, r->small.lattice);
     w->expected = expected;
     w->box2d = b2;
     w->tether = tt;

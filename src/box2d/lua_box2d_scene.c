@@ -205,6 +205,7 @@ int tl_b2_crosscheck(lua_State *L)
     cc_report *r = lua_newuserdatauv(L, sizeof *r, 0); /* freed by Lua even if a step below raises */
     memset(r, 0, sizeof *r);
     r->runs = 5;
+    r->small = ts_tether_settings_default();
     bool print = false;
     if (!lua_isnoneornil(L, 2)) {
         luaL_checktype(L, 2, LUA_TTABLE);
