@@ -47,6 +47,8 @@ extern "C" tb_world_def tb_world_def_default(void)
 extern "C" tb_body_def tb_body_def_default(void)
 {
     tb_body_def d = {};
+    d.radius = 0.5;
+    d.half[0] = d.half[1] = 0.5;
     d.density = 1;
     d.friction = 0.3;
     return d;

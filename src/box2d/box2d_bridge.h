@@ -33,8 +33,8 @@ typedef struct tb_body_def {
     bool dynamic;
     double position[2], angle;    /* m, rad: the body's origin */
     double velocity[2], spin;     /* m/s of the centre of mass, rad/s */
-    double radius;                /* circle, m */
-    double half[2];               /* box half extents, m */
+    double radius;                /* circle, m; default 0.5 */
+    double half[2];               /* box half extents, m; default (0.5, 0.5) */
     double a[2], b[2];            /* edge ends, local, m; static only */
     double points[2 * TB_MAX_POLYGON]; /* polygon, local, convex, counter-clockwise */
     int count;                    /* polygon points, 3 … 8 */

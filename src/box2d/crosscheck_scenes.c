@@ -94,7 +94,7 @@ bool cc_fall(cc_report *r, const char **why)
 /* --- 2. pendulum ------------------------------------------------------------ */
 
 typedef struct {
-    double last_x[2], cross_first[2], cross_last[2];
+    double last_x[2], cross[2][4], cross_last[2];
     int crossings[2];
     double amp_first[2], amp_last[2];
 } pend_ctx;
@@ -111,7 +111,8 @@ static void pend_probe(const cc_pair *p, int step, void *ctx)
         const double x = st[e].position.x, ang = fabs(atan2(x, 2 - st[e].position.y));
         if (step > 1 && c->last_x[e] < 0 && x >= 0) {
             const double tc = t - p->scene.dt * x / (x - c->last_x[e]);
-            if (c->crossings[e]++ == 0) c->cross_first[e] = tc;
+            if (c->crossings[e] < 4) c->cross[e][c->crossings[e]] = tc;
+            c->crossings[e]++;
             c->cross_last[e] = tc;
         }
         c->last_x[e] = x;
@@ -140,10 +141,17 @@ bool cc_pendulum(cc_report *r, const char **why)
     memset(&c, 0, sizeof c);
     const bool good = cc_run_small(r, &s, true, pend_probe, &c, why);
     if (good) {
-        double T[2];
-        for (int e = 0; e < 2; e++) T[e] = c.crossings[e] > 1 ? (c.cross_last[e] - c.cross_first[e]) / (c.crossings[e] - 1) : NAN;
-        cc_put(r, "pendulum", "period (point bob, 30 deg)", "s", pendulum_period(1, 10, 30 * M_PI / 180), T[0], T[1]);
+        /* over the first three swings the amplitudes still match; over the
+         * whole run each engine's damping lowers its amplitude, and so its period */
+        double T[2], T3[2];
+        for (int e = 0; e < 2; e++) {
+            T[e] = c.crossings[e] > 1 ? (c.cross_last[e] - c.cross[e][0]) / (c.crossings[e] - 1) : NAN;
+            T3[e] = c.crossings[e] > 3 ? (c.cross[e][3] - c.cross[e][0]) / 3 : NAN;
+        }
+        cc_put(r, "pendulum", "period, first 3 swings (30 deg)", "s", pendulum_period(1, 10, 30 * M_PI / 180), T3[0], T3[1]);
         char m[48];
+        snprintf(m, sizeof m, "period over %.0f s", s.steps * s.dt);
+        cc_put(r, "pendulum", m, "s", NAN, T[0], T[1]);
         snprintf(m, sizeof m, "swing after %.0f s / first swing", s.steps * s.dt);
         cc_put(r, "pendulum", m, "", 1, c.amp_last[0] / c.amp_first[0], c.amp_last[1] / c.amp_first[1]);
     }

@@ -27,8 +27,29 @@ typedef struct lb_world { tb_world *w; } lb_world;
 static tb_world *check_world(lua_State *L, int i)
 {
     lb_world *u = luaL_checkudata(L, i, WORLD);
-    if (!u->w) luaL_error(L, "attempt to use a destroyed tether_box2d world");
+    if (!u->w) luaL_error(L, "attempt to use a destroyed tether_box2d world");  /* the message of a closed file, in kind */
     return u->w;
+}
+
+/* Methods are reached through __index, where Lua cannot name them: every
+ * argument error says the function's full name itself. */
+static int arg_error(lua_State *L, const char *fn, int arg, const char *what)
+{
+    return luaL_error(L, "%s: bad argument #%d (%s)", fn, arg, what);
+}
+
+static double check_num(lua_State *L, int i, const char *fn, const char *name)
+{
+    if (!lua_isnumber(L, i)) luaL_error(L, "%s: bad argument #%d (%s must be a number, got %s)", fn, i, name, luaL_typename(L, i));
+    const double v = lua_tonumber(L, i);
+    if (!isfinite(v)) luaL_error(L, "%s: bad argument #%d (%s must be finite)", fn, i, name);
+    return v;
+}
+
+static lua_Integer check_int(lua_State *L, int i, const char *fn, const char *name)
+{
+    if (!lua_isinteger(L, i)) luaL_error(L, "%s: bad argument #%d (%s must be an integer, got %s)", fn, i, name, luaL_typename(L, i));
+    return lua_tointeger(L, i);
 }
 
 /* Every key of the table at t must be one of names (NULL-terminated). */
@@ -193,13 +214,16 @@ static int l_joint(lua_State *L)
 {
     const char *fn = "tether_box2d.world:joint";
     tb_world *w = check_world(L, 1);
-    const tb_joint kind = (tb_joint)luaL_checkoption(L, 2, NULL, joints);
-    const lua_Integer a = luaL_checkinteger(L, 3), b = luaL_checkinteger(L, 4), n = tb_world_body_count(w);
-    luaL_argcheck(L, a >= 0 && a <= n, 3, "body a must be 0 (the ground) or an existing body");
-    luaL_argcheck(L, b >= 1 && b <= n && b != a, 4, "body b must be another existing body");
-    const double pa[2] = {luaL_checknumber(L, 5), luaL_checknumber(L, 6)};
-    const double pb[2] = {luaL_optnumber(L, 7, pa[0]), luaL_optnumber(L, 8, pa[1])};
-    const int j = tb_joint_create(w, kind, (int)a - 1, (int)b - 1, pa, pb);
+    const char *k = lua_tostring(L, 2);
+    int kind = 0;
+    while (joints[kind] && (!k || strcmp(k, joints[kind]))) kind++;
+    if (!joints[kind]) return arg_error(L, fn, 2, "kind must be 'revolute', 'distance' or 'weld'");
+    const lua_Integer a = check_int(L, 3, fn, "a"), b = check_int(L, 4, fn, "b"), n = tb_world_body_count(w);
+    if (a < 0 || a > n) return arg_error(L, fn, 3, "body a must be 0 (the ground) or an existing body");
+    if (b < 1 || b > n || b == a) return arg_error(L, fn, 4, "body b must be another existing body");
+    const double pa[2] = {check_num(L, 5, fn, "ax"), check_num(L, 6, fn, "ay")};
+    const double pb[2] = {lua_isnoneornil(L, 7) ? pa[0] : check_num(L, 7, fn, "bx"), lua_isnoneornil(L, 8) ? pa[1] : check_num(L, 8, fn, "by")};
+    const int j = tb_joint_create(w, (tb_joint)kind, (int)a - 1, (int)b - 1, pa, pb);
     if (j < 0) return luaL_error(L, "%s: %s", fn, tb_last_error());
     lua_pushinteger(L, j + 1);
     return 1;
@@ -208,8 +232,8 @@ static int l_joint(lua_State *L)
 static int l_step(lua_State *L)
 {
     tb_world *w = check_world(L, 1);
-    const double dt = luaL_checknumber(L, 2);
-    luaL_argcheck(L, dt > 0 && dt <= 10, 2, "dt must be in (0, 10] s");
+    const double dt = check_num(L, 2, "tether_box2d.world:step", "dt");
+    if (!(dt > 0 && dt <= 10)) return arg_error(L, "tether_box2d.world:step", 2, "dt must be in (0, 10] s");
     if (!tb_world_step(w, dt)) return luaL_error(L, "tether_box2d.world:step: %s", tb_last_error());
     return 0;
 }
@@ -217,9 +241,9 @@ static int l_step(lua_State *L)
 static int l_state(lua_State *L)
 {
     tb_world *w = check_world(L, 1);
-    const lua_Integer i = luaL_checkinteger(L, 2);
+    const lua_Integer i = check_int(L, 2, "tether_box2d.world:state", "body");
     tb_body_state st;
-    luaL_argcheck(L, i >= 1 && i <= tb_world_body_count(w), 2, "no such body");
+    if (i < 1 || i > tb_world_body_count(w)) return arg_error(L, "tether_box2d.world:state", 2, "no such body");
     tb_body_state_get(w, (int)i - 1, &st);
     const double v[6] = {st.position[0], st.position[1], st.angle, st.velocity[0], st.velocity[1], st.spin};
     for (int k = 0; k < 6; k++) lua_pushnumber(L, v[k]);

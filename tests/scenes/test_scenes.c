@@ -6,6 +6,7 @@
 #include "scenes/scene.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 static bool is_circle(const ts_body *b) { return b->dynamic && b->shape == TS_CIRCLE; }
 
