@@ -64,8 +64,8 @@ bool ts_scene_copy(ts_scene *dst, const ts_scene *src)
         ts_scene_free(dst);
         return false;
     }
-    memcpy(dst->bodies, src->bodies, (size_t)src->body_count * sizeof *dst->bodies);
-    memcpy(dst->joints, src->joints, (size_t)src->joint_count * sizeof *dst->joints);
+    if (src->body_count) memcpy(dst->bodies, src->bodies, (size_t)src->body_count * sizeof *dst->bodies);
+    if (src->joint_count) memcpy(dst->joints, src->joints, (size_t)src->joint_count * sizeof *dst->joints);
     dst->body_cap = src->body_count + 1;
     dst->joint_cap = src->joint_count + 1;
     return true;
