@@ -98,7 +98,7 @@ static void rows_for(cc_report *r, const char *setting, const pour_state b[2], c
             {"mean overlap", "r", b[i].pile.mean_overlap, t[i].pile.mean_overlap, true},
             {"kinetic energy", "J/kg", b[i].ke, t[i].ke, false}};
         for (int j = 0; j < 4; j++) {
-            if (m[j].end_only && i == 0) continue;
+            if ((m[j].end_only && i == 0) || (!has_tether && isnan(m[j].b))) continue;
             char what[48];
             snprintf(what, sizeof what, "%s at %s", m[j].what, when[i]);
             cc_row *w = cc_add(r, "pour", what, m[j].unit);
