@@ -115,8 +115,6 @@ static double slope(const uint32_t *sizes, const double *ms)
     return (4 * sxy - sx * sy) / (4 * sxx - sx * sx);
 }
 
-static void bench_pour(const char *dir);
-
 void bench_collide(const char *dir)
 {
     printf("\n== Collisions: colliding particles packed in a box under gravity (1 substep, 1 iteration) ==\n");
@@ -159,12 +157,11 @@ void bench_collide(const char *dir)
     }
     printf("100k equal radii: %.3f ms/step   target <= 5 ms: %s\n", grid_ms[0][2], grid_ms[0][2] <= 5 ? "met" : "NOT met");
 
-    bench_pour(dir);
 }
 
 /* The reference pour (src/scenes/, the scene `make crosscheck` uses) in
  * both engines for its first 5 s, sleeping off in both. */
-static void bench_pour(const char *dir)
+void bench_pour(const char *dir)
 {
     printf("\n== The reference pour (10 000 circles r = 0.5 into a 100-wide box), 300 steps of 1/60 s: tether vs Box2D 2.4.1 ==\n");
     printf("Box2D: 8 velocity / 3 position iterations, continuous off, sleeping off. tether: Verlet, 1 substep, 8 iterations\n");
