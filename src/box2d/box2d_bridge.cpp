@@ -250,7 +250,8 @@ extern "C" int tb_world_body_count(const tb_world *w) { return w ? (int)w->bodie
 extern "C" double tb_world_kinetic_energy(const tb_world *w)
 {
     double e = 0;
-    for (const b2Body *b : w ? w->bodies : std::vector<b2Body *>()) {
+    if (!w) return 0;
+    for (const b2Body *b : w->bodies) {
         if (b->GetType() != b2_dynamicBody) continue;
         const b2Vec2 v = b->GetLinearVelocity(), lc = b->GetLocalCenter();
         const double I = b->GetInertia() - b->GetMass() * b2Dot(lc, lc), om = b->GetAngularVelocity();

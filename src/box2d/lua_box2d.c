@@ -53,7 +53,7 @@ static lua_Integer check_int(lua_State *L, int i, const char *fn, const char *na
 }
 
 /* Every key of the table at t must be one of names (NULL-terminated). */
-static void only_keys(lua_State *L, int t, const char *fn, const char *const *names)
+void tl_b2_only_keys(lua_State *L, int t, const char *fn, const char *const *names)
 {
     lua_pushnil(L);
     while (lua_next(L, t)) {
@@ -137,7 +137,7 @@ tb_world_def tl_b2_world_def(lua_State *L, int t, const char *fn)
     tb_world_def d = tb_world_def_default();
     if (lua_isnoneornil(L, t)) return d;
     luaL_checktype(L, t, LUA_TTABLE);
-    only_keys(L, t, fn, world_keys);
+    tl_b2_only_keys(L, t, fn, world_keys);
     if (opt_list(L, t, fn, "gravity", d.gravity, 2) == 1) luaL_error(L, "%s: option 'gravity' must be {x, y}", fn);
     const double vi = opt_num(L, t, fn, "velocity_iterations", 8), pi = opt_num(L, t, fn, "position_iterations", 3);
     if (!(vi >= 1 && vi <= 1000 && pi >= 1 && pi <= 1000) || vi != floor(vi) || pi != floor(pi))
@@ -173,7 +173,7 @@ static const char *const body_keys[] = {"shape", "dynamic", "x", "y", "angle", "
 tb_body_def tl_b2_body_def(lua_State *L, int t, const char *fn)
 {
     luaL_checktype(L, t, LUA_TTABLE);
-    only_keys(L, t, fn, body_keys);
+    tl_b2_only_keys(L, t, fn, body_keys);
     tb_body_def d = tb_body_def_default();
     d.shape = (tb_shape)tl_b2_pick(L, t, fn, "shape", shapes);
     d.dynamic = opt_bool(L, t, fn, "dynamic", false);

@@ -10,6 +10,8 @@
 /* Option readers: each raises an error naming fn and the option. */
 tb_world_def tl_b2_world_def(lua_State *L, int t, const char *fn);
 tb_body_def tl_b2_body_def(lua_State *L, int t, const char *fn);
+/* Raises naming fn when the table at t has a key not in names (NULL-terminated). */
+void tl_b2_only_keys(lua_State *L, int t, const char *fn, const char *const *names);
 /* The index in names (NULL-terminated) of the string t[key]; raises otherwise. */
 int tl_b2_pick(lua_State *L, int t, const char *fn, const char *key, const char *const *names);
 /* A new world userdata on the stack (raises on failure). */

@@ -208,14 +208,16 @@ int tl_b2_crosscheck(lua_State *L)
     r->small = ts_tether_settings_default();
     bool print = false;
     if (!lua_isnoneornil(L, 2)) {
-        luaL_checktype(L, 2, LUA_TTABLE);
+        static const char *const keys[] = {"quick", "print", "runs", NULL};
+        if (!lua_istable(L, 2)) return luaL_error(L, "%s: bad argument #2 (options must be a table)", fn);
+        tl_b2_only_keys(L, 2, fn, keys);
         lua_getfield(L, 2, "quick");
         if (lua_toboolean(L, -1)) r->quick = true, r->runs = 2;
         lua_getfield(L, 2, "print");
         print = lua_toboolean(L, -1);
         lua_getfield(L, 2, "runs");
         if (!lua_isnil(L, -1)) {
-            const lua_Integer n = lua_tointeger(L, -1);
+            const lua_Integer n = lua_isinteger(L, -1) ? lua_tointeger(L, -1) : 0;
             if (n < 1 || n > 50) return luaL_error(L, "%s: option 'runs' must be an integer in [1, 50]", fn);
             r->runs = (int)n;
         }

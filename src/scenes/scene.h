@@ -106,7 +106,8 @@ typedef struct ts_pile {
     double mean_overlap; /* mean over overlapping pairs, fraction of a radius */
     uint32_t overlapping;/* pairs closer than two radii */
 } ts_pile;
-/* Circles of equal radius r at centres xy (2n doubles; reordered on the way). */
+/* Circles of equal radius r at centres xy (2n doubles; reordered on the way);
+ * NaN measures for r ≤ 0 or no xy. */
 void ts_pile_measure(double *xy, uint32_t n, double r, ts_pile *out);
 
 /* --- the tether side (scene_tether.c) ------------------------------------- */

@@ -30,7 +30,8 @@ void ts_scene_pour(ts_scene *s, uint32_t n, double width)
     add(s, &wall);
     wall.position.x = h + 0.5;
     add(s, &wall);
-    const uint32_t cols = (uint32_t)floor(width / 1.1) - 1; /* 89 for the 100-wide box, 286 for 316 */
+    /* 89 for the 100-wide box, 286 for 316; at least one, however narrow the box */
+    const uint32_t cols = width >= 3.3 && width <= 1e6 ? (uint32_t)floor(width / 1.1) - 1 : 1;
     ts_body c = ts_circle(true, (tt_vec2){0, 0}, 0.5);
     for (uint32_t i = 0; i < n; i++) {
         const uint32_t row = i / cols, col = i % cols;

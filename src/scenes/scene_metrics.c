@@ -45,6 +45,9 @@ static double fill_level(const double *xy, uint32_t n, double r)
 
 void ts_pile_measure(double *xy, uint32_t n, double r, ts_pile *out)
 {
+    if (!out) return;
+    *out = (ts_pile){NAN, NAN, NAN, 0};
+    if ((!xy && n) || !(r > 0)) return;
     /* sorted by x, a circle's neighbours within 2r follow it: no grid needed */
     qsort(xy, n, 2 * sizeof *xy, by_x);
     double deepest = 0, sum = 0;

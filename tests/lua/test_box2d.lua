@@ -64,6 +64,8 @@ T.test("errors name the function and the argument", function()
   T.checkerror("tether_box2d.scene: bad argument #1 (unknown scene 'nope'", b2.scene, "nope")
   T.checkerror("tether_box2d.build: the scene's 'bodies' must be a list", b2.build, {})
   T.checkerror("tether_box2d.crosscheck: unknown scene", b2.crosscheck, "nope", { quick = true })
+  T.checkerror("tether_box2d.crosscheck: unknown option 'fast'", b2.crosscheck, "fall", { fast = true })
+  T.checkerror("tether_box2d.crosscheck: option 'runs' must be an integer in [1, 50]", b2.crosscheck, "fall", { runs = 1.5 })
 end)
 
 T.test("the cross-check's rows come back as tables", function()

@@ -119,6 +119,10 @@ TEST(scenes_pile_measures)
     ENSURE_NEAR(p.max_overlap, 0.2, 1e-12);
     ENSURE_NEAR(p.mean_overlap, 0.2, 1e-12);
     ENSURE_NEAR(p.height, 1, 1e-12);
+    ts_pile_measure(NULL, 3, 0.5, &p);
+    ENSURE(isnan(p.height) && p.overlapping == 0);
+    ts_pile_measure(xy, 3, 0, &p);
+    ENSURE(isnan(p.max_overlap));
 }
 
 /* A box as a lattice keeps the rigid body's mass, centre and motion. */
