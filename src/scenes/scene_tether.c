@@ -159,8 +159,8 @@ static tt_result link(tt_world *w, tt_particle a, tt_particle b)
     return tt_distance_create(w, &d).gen ? TT_OK : TT_EINVAL;
 }
 
-/* revolute: a pivot particle at the anchor (pinned on the ground side),
- * linked to the nearest one or two particles of each body; distance: one
+/* revolute: a pivot particle at the anchor (pinned on the ground side,
+ * else light), linked to the nearest one or two particles of each body; distance: one
  * link between the particles nearest the anchors; weld: the nearest two
  * of each body linked pairwise (pinned where they are on the ground side). */
 static tt_result joint(ts_tether *t, const ts_joint *j)
@@ -176,11 +176,16 @@ static tt_result joint(ts_tether *t, const ts_joint *j)
         return link(w, pa[0], pb[0]);
     }
     const uint32_t nb = nearest(t, j->b, j->anchor_a, pb, 2);
+    if (nb == 0) return TT_EINVAL;
     if (j->kind == TS_REVOLUTE) {
         tt_particle pivot = ground_point(w, j->anchor_a);
         if (!ground) {
+            /* a pivot between two bodies carries a hundredth of a particle's mass: enough to stay finite */
             const uint32_t na = nearest(t, j->a, j->anchor_a, pa, 2);
-            r = tt_particle_set_pinned(w, pivot, false);
+            double m = 1;
+            r = tt_particle_get_mass(w, pb[0], &m);
+            if (r == TT_OK) r = tt_particle_set_pinned(w, pivot, false);
+            if (r == TT_OK) r = tt_particle_set_mass(w, pivot, 0.01 * m);
             for (uint32_t i = 0; r == TT_OK && i < na; i++) r = link(w, pivot, pa[i]);
         }
         for (uint32_t i = 0; r == TT_OK && i < nb; i++) r = link(w, pivot, pb[i]);

@@ -152,3 +152,46 @@ TEST(scenes_tether_lattice_box_is_the_body)
     ts_tether_free(&t);
     ts_scene_free(&s);
 }
+
+/* The three joints, as tether builds them: a box on a ground pivot swings at
+ * a fixed distance, a box welded to the ground stays, two circles on a
+ * distance joint keep it, two boxes on a pivot between them stay joined. */
+TEST(scenes_tether_joints_hold)
+{
+    ts_scene s;
+    ts_scene_init(&s, "joints");
+    ts_body box = ts_box(true, (tt_vec2){2, 0}, 0.25, 0.25, 0);
+    ENSURE(ts_scene_add_body(&s, &box, NULL) == 0);
+    ts_joint j = {TS_REVOLUTE, TS_GROUND, 0, {0, 0}, {0, 0}};
+    ENSURE(ts_scene_add_joint(&s, &j, NULL) == 0);
+    box.position = (tt_vec2){10, 0};
+    ENSURE(ts_scene_add_body(&s, &box, NULL) == 1);
+    j = (ts_joint){TS_WELD, TS_GROUND, 1, {10, 0}, {0, 0}};
+    ENSURE(ts_scene_add_joint(&s, &j, NULL) == 0 + 1);
+    ts_body c = ts_circle(true, (tt_vec2){20, 0}, 0.5);
+    ENSURE(ts_scene_add_body(&s, &c, NULL) == 2);
+    c.position = (tt_vec2){22, 0};
+    ENSURE(ts_scene_add_body(&s, &c, NULL) == 3);
+    j = (ts_joint){TS_DISTANCE, 2, 3, {20, 0}, {22, 0}};
+    ENSURE(ts_scene_add_joint(&s, &j, NULL) == 2);
+    box.position = (tt_vec2){30, 0};
+    ENSURE(ts_scene_add_body(&s, &box, NULL) == 4);
+    box.position = (tt_vec2){30.5, 0};
+    ENSURE(ts_scene_add_body(&s, &box, NULL) == 5);
+    j = (ts_joint){TS_REVOLUTE, 4, 5, {30.25, 0}, {0, 0}};
+    ENSURE(ts_scene_add_joint(&s, &j, NULL) == 3);
+    ts_tether t;
+    const ts_tether_settings set = ts_tether_settings_default();
+    ENSURE(ts_tether_build(&s, &set, &t, NULL) == TT_OK);
+    for (int i = 0; i < 60; i++) ENSURE_OK(tt_world_step(t.world, s.dt));
+    ts_state st[6];
+    for (uint32_t i = 0; i < 6; i++) ENSURE_OK(ts_tether_state(&t, i, &st[i]));
+    ENSURE(st[0].position.y < -0.5);                             /* it swung down */
+    ENSURE_NEAR(hypot(st[0].position.x, st[0].position.y), 2, 0.02); /* on its arm */
+    ENSURE_NEAR(st[1].position.y, 0, 0.05);                      /* the welded box hangs on */
+    ENSURE_NEAR(hypot(st[3].position.x - st[2].position.x, st[3].position.y - st[2].position.y), 2, 1e-3);
+    ENSURE(st[4].position.y < -4);                               /* the pair falls together */
+    ENSURE_NEAR(hypot(st[5].position.x - st[4].position.x, st[5].position.y - st[4].position.y), 0.5, 0.02);
+    ts_tether_free(&t);
+    ts_scene_free(&s);
+}
