@@ -53,21 +53,34 @@ LUA_SRC    := $(wildcard src/lua/*.c)
 CANVAS_SRC := src/render/render_canvas.c src/render/render_font.c src/render/render_debug.c src/render/render_mask.c
 RENDER_SRC := $(wildcard src/render/*.c)
 RUNNER_SRC := $(wildcard src/runner/*.c)
+# Scene descriptions and their tether builder (plain C, public API only):
+# linked by the bench, the tests and the Box2D bridge, never by the engine.
+SCENES_SRC := $(wildcard src/scenes/*.c)
+# The Box2D cross-check: the only C++ file, its C side and its Lua module.
+B2_SRC     := $(filter-out src/box2d/lua_%.c,$(wildcard src/box2d/*.c))
+B2_LUA_SRC := $(wildcard src/box2d/lua_*.c)
 obj_of = $(patsubst src/%.c,$(BUILD)/obj/%.o,$(1))
 CORE_OBJ   := $(call obj_of,$(ENGINE_SRC))
 LUA_OBJ    := $(call obj_of,$(LUA_SRC))
 CANVAS_OBJ := $(call obj_of,$(CANVAS_SRC))
 RENDER_OBJ := $(call obj_of,$(RENDER_SRC))
 RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
+SCENES_OBJ := $(call obj_of,$(SCENES_SRC))
+B2_OBJ     := $(call obj_of,$(B2_SRC)) $(BUILD)/obj/box2d/box2d_bridge.o
+B2_LUA_OBJ := $(call obj_of,$(B2_LUA_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
 # tests/fuzz/ holds fuzzers with their own main, built on their own; the
 # snapshot stream reader's fuzzer is a test of test_c (make test runs 300 streams).
-TEST_SRC := $(filter-out tests/fuzz/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c
+# tests/box2d/ links Box2D: a program of its own.
+TEST_SRC := $(filter-out tests/fuzz/% tests/box2d/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c
 FUZZ_C_SRC := $(wildcard tests/fuzz/fuzz_c*.c)
 FUZZ_C_OBJ := $(FUZZ_C_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
+# The cross-check's tests link Box2D, so they are a program of their own.
+TEST_B2_SRC := tests/test_main.c $(wildcard tests/box2d/*.c)
+TEST_B2_OBJ := $(TEST_B2_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 BENCH_SRC := $(wildcard bench/*.c)
 
 LIB_A   := $(BUILD)/libtether.a
@@ -77,10 +90,14 @@ LUA_MOD := $(BUILD)/tether.so
 RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 FUZZ_C  := $(BUILD)/fuzz_c
+SCENES_A := $(BUILD)/libtether_scenes.a
+B2_A     := $(BUILD)/libtether_box2d.a
+B2_MOD   := $(BUILD)/tether_box2d.so
+TEST_B2  := $(BUILD)/test_box2d
 BENCH   := $(BUILD)/bench
 
-.PHONY: all deps demo pictures test test-c test-lua fuzz memcheck bench install uninstall clean
-all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER)
+.PHONY: all deps demo pictures test test-c test-lua fuzz memcheck bench crosscheck install uninstall clean
+all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD)
 
 # --- dependencies -----------------------------------------------------------
 # Installs what is missing when run as root on Debian; otherwise prints the
@@ -127,6 +144,16 @@ $(BUILD)/obj/render/%.o: src/render/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -MMD -c $< -o $@
 
+# The bridge: C++17 with the C files' warnings and floating-point rules.
+CXXFLAGS_ALL := -std=c++17 $(OPT) $(FPFLAGS) -Wall -Wextra -Wpedantic -Wshadow -fPIC -fvisibility=hidden -Isrc $(SANFLAGS) $(CXXFLAGS)
+$(BUILD)/obj/box2d/%.o: src/box2d/%.cpp src/box2d/box2d_bridge.h | deps
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS_ALL) $(BOX2D_CFLAGS) -MMD -c $< -o $@
+
+$(BUILD)/obj/box2d/lua_%.o: src/box2d/lua_%.c $(HEADERS) | deps
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
+
 $(BUILD)/obj/tests/%.o: tests/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Itests -MMD -c $< -o $@
@@ -136,6 +163,17 @@ $(LIB_A): $(CORE_OBJ)
 
 $(LIB_SO): $(CORE_OBJ)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
+
+$(SCENES_A): $(SCENES_OBJ)
+	rm -f $@; ar rcs $@ $^
+
+$(B2_A): $(B2_OBJ)
+	rm -f $@; ar rcs $@ $^
+
+# The cross-check's Lua module carries its own copy of the engine (like
+# tether.so) and is the one product that links Box2D and libstdc++.
+$(B2_MOD): $(B2_LUA_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm
 
 # The Lua module is not linked against liblua: the host (lua5.4 or our runner)
 # provides the Lua API, and a second copy of Lua in one process breaks it.
@@ -151,7 +189,7 @@ $(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
 # The C tests route the engine's allocations through tests/alloc_fail.c, so a
 # test can make memory run out at any chosen allocation.
 TEST_WRAP := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc
-$(TEST_C): $(TEST_OBJ) $(RENDER_A) $(LIB_A)
+$(TEST_C): $(TEST_OBJ) $(RENDER_A) $(SCENES_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(TEST_WRAP) $(RENDER_LIBS) -lm
 
 # The PNG loader's fuzzer (tests/fuzz/fuzz_png.c), run by `make fuzz`.
@@ -163,17 +201,21 @@ $(FUZZ_PNG): tests/fuzz/fuzz_png.c $(LIB_A) | deps
 $(FUZZ_C): $(FUZZ_C_OBJ) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
 
-# Box2D 2.4.1 (C++) for the collision cross-check: the bench binary only, never the engine.
-BOX2D_OBJ := $(BUILD)/obj/box2d_scene.o
-$(BOX2D_OBJ): bench/box2d_scene.cpp | deps
-	@mkdir -p $(@D)
-	$(CXX) -O2 $(SANFLAGS) $(BOX2D_CFLAGS) -c $< -o $@
+$(TEST_B2): $(TEST_B2_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm
 
-$(BENCH): $(BENCH_SRC) $(RENDER_A) $(LIB_A) $(BOX2D_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Ibench -o $@ $(BENCH_SRC) $(BOX2D_OBJ) $(RENDER_A) $(LIB_A) $(LDFLAGS_ALL) \
+# The bench compares with Box2D 2.4.1 through the bridge (src/box2d/), on
+# the shared scenes (src/scenes/).
+$(BENCH): $(BENCH_SRC) $(RENDER_A) $(B2_A) $(SCENES_A) $(LIB_A) | deps
+	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Ibench -o $@ $(BENCH_SRC) $(RENDER_A) $(B2_A) $(SCENES_A) $(LIB_A) $(LDFLAGS_ALL) \
 	  $(RENDER_LIBS) $(BOX2D_LIBS) -lstdc++ -lm
 
 -include $(wildcard $(BUILD)/obj/*/*.d $(BUILD)/obj/tests/*/*.d $(BUILD)/obj/tests/*.d)
+
+# `make crosscheck [QUICK=1]`: the seven scenes in tether and in Box2D 2.4.1,
+# one table on the terminal, CSV and Markdown in $(BUILD)/crosscheck/.
+crosscheck: all
+	$(RUNNER) crosscheck $(if $(QUICK),--quick) --out $(BUILD)/crosscheck
 
 # --- run --------------------------------------------------------------------
 # `make demo` renders DEMO headless to PNG frames in $(BUILD)/demo/ (100 frames,
@@ -205,7 +247,7 @@ pictures: all
 	  convert -delay 7 -loop 0 $(BUILD)/pictures/gif/frame_*.png -layers Optimize docs/img/demo.gif && echo "docs/img/demo.gif" || \
 	  echo "docs/img/demo.gif: not made (needs ImageMagick's convert)"
 
-test: all $(TEST_C) $(FUZZ_C)
+test: all $(TEST_C) $(FUZZ_C) $(TEST_B2)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) sh tests/run.sh
 
 # `make memcheck`: the C tests under valgrind memcheck; any error or leak
@@ -248,6 +290,7 @@ install: all
 	install -m 644 include/tether.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 include/tether/*.h $(DESTDIR)$(PREFIX)/include/tether/
 	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
+	install -m 755 $(B2_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether_box2d.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
 	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
 	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lpng16 -lm\nCflags: -I$${includedir}\n' \
@@ -256,7 +299,7 @@ install: all
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/include/tether.h
 	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so $(DESTDIR)$(PREFIX)/lib/libtether_render.a \
-	  $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so $(DESTDIR)$(PREFIX)/bin/tether \
+	  $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether_box2d.so $(DESTDIR)$(PREFIX)/bin/tether \
 	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
 
 clean:

@@ -175,6 +175,7 @@ static const struct {
     {"integrate", bench_integrate},
     {"tradeoff", bench_tradeoff},
     {"collide", bench_collide},
+    {"pour", bench_pour},
     {"render", bench_render},
     {"constraints", bench_constraints},
     {"mask", bench_mask},

@@ -14,6 +14,8 @@ FILE *bench_csv(const char *dir, const char *name, const char *header);
 void bench_integrate(const char *dir);
 void bench_tradeoff(const char *dir);
 void bench_collide(const char *dir);
+/* The reference pour against Box2D 2.4.1 (bench_collide.c). */
+void bench_pour(const char *dir);
 void bench_render(const char *dir);
 void bench_constraints(const char *dir);
 void bench_mask(const char *dir);

@@ -1,39 +1,13 @@
 /* tether — collision benchmarks: ms/step against particle count (grid and
  * brute force, equal radii and a 1:4 mix), the grid's scaling slope,
- * broadphase memory per particle, and 10 000 circles settling in a box
- * against Box2D 2.4.1 doing the same (bench/box2d_scene.cpp). */
+ * broadphase memory per particle, and the reference pour (src/scenes/)
+ * against Box2D 2.4.1 doing the same (through src/box2d/). */
 #include "bench.h"
 #include "tether.h"
+#include "box2d/box2d_scene.h"
 
 #include <math.h>
 #include <stdlib.h>
-
-typedef struct box2d_scene box2d_scene; /* bench/box2d_scene.cpp */
-box2d_scene *box2d_scene_create(int n, double radius, double width);
-double box2d_scene_step(box2d_scene *sc);
-void box2d_scene_positions(const box2d_scene *sc, double *xy);
-void box2d_scene_destroy(box2d_scene *sc);
-
-/* The pile's top centre and its deepest overlap between two particles of
- * radius r (2r apart when touching), over centres xy (sorted by x on the way). */
-static int by_x(const void *p, const void *q)
-{
-    const double a = *(const double *)p, b = *(const double *)q;
-    return (a > b) - (a < b);
-}
-
-static void pile(double *xy, int n, double r, double *top, double *deepest)
-{
-    qsort(xy, (size_t)n, 2 * sizeof *xy, by_x);
-    *top = *deepest = 0;
-    for (int i = 0; i < n; i++) {
-        *top = fmax(*top, xy[2 * i + 1]);
-        for (int j = i + 1; j < n && xy[2 * j] - xy[2 * i] < 2 * r; j++) {
-            double dx = xy[2 * j] - xy[2 * i], dy = xy[2 * j + 1] - xy[2 * i + 1], d2 = dx * dx + dy * dy;
-            if (d2 < 4 * r * r) *deepest = fmax(*deepest, 2 * r - sqrt(d2));
-        }
-    }
-}
 
 /* Walls of a box `width` wide (inner faces at ±width/2, floor top at 0). */
 static void box(tt_world *w, double width)
@@ -183,60 +157,53 @@ void bench_collide(const char *dir)
     }
     printf("100k equal radii: %.3f ms/step   target <= 5 ms: %s\n", grid_ms[0][2], grid_ms[0][2] <= 5 ? "met" : "NOT met");
 
-    printf("\n== 10 000 circles (r = 0.5) settling in a 100-wide box, 300 steps of 1/60 s: tether vs Box2D 2.4.1 ==\n");
-    printf("Box2D: 8 velocity / 3 position iterations, continuous off, sleeping on. tether: Verlet, 1 substep, 8 iterations\n");
-    printf("(the two take turns, 30 steps each; means over the run)\n");
+}
+
+/* The reference pour (src/scenes/, the scene `make crosscheck` uses) in
+ * both engines for its first 5 s, sleeping off in both. */
+void bench_pour(const char *dir)
+{
+    printf("\n== The reference pour (10 000 circles r = 0.5 into a 100-wide box), 300 steps of 1/60 s: tether vs Box2D 2.4.1 ==\n");
+    printf("Box2D: 8 velocity / 3 position iterations, continuous off, sleeping off. tether: Verlet, 1 substep, 8 iterations\n");
+    printf("(the two take turns, 30 steps each, timing only the step; means over the run; `make crosscheck` for 20 s)\n");
     printf("target: tether >= 20x faster than Box2D\n");
-    const int n = 10000, steps = 300;
-    double b2max = 0, b2top, b2deep, top, deep;
+    const int steps = 300;
+    ts_scene sc;
+    ts_scene_pour(&sc, 10000, 100);
+    ts_tether_settings set = ts_tether_settings_default();
+    tb_world_def bd = tb_world_def_default();
+    bd.sleep = bd.continuous = false;
+    cc_pair p;
+    const char *why = "";
+    const bool opened = cc_pair_open(&p, &sc, &set, &bd, &why);
+    ts_scene_free(&sc);
+    if (!opened || !cc_pair_step(&p, steps, 30, &why)) {
+        printf("pour: %s\n", why);
+        if (opened) cc_pair_close(&p);
+        return;
+    }
+    double b2 = 0, tt = 0, b2max = 0, worst = 0;
+    for (int s = 0; s < steps; s++) {
+        b2 += p.t_b2[s] / steps;
+        tt += p.t_tt[s] / steps;
+        b2max = fmax(b2max, p.t_b2[s]);
+        worst = fmax(worst, p.t_tt[s]);
+    }
+    const uint32_t n = p.tt.circle_count;
     double *xy = malloc(2 * (size_t)n * sizeof *xy);
-    box2d_scene *b2w = box2d_scene_create(n, 0.5, 100.0);
-    tt_world_def wd = tt_world_def_default();
-    wd.iterations = 8;
-    tt_world *w = tt_world_create(&wd);
-    tt_collision_settings cs = tt_collision_settings_default();
-    cs.friction_static = cs.friction_kinetic = 0.6;
-    tt_world_set_collision(w, &cs);
-    box(w, 100.0);
-    const double r = 0.5, width = 100.0;
-    const int cols = (int)(width / (2.4 * r));
-    tt_particle_def pd = tt_particle_def_default();
-    pd.radius = r;
-    for (int i = 0; i < n; i++) { /* the same start as box2d_scene.cpp */
-        pd.position = (tt_vec2){-width / 2 + 1.2 * r + (i % cols) * 2.4 * r + ((i / cols) % 2) * 0.3 * r, r * 1.2 + (i / cols) * 2.4 * r};
-        tt_particle_create(w, &pd);
-    }
-    /* the two take turns, 30 steps each, so both see the same load on a shared
-     * machine (step by step, each would evict the other's data every step) */
-    double total = 0, worst = 0, b2 = 0;
-    for (int s0 = 0; s0 < steps; s0 += 30) {
-        for (int s = s0; s < s0 + 30 && s < steps; s++) {
-            double ms = box2d_scene_step(b2w);
-            b2 += ms;
-            b2max = fmax(b2max, ms);
-        }
-        for (int s = s0; s < s0 + 30 && s < steps; s++) {
-            double t0 = bench_now_ns();
-            tt_world_step(w, 1.0 / 60);
-            double ms = (bench_now_ns() - t0) * 1e-6;
-            total += ms;
-            worst = fmax(worst, ms);
-        }
-    }
-    b2 /= steps;
-    box2d_scene_positions(b2w, xy);
-    box2d_scene_destroy(b2w);
-    pile(xy, n, 0.5, &b2top, &b2deep);
-    tt_world_read_positions(w, xy, (uint32_t)n);
-    pile(xy, n, r, &top, &deep);
+    ts_pile pb, pt;
+    tb_positions(p.b2, 3, (int)n, xy); /* bodies 0–2 are the floor and the walls */
+    ts_pile_measure(xy, n, 0.5, &pb);
+    tt_particles_get_positions(p.tt.world, p.tt.circles, n, xy);
+    ts_pile_measure(xy, n, 0.5, &pt);
     free(xy);
-    tt_world_destroy(w);
-    double tt = total / steps;
-    printf("%10s %14s %14s %14s %16s\n", "engine", "mean ms/step", "worst ms", "pile top m", "deepest overlap");
-    printf("%10s %14.3f %14.3f %14.2f %14.1f %%r\n", "Box2D", b2, b2max, b2top, 100 * b2deep / r);
-    printf("%10s %14.3f %14.3f %14.2f %14.1f %%r\n", "tether", tt, worst, top, 100 * deep / r);
+    cc_pair_close(&p);
+    printf("%10s %14s %14s %14s %16s %14s\n", "engine", "mean ms/step", "worst ms", "pile height m", "max overlap", "mean overlap");
+    printf("%10s %14.3f %14.3f %14.2f %14.1f %%r %12.2f %%r\n", "Box2D", b2, b2max, pb.height, 100 * pb.max_overlap, 100 * pb.mean_overlap);
+    printf("%10s %14.3f %14.3f %14.2f %14.1f %%r %12.2f %%r\n", "tether", tt, worst, pt.height, 100 * pt.max_overlap, 100 * pt.mean_overlap);
     printf("speed-up %.1fx   target >= 20x: %s\n", b2 / tt, b2 / tt >= 20 ? "met" : "NOT met");
-    FILE *c2 = bench_csv(dir, "collide_box2d.csv", "engine,mean_ms,worst_ms,top,deepest_overlap");
-    fprintf(c2, "box2d,%.4f,%.4f,%.3f,%.4f\ntether,%.4f,%.4f,%.3f,%.4f\n", b2, b2max, b2top, b2deep, tt, worst, top, deep);
+    FILE *c2 = bench_csv(dir, "collide_box2d.csv", "engine,mean_ms,worst_ms,height,max_overlap,mean_overlap");
+    fprintf(c2, "box2d,%.4f,%.4f,%.3f,%.4f,%.4f\ntether,%.4f,%.4f,%.3f,%.4f,%.4f\n", b2, b2max, pb.height, pb.max_overlap,
+            pb.mean_overlap, tt, worst, pt.height, pt.max_overlap, pt.mean_overlap);
     fclose(c2);
 }

@@ -19,7 +19,7 @@ breach() {
 }
 
 # 1. file sizes
-for f in src/*/*.c src/*/*.h; do
+for f in src/*/*.c src/*/*.h src/*/*.cpp; do
     n=$(wc -l <"$f")
     [ "$n" -le 600 ] && continue
     max=$(awk -v f="$f" '$1 == "lines" && $2 == f { print $3 }' "$allow")
@@ -33,7 +33,7 @@ awk '
     /^[A-Za-z_].*\(/ && !/;[ \t]*$/ { name = $0; sub(/\(.*/, "", name); sub(/.*[ *]/, "", name) }
     /^\{/ { start = FNR; fn = name }
     /^\}/ && start { if (FNR - start - 1 > 80) print FILENAME, fn, FNR - start - 1; start = 0 }
-' src/*/*.c | while read -r file fn n; do
+' src/*/*.c src/*/*.cpp | while read -r file fn n; do
     max=$(awk -v f="$file" -v g="$fn" '$1 == "function" && $2 == f && $3 == g { print $4 }' "$allow")
     if [ -z "$max" ]; then echo "layout: $file: $fn() has $n lines (at most 80)"
     elif [ "$n" -gt "$max" ]; then echo "layout: $file: $fn() grew to $n lines (allowed $max while it is split)"
@@ -43,13 +43,15 @@ if [ -s "$BUILD/layout-functions.txt" ]; then cat "$BUILD/layout-functions.txt";
 
 # 3. dependency circles between the object files of each part
 objs=$(ls "$BUILD"/obj/core/*.o "$BUILD"/obj/constraints/*.o "$BUILD"/obj/collide/*.o \
-          "$BUILD"/obj/mask/*.o "$BUILD"/obj/lua/*.o "$BUILD"/obj/render/*.o "$BUILD"/obj/runner/*.o 2>/dev/null)
+          "$BUILD"/obj/mask/*.o "$BUILD"/obj/lua/*.o "$BUILD"/obj/render/*.o "$BUILD"/obj/runner/*.o \
+          "$BUILD"/obj/scenes/*.o "$BUILD"/obj/box2d/*.o 2>/dev/null)
 if [ -z "$objs" ]; then
     breach "no objects under $BUILD/obj: build first"
 else
     for o in $objs; do
         src=${o#"$BUILD"/obj/}
         src=src/${src%.o}.c
+        [ -e "$src" ] || src=${src%.c}.cpp
         nm --defined-only "$o" | awk -v s="$src" '$2 ~ /^[TDRBC]$/ { print "def", s, $3 }'
         nm -u "$o" | awk -v s="$src" '{ print "use", s, $NF }'
     done | awk '

@@ -5,7 +5,9 @@
 #
 # Parts, in order:
 #   1. $BUILD/test_c                                 the C tests
+#   1a. $BUILD/test_box2d                            the Box2D cross-check's tests (links Box2D)
 #   1b. tests/layout.sh                              file/function sizes, dependency circles
+#   1c. libtether.so and tether.so link neither Box2D nor libstdc++; `tether crosscheck` runs
 #   2. $BUILD/tether tests/lua/test_*.lua            the Lua binding tests
 #   3. fountain.lua run twice as two processes       must print the same hash
 #   4. lua5.4 tests/lua/test_world.lua               stock Lua requires $BUILD/tether.so
@@ -93,6 +95,36 @@ done
 if [ -x "$BUILD/test_c" ]; then
     run_counted "c: $BUILD/test_c" "$BUILD/test_c"
 fi
+
+# 1a. The cross-check: the bridge, and the agreement measured between the engines.
+if [ -x "$BUILD/test_box2d" ]; then
+    run_counted "c: $BUILD/test_box2d" "$BUILD/test_box2d"
+else
+    echo "c: $BUILD/test_box2d is missing"
+    add 0 1
+fi
+
+# 1c. Only the cross-check's own products link Box2D and libstdc++: the
+# engine and the Lua module stay plain C. The module that must link them is
+# checked too, so the check cannot pass by looking at nothing. The direct
+# needs (readelf), not ldd's closure: under SANITIZE=1 libasan itself pulls
+# libstdc++ into every program.
+no_cxx() {
+    for f in "$BUILD/libtether.so" "$BUILD/tether.so"; do
+        if readelf -d "$f" | grep NEEDED | grep -Eq 'box2d|stdc\+\+'; then echo "$f links Box2D or libstdc++:"; readelf -d "$f"; return 1; fi
+        if nm -D --undefined-only "$f" | grep -q ' _Z'; then echo "$f needs C++ symbols"; return 1; fi
+    done
+    readelf -d "$BUILD/tether_box2d.so" | grep NEEDED | grep -q box2d || { echo "$BUILD/tether_box2d.so does not link Box2D"; return 1; }
+}
+run_check "link: libtether.so and tether.so need neither Box2D nor libstdc++" no_cxx
+crosscheck_ok() {
+    "$RUNNER" crosscheck --quick --runs 1 fall >"$tmp2" 2>&1 || { cat "$tmp2"; return 1; }
+    cat "$tmp2"
+    grep -q '^fall  *dropped box: fall in 1 s' "$tmp2" || return 1
+    "$RUNNER" crosscheck nope >/dev/null 2>&1
+    [ $? -eq 1 ]
+}
+run_check "runner: tether crosscheck --quick fall prints its table; an unknown scene exits 1" crosscheck_ok
 
 # 1b. The layout rules (file and function sizes, no dependency circles).
 run_check "layout: tests/layout.sh" sh tests/layout.sh "$BUILD"

@@ -1,0 +1,79 @@
+-- tests/lua/test_box2d.lua — the tether_box2d module: Box2D worlds beside a
+-- tether world, the shared scenes as tables, the cross-check's rows, and
+-- errors that name the function and the argument.
+package.path = "tests/lua/?.lua;" .. package.path
+package.cpath = (os.getenv("BUILD") or "build") .. "/?.so;" .. package.cpath
+local T = require "harness"
+local tether = require "tether"
+local b2 = require "tether_box2d"
+
+T.test("a Box2D world runs beside a tether world from one scene table", function()
+  local s = b2.scene("fall")
+  T.eq(#s.bodies, 2, "two boxes")
+  T.eq(s.bodies[2].vy, 8, "the thrown one")
+  local w = b2.build(s, { sleep = false })
+  local tw = tether.world{ gravity = s.gravity }
+  local p = tw:particle(s.bodies[1].x, s.bodies[1].y)
+  for _ = 1, s.steps do w:step(s.dt); tw:step(s.dt) end
+  local _, y = w:state(1)
+  local _, ty = tw:position(p)
+  T.near(y, 10 - 10 / 3600 * 60 * 61 / 2, 1e-4, "Box2D: symplectic Euler")
+  T.near(ty, 5, 1e-9, "tether: Verlet, exact under constant gravity")
+  local ke, m = w:energy()
+  T.ok(ke > 0 and math.abs(m - 2) < 1e-6, "energy and mass of the two 1 x 1 boxes")
+  T.ok(tostring(w):match("^tether_box2d.world{2 bodies}"), tostring(w))
+end)
+
+T.test("bodies and joints by hand: a pendulum on a revolute joint keeps its length", function()
+  local w = b2.world{ gravity = {0, -10}, sleep = false }
+  local bob = w:body{ shape = "circle", dynamic = true, x = 1, y = 2, radius = 0.1 }
+  T.eq(bob, 1, "bodies count from 1")
+  w:joint("revolute", 0, bob, 0, 2)
+  for _ = 1, 120 do w:step(1 / 60) end
+  local x, y = w:state(bob)
+  T.near(math.sqrt(x * x + (y - 2) ^ 2), 1, 1e-3, "arm length")
+  T.eq(w:count(), 1, "count")
+  w:destroy()
+  T.checkerror("destroyed", w.step, w, 1 / 60)
+end)
+
+T.test("every named scene is a table both engines can build", function()
+  for _, name in ipairs{ "fall", "pendulum", "bounce", "slope", "spin", "pyramid", "pour" } do
+    local s = b2.scene(name, true)
+    local w = b2.build(s)
+    T.eq(w:count(), #s.bodies, name)
+  end
+  T.eq(#b2.scene("pour").bodies, 10003, "the reference pour: 10 000 circles, floor, two walls")
+end)
+
+T.test("errors name the function and the argument", function()
+  T.checkerror("tether_box2d.world: unknown option 'slep'", b2.world, { slep = true })
+  T.checkerror("tether_box2d.world: option 'sleep' must be a boolean", b2.world, { sleep = 1 })
+  T.checkerror("tether_box2d.world: options 'velocity_iterations' and 'position_iterations' must be integers", b2.world, { velocity_iterations = 0 })
+  local w = b2.world()
+  T.checkerror("tether_box2d.world:body: option 'shape' must be one of 'circle', 'box', 'polygon', 'edge'", w.body, w, { shape = "blob" })
+  T.checkerror("tether_box2d.world:body: tb_body_create: radius must be in", w.body, w, { shape = "circle", radius = 0 })
+  T.checkerror("tether_box2d.world:body: option 'x' must be finite", w.body, w, { shape = "circle", x = 0 / 0 })
+  T.checkerror("tb_body_create: polygon points must be convex", w.body, w, { shape = "polygon", points = { 0, 0, 0, 1, 1, 0 } })
+  w:body{ shape = "circle", dynamic = true }
+  T.checkerror("tether_box2d.world:joint: bad argument #4 (body b must be another existing body)", w.joint, w, "weld", 0, 7, 0, 0)
+  T.checkerror("tether_box2d.world:joint: bad argument #2 (kind must be", w.joint, w, "hinge", 0, 1, 0, 0)
+  T.checkerror("tether_box2d.world:joint: bad argument #5 (ax must be a number, got string)", w.joint, w, "weld", 0, 1, "x", 0)
+  T.checkerror("tether_box2d.world:step: bad argument #2 (dt must be in (0, 10] s)", w.step, w, -1)
+  T.checkerror("tether_box2d.world:state: bad argument #2 (body must be an integer, got no value)", w.state, w)
+  T.checkerror("tether_box2d.scene: bad argument #1 (unknown scene 'nope'", b2.scene, "nope")
+  T.checkerror("tether_box2d.build: the scene's 'bodies' must be a list", b2.build, {})
+  T.checkerror("tether_box2d.crosscheck: unknown scene", b2.crosscheck, "nope", { quick = true })
+  T.checkerror("tether_box2d.crosscheck: unknown option 'fast'", b2.crosscheck, "fall", { fast = true })
+  T.checkerror("tether_box2d.crosscheck: option 'runs' must be an integer in [1, 50]", b2.crosscheck, "fall", { runs = 1.5 })
+end)
+
+T.test("the cross-check's rows come back as tables", function()
+  local rows, costs = b2.crosscheck("fall", { quick = true, runs = 1 })
+  T.eq(rows[1].scene, "fall")
+  T.near(rows[1].box2d / rows[1].expected - 1, 1 / 60, 1e-4, "Box2D's fall 1.7 % long at 1 s")
+  T.ok(math.abs(rows[1].tether / rows[1].expected - 1) < 1e-3, "tether within 0.1 %")
+  T.ok(costs[1].box2d_ms > 0 and costs[1].tether_ms > 0, "both timed")
+end)
+
+T.done()
