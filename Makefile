@@ -9,8 +9,8 @@ CC     ?= cc
 CXX    ?= c++
 
 # Debian packages the project needs (see README "Set-up").
-DEB_PKGS := pkg-config lua5.4 liblua5.4-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth gnuplot-nox valgrind
-PC_PKGS  := lua5.4 box2d sdl2 osmesa libpng
+DEB_PKGS := pkg-config lua5.4 liblua5.4-dev luajit libluajit-5.1-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth gnuplot-nox valgrind
+PC_PKGS  := lua5.4 luajit box2d sdl2 osmesa libpng
 
 ifeq ($(SANITIZE),1)
 BUILD    := build-san
@@ -39,6 +39,7 @@ PC_LIBS   = $(shell pkg-config --libs $(1) 2>/dev/null)
 lazy = $(eval $(1) := $(2))$($(1))
 LUA_CFLAGS = $(call lazy,LUA_CFLAGS,$(call PC_CFLAGS,lua5.4))
 LUA_LIBS   = $(call lazy,LUA_LIBS,$(call PC_LIBS,lua5.4))
+LUAJIT_CFLAGS = $(call lazy,LUAJIT_CFLAGS,$(call PC_CFLAGS,luajit))
 BOX2D_CFLAGS = $(call lazy,BOX2D_CFLAGS,$(call PC_CFLAGS,box2d))
 BOX2D_LIBS   = $(call lazy,BOX2D_LIBS,$(call PC_LIBS,box2d))
 
@@ -56,6 +57,8 @@ LUA_OBJ    := $(call obj_of,$(LUA_SRC))
 CANVAS_OBJ := $(call obj_of,$(CANVAS_SRC))
 RENDER_OBJ := $(call obj_of,$(RENDER_SRC))
 RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
+# The same binding sources compiled a second time against LuaJIT (src/lua/lua_compat.h).
+LUAJIT_OBJ := $(patsubst src/lua/%.c,$(BUILD)/obj/luajit/%.o,$(LUA_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
@@ -67,12 +70,14 @@ LIB_A   := $(BUILD)/libtether.a
 LIB_SO  := $(BUILD)/libtether.so
 RENDER_A := $(BUILD)/libtether_render.a
 LUA_MOD := $(BUILD)/tether.so
+LUAJIT_MOD := $(BUILD)/luajit/tether.so
 RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 BENCH   := $(BUILD)/bench
 
-.PHONY: all deps demo pictures test test-c test-lua fuzz memcheck bench install uninstall clean
-all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER)
+.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench install uninstall clean
+all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER)
+luajit: deps $(LUAJIT_MOD)
 
 # --- dependencies -----------------------------------------------------------
 # Installs what is missing when run as root on Debian; otherwise prints the
@@ -107,6 +112,10 @@ $(BUILD)/obj/lua/%.o: src/lua/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
+$(BUILD)/obj/luajit/%.o: src/lua/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_ALL) $(LUAJIT_CFLAGS) -MMD -c $< -o $@
+
 $(BUILD)/obj/runner/%.o: src/runner/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
@@ -131,6 +140,11 @@ $(RENDER_A): $(RENDER_OBJ)
 	rm -f $@; ar rcs $@ $^
 
 $(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+
+# For LuaJIT hosts (luajit, LÖVE): `require "tether"` with build/luajit/?.so on package.cpath.
+$(LUAJIT_MOD): $(LUAJIT_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
+	@mkdir -p $(@D)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
 
 $(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
@@ -198,7 +212,7 @@ memcheck: all $(TEST_C)
 # (tests/fuzz/); on a failure it prints the seed and a replay script and
 # shortens it.
 fuzz: all
-	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
+	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 bench: deps $(BENCH) $(RUNNER)
 	@mkdir -p $(BUILD)/bench-out
