@@ -5,6 +5,10 @@ PREFIX ?= /usr/local
 FUZZ_SECONDS ?= 60
 FUZZ_SEED ?=
 VERSION := $(shell sed -n 's/^\#define TT_VERSION_STRING "\(.*\)"/\1/p' include/tether/base.h)
+# The shared library's ABI version is the major version: programs linked
+# against libtether.so.0 keep running across 0.x.y upgrades.
+SOVERSION := $(firstword $(subst ., ,$(VERSION)))
+SONAME    := libtether.so.$(SOVERSION)
 CC     ?= cc
 CXX    ?= c++
 
@@ -68,6 +72,7 @@ BENCH_SRC := $(wildcard bench/*.c)
 
 LIB_A   := $(BUILD)/libtether.a
 LIB_SO  := $(BUILD)/libtether.so
+LIB_SO_REAL := $(BUILD)/libtether.so.$(VERSION)
 RENDER_A := $(BUILD)/libtether_render.a
 LUA_MOD := $(BUILD)/tether.so
 LUAJIT_MOD := $(BUILD)/luajit/tether.so
@@ -131,8 +136,12 @@ $(BUILD)/obj/tests/%.o: tests/%.c | deps
 $(LIB_A): $(CORE_OBJ)
 	rm -f $@; ar rcs $@ $^
 
-$(LIB_SO): $(CORE_OBJ)
-	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) -lm
+$(LIB_SO_REAL): $(CORE_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) -o $@ $^ $(LDFLAGS_ALL) -lm
+
+$(LIB_SO): $(LIB_SO_REAL)
+	ln -sf libtether.so.$(VERSION) $(BUILD)/$(SONAME)
+	ln -sf $(SONAME) $@
 
 # The Lua module is not linked against liblua: the host (lua5.4 or our runner)
 # provides the Lua API, and a second copy of Lua in one process breaks it.
@@ -222,23 +231,42 @@ bench: deps $(BENCH) $(RUNNER)
 	  echo "plots: $(BUILD)/bench-out/*.png"; \
 	else echo "gnuplot not installed: no plots (CSV in $(BUILD)/bench-out)"; fi
 
+# Lua finds C modules in <prefix>/lib/lua/<version>: at the default prefix
+# that is on the package.cpath of Debian's lua5.4 and luajit (tests/install.sh).
+LUA_CMOD_DIR    = $(PREFIX)/lib/lua/5.4
+LUAJIT_CMOD_DIR = $(PREFIX)/lib/lua/5.1
+PC_SUBST = sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g'
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/bin \
-	  $(DESTDIR)$(PREFIX)/lib/lua/5.4 $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/share/lua/5.4
-	install -m 644 $(LIB_A) $(LIB_SO) $(RENDER_A) $(DESTDIR)$(PREFIX)/lib/
+	  $(DESTDIR)$(LUA_CMOD_DIR) $(DESTDIR)$(LUAJIT_CMOD_DIR) $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/share/lua/5.4
+	install -m 644 $(LIB_A) $(RENDER_A) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(LIB_SO_REAL) $(DESTDIR)$(PREFIX)/lib/
+	ln -sf libtether.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libtether.so
 	install -m 644 include/tether.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 include/tether/*.h $(DESTDIR)$(PREFIX)/include/tether/
-	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
+	install -m 755 $(LUA_MOD) $(DESTDIR)$(LUA_CMOD_DIR)/tether.so
+	install -m 755 $(LUAJIT_MOD) $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
 	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lm\nCflags: -I$${includedir}\n' \
-	  '$(PREFIX)' '$(VERSION)' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
+	$(PC_SUBST) pkgconfig/tether.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
+	$(PC_SUBST) pkgconfig/tether-render.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc
+	@# The loader's cache must learn the new library, or programs fail with
+	@# "cannot open shared object file"; other prefixes are not on its path.
+	@if [ -z "$(DESTDIR)" ] && [ "$(PREFIX)" = /usr/local ] && command -v ldconfig >/dev/null 2>&1; then \
+	  ldconfig && echo "install: ldconfig run: programs find $(SONAME)"; \
+	elif [ -z "$(DESTDIR)" ]; then \
+	  echo "install: $(PREFIX)/lib is not on the loader's path: link with -Wl,-rpath,$(PREFIX)/lib (see README \"Embedding\")"; \
+	fi
 
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/include/tether.h
-	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so $(DESTDIR)$(PREFIX)/lib/libtether_render.a \
-	  $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so $(DESTDIR)$(PREFIX)/bin/tether \
-	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so $(DESTDIR)$(PREFIX)/lib/$(SONAME) \
+	  $(DESTDIR)$(PREFIX)/lib/libtether.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/libtether_render.a \
+	  $(DESTDIR)$(LUA_CMOD_DIR)/tether.so $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether.so $(DESTDIR)$(PREFIX)/bin/tether \
+	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc \
+	  $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+	@if [ -z "$(DESTDIR)" ] && [ "$(PREFIX)" = /usr/local ] && command -v ldconfig >/dev/null 2>&1; then ldconfig; fi
 
 clean:
 	rm -rf build build-san

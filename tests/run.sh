@@ -10,6 +10,8 @@
 #   3. fountain.lua run twice as two processes       must print the same hash
 #   4. lua5.4 tests/lua/test_world.lua               stock Lua requires $BUILD/tether.so
 #   4b. luajit tests/lua/test_*.lua (not test_render) LuaJIT requires $BUILD/luajit/tether.so
+#   4c. tests/embed/install.sh, headers.sh            make install; the C game, C++ and the Lua
+#                                                    modules on the installed copy; public headers as C99…C++20
 #   5. $BUILD/tether --headless --steps 60 demos/*.lua   smoke test of each demo
 #   6. the renderer: tests/lua/test_render.lua inside frames, every demo as
 #      headless PNG frames, and the window under Xvfb (SDL_VIDEODRIVER=x11)
@@ -157,6 +159,12 @@ else
         run_counted "luajit$lj_note: $t" env $lj_env LUA_CPATH="$BUILD/luajit/?.so" luajit "$t"
     done
 fi
+
+# 4c. Embedding: tether installed as a game developer installs it, used
+# from the installed copy only; the public headers under every standard.
+run_counted "install: tests/embed/install.sh (make install; C game, C++, renderer, Lua paths)" \
+    env BUILD="$BUILD" SANITIZE="$SANITIZE" sh tests/embed/install.sh
+run_counted "headers: tests/embed/headers.sh (C99, C11, C++11/17/20, -Wpedantic -Werror)" sh tests/embed/headers.sh
 
 # 5. Each demo runs headless for 60 steps and prints the runner's summary.
 demo_ok() {
