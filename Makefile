@@ -13,7 +13,7 @@ CC     ?= cc
 CXX    ?= c++
 
 # Debian packages the project needs (see README "Set-up").
-DEB_PKGS := pkg-config lua5.4 liblua5.4-dev luajit libluajit-5.1-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth gnuplot-nox valgrind
+DEB_PKGS := pkg-config lua5.4 liblua5.4-dev luajit libluajit-5.1-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth love gnuplot-nox valgrind
 PC_PKGS  := lua5.4 luajit box2d sdl2 osmesa libpng
 
 ifeq ($(SANITIZE),1)

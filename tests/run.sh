@@ -12,6 +12,7 @@
 #   4b. luajit tests/lua/test_*.lua (not test_render) LuaJIT requires $BUILD/luajit/tether.so
 #   4c. tests/embed/install.sh, headers.sh            make install; the C game, C++ and the Lua
 #                                                    modules on the installed copy; public headers as C99…C++20
+#   4d. tests/love/run.sh                           LÖVE 11.4 under Xvfb runs a game that requires tether
 #   5. $BUILD/tether --headless --steps 60 demos/*.lua   smoke test of each demo
 #   6. the renderer: tests/lua/test_render.lua inside frames, every demo as
 #      headless PNG frames, and the window under Xvfb (SDL_VIDEODRIVER=x11)
@@ -165,6 +166,16 @@ fi
 run_counted "install: tests/embed/install.sh (make install; C game, C++, renderer, Lua paths)" \
     env BUILD="$BUILD" SANITIZE="$SANITIZE" sh tests/embed/install.sh
 run_counted "headers: tests/embed/headers.sh (C99, C11, C++11/17/20, -Wpedantic -Werror)" sh tests/embed/headers.sh
+
+# 4d. LÖVE (its LuaJIT) runs a tiny game that requires the LuaJIT module,
+# under Xvfb.
+if command -v love >/dev/null 2>&1 && command -v xvfb-run >/dev/null 2>&1; then
+    run_counted "love: tests/love/run.sh (LÖVE 11.4 under Xvfb${SANITIZE:+, ASan preloaded})" \
+        env BUILD="$BUILD" SANITIZE="$SANITIZE" sh tests/love/run.sh
+else
+    echo "love: FAILED: love or xvfb-run is not installed (make deps installs them)"
+    add 0 1
+fi
 
 # 5. Each demo runs headless for 60 steps and prints the runner's summary.
 demo_ok() {
