@@ -4,7 +4,8 @@
 # after its frames must equal what plain luajit and lua5.4 reach with the
 # same scene (tests/love/scene.lua). Run from the repository root;
 # environment BUILD, SANITIZE. The picture LÖVE drew is kept as
-# $BUILD/love_test.png. Prints "N passed, M failed".
+# $BUILD/love_test.png. Then the LÖVE demo (demos/love/) plays 120 frames
+# and must exit 0 with its summary line. Prints "N passed, M failed".
 BUILD=${BUILD:-build}
 root=$(pwd)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/tether-love.XXXXXX") || exit 1
@@ -41,6 +42,17 @@ else
     pass=$((pass + ${line%% passed*}))
     f=${line#*passed, }
     fail=$((fail + ${f%% failed*}))
+fi
+XDG_DATA_HOME=$tmp LUA_CPATH="$root/$BUILD/luajit/?.so" LD_PRELOAD="$preload" ASAN_OPTIONS=detect_leaks=0 \
+    timeout 120 xvfb-run -a love demos/love --frames 120 >"$tmp/demo.txt" 2>&1
+rc=$?
+if [ "$rc" -eq 0 ] && grep -q '^love demo: 12[0-9] steps, [0-9]* particles, hash [0-9a-f]*$' "$tmp/demo.txt"; then
+    pass=$((pass + 1))
+    echo "ok the LÖVE demo: $(grep '^love demo:' "$tmp/demo.txt")"
+else
+    fail=$((fail + 1))
+    echo "FAIL the LÖVE demo exited $rc:"
+    tail -n 15 "$tmp/demo.txt"
 fi
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
