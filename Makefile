@@ -80,7 +80,7 @@ RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 BENCH   := $(BUILD)/bench
 
-.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench install uninstall clean
+.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-love install uninstall clean
 all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER)
 luajit: deps $(LUAJIT_MOD)
 
@@ -230,6 +230,14 @@ bench: deps $(BENCH) $(RUNNER)
 	  for g in bench/*.gp; do gnuplot -e "dir='$(BUILD)/bench-out'" $$g; done; \
 	  echo "plots: $(BUILD)/bench-out/*.png"; \
 	else echo "gnuplot not installed: no plots (CSV in $(BUILD)/bench-out)"; fi
+	@$(MAKE) --no-print-directory bench-love
+
+# `make bench-love`: love.physics (Box2D) and tether pour 2 000 and 10 000
+# circles into one box in one LÖVE process (bench/love/; no display needed):
+# ms/step beside max overlap and kinetic energy, CSV in $(BUILD)/bench-out/.
+bench-love: deps $(LUAJIT_MOD)
+	@mkdir -p $(BUILD)/bench-out
+	LUA_CPATH="$(CURDIR)/$(LUAJIT_MOD:tether.so=?.so)" love bench/love --out $(CURDIR)/$(BUILD)/bench-out $(BENCH_LOVE_ARGS)
 
 # Lua finds C modules in <prefix>/lib/lua/<version>: at the default prefix
 # that is on the package.cpath of Debian's lua5.4 and luajit (tests/install.sh).
