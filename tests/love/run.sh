@@ -5,7 +5,9 @@
 # same scene (tests/love/scene.lua). Run from the repository root;
 # environment BUILD, SANITIZE. The picture LÖVE drew is kept as
 # $BUILD/love_test.png. Then the LÖVE demo (demos/love/) plays 120 frames
-# and must exit 0 with its summary line. Prints "N passed, M failed".
+# and must exit 0 with its summary line, and the main.lua of README
+# "Embedding" plays 120 frames: its ball must come to rest on its floor.
+# Prints "N passed, M failed".
 BUILD=${BUILD:-build}
 root=$(pwd)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/tether-love.XXXXXX") || exit 1
@@ -53,6 +55,34 @@ else
     fail=$((fail + 1))
     echo "FAIL the LÖVE demo exited $rc:"
     tail -n 15 "$tmp/demo.txt"
+fi
+# README's example, as written there, plus a few lines that stop it and report
+mkdir -p "$tmp/readme"
+awk '/^\*\*LÖVE \(LuaJIT\)\.\*\*/ { on = 1 } on && /^```lua$/ { code = 1; next } code && /^```$/ { exit } code' \
+    README.md >"$tmp/readme/main.lua"
+cat >>"$tmp/readme/main.lua" <<'EOF'
+local frames, update = 0, love.update
+function love.update(dt)
+  update(dt)
+  frames = frames + 1
+  if frames == 120 then
+    local _, y = world:position(ball)
+    print(("readme: ball at y = %.3f"):format(y))
+    love.event.quit(math.abs(y - 0.3) < 0.02 and 0 or 1)
+  end
+end
+EOF
+XDG_DATA_HOME=$tmp LUA_CPATH="$root/$BUILD/luajit/?.so" LD_PRELOAD="$preload" ASAN_OPTIONS=detect_leaks=0 \
+    timeout 120 xvfb-run -a love "$tmp/readme" >"$tmp/readme.txt" 2>&1
+rc=$?
+if [ "$rc" -eq 0 ] && grep -q '^readme: ball at' "$tmp/readme.txt"; then
+    pass=$((pass + 1))
+    echo "ok README's LÖVE example: $(grep '^readme:' "$tmp/readme.txt")"
+else
+    fail=$((fail + 1))
+    echo "FAIL README's LÖVE example exited $rc:"
+    tail -n 15 "$tmp/readme.txt"
+    cat "$tmp/readme/main.lua"
 fi
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
