@@ -60,6 +60,8 @@ fi
 mkdir -p "$tmp/readme"
 awk '/^\*\*LÖVE \(LuaJIT\)\.\*\*/ { on = 1 } on && /^```lua$/ { code = 1; next } code && /^```$/ { exit } code' \
     README.md >"$tmp/readme/main.lua"
+# no sound device on a test machine: audio off (ASan-preloaded OpenAL waits for one)
+cp tests/love/conf.lua "$tmp/readme/conf.lua"
 cat >>"$tmp/readme/main.lua" <<'EOF'
 local frames, update = 0, love.update
 function love.update(dt)
