@@ -126,6 +126,7 @@ local function run(make, n, steps)
   end
   local r = { ms = median(times), overlap = max_overlap(e.positions(), n), kinetic = e.kinetic() }
   e.close()
+  io.stderr:write(("pour: %d circles, %s: %.3f ms/step\n"):format(n, make == make_tether and "tether" or "love.physics", r.ms))
   return r
 end
 
