@@ -5,12 +5,16 @@ PREFIX ?= /usr/local
 FUZZ_SECONDS ?= 60
 FUZZ_SEED ?=
 VERSION := $(shell sed -n 's/^\#define TT_VERSION_STRING "\(.*\)"/\1/p' include/tether/base.h)
+# The shared library's ABI version is the major version: programs linked
+# against libtether.so.0 keep running across 0.x.y upgrades.
+SOVERSION := $(firstword $(subst ., ,$(VERSION)))
+SONAME    := libtether.so.$(SOVERSION)
 CC     ?= cc
 CXX    ?= c++
 
 # Debian packages the project needs (see README "Set-up").
-DEB_PKGS := pkg-config lua5.4 liblua5.4-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth gnuplot-nox valgrind
-PC_PKGS  := lua5.4 box2d sdl2 osmesa libpng
+DEB_PKGS := pkg-config lua5.4 liblua5.4-dev luajit libluajit-5.1-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth love gnuplot-nox valgrind
+PC_PKGS  := lua5.4 luajit box2d sdl2 osmesa libpng
 
 ifeq ($(SANITIZE),1)
 BUILD    := build-san
@@ -39,6 +43,7 @@ PC_LIBS   = $(shell pkg-config --libs $(1) 2>/dev/null)
 lazy = $(eval $(1) := $(2))$($(1))
 LUA_CFLAGS = $(call lazy,LUA_CFLAGS,$(call PC_CFLAGS,lua5.4))
 LUA_LIBS   = $(call lazy,LUA_LIBS,$(call PC_LIBS,lua5.4))
+LUAJIT_CFLAGS = $(call lazy,LUAJIT_CFLAGS,$(call PC_CFLAGS,luajit))
 BOX2D_CFLAGS = $(call lazy,BOX2D_CFLAGS,$(call PC_CFLAGS,box2d))
 BOX2D_LIBS   = $(call lazy,BOX2D_LIBS,$(call PC_LIBS,box2d))
 PNG_CFLAGS = $(call lazy,PNG_CFLAGS,$(call PC_CFLAGS,libpng))
@@ -68,6 +73,8 @@ RUNNER_OBJ := $(call obj_of,$(RUNNER_SRC))
 SCENES_OBJ := $(call obj_of,$(SCENES_SRC))
 B2_OBJ     := $(call obj_of,$(B2_SRC)) $(BUILD)/obj/box2d/box2d_bridge.o
 B2_LUA_OBJ := $(call obj_of,$(B2_LUA_SRC))
+# The same binding sources compiled a second time against LuaJIT (src/lua/lua_compat.h).
+LUAJIT_OBJ := $(patsubst src/lua/%.c,$(BUILD)/obj/luajit/%.o,$(LUA_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
@@ -85,8 +92,10 @@ BENCH_SRC := $(wildcard bench/*.c)
 
 LIB_A   := $(BUILD)/libtether.a
 LIB_SO  := $(BUILD)/libtether.so
+LIB_SO_REAL := $(BUILD)/libtether.so.$(VERSION)
 RENDER_A := $(BUILD)/libtether_render.a
 LUA_MOD := $(BUILD)/tether.so
+LUAJIT_MOD := $(BUILD)/luajit/tether.so
 RUNNER  := $(BUILD)/tether
 TEST_C  := $(BUILD)/test_c
 FUZZ_C  := $(BUILD)/fuzz_c
@@ -96,8 +105,9 @@ B2_MOD   := $(BUILD)/tether_box2d.so
 TEST_B2  := $(BUILD)/test_box2d
 BENCH   := $(BUILD)/bench
 
-.PHONY: all deps demo pictures test test-c test-lua fuzz memcheck bench crosscheck install uninstall clean
-all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD)
+.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-love crosscheck install uninstall clean
+all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD)
+luajit: deps $(LUAJIT_MOD)
 
 # --- dependencies -----------------------------------------------------------
 # Installs what is missing when run as root on Debian; otherwise prints the
@@ -132,6 +142,10 @@ $(BUILD)/obj/lua/%.o: src/lua/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
+$(BUILD)/obj/luajit/%.o: src/lua/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_ALL) $(LUAJIT_CFLAGS) -MMD -c $< -o $@
+
 $(BUILD)/obj/runner/%.o: src/runner/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) $(RENDER_CFLAGS) -MMD -c $< -o $@
@@ -161,8 +175,12 @@ $(BUILD)/obj/tests/%.o: tests/%.c | deps
 $(LIB_A): $(CORE_OBJ)
 	rm -f $@; ar rcs $@ $^
 
-$(LIB_SO): $(CORE_OBJ)
-	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
+$(LIB_SO_REAL): $(CORE_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
+
+$(LIB_SO): $(LIB_SO_REAL)
+	ln -sf libtether.so.$(VERSION) $(BUILD)/$(SONAME)
+	ln -sf $(SONAME) $@
 
 $(SCENES_A): $(SCENES_OBJ)
 	rm -f $@; ar rcs $@ $^
@@ -181,6 +199,11 @@ $(RENDER_A): $(RENDER_OBJ)
 	rm -f $@; ar rcs $@ $^
 
 $(LUA_MOD): $(LUA_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
+
+# For LuaJIT hosts (luajit, LÖVE): `require "tether"` with build/luajit/?.so on package.cpath.
+$(LUAJIT_MOD): $(LUAJIT_OBJ) $(CORE_OBJ) $(CANVAS_OBJ)
+	@mkdir -p $(@D)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 $(RUNNER): $(RUNNER_OBJ) $(LUA_OBJ) $(RENDER_A) $(LIB_A)
@@ -258,11 +281,11 @@ memcheck: all $(TEST_C)
 	  grep -v '^ok ' $(BUILD)/memcheck.log | tail -n 40; exit $$rc
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: every fuzz target
-# of tests/fuzz/run.sh (the Lua API fuzzer, the C API fuzzer, the PNG
-# loader's, the snapshot stream reader's), each for its share of
-# FUZZ_SECONDS; on a failure each prints its seed and replay.
+# of tests/fuzz/run.sh (the Lua API fuzzer under the runner and under
+# LuaJIT, the C API fuzzer, the PNG loader's, the snapshot stream reader's),
+# each for its share of FUZZ_SECONDS; on a failure each prints its seed and replay.
 fuzz: all $(FUZZ_C) $(FUZZ_PNG) $(TEST_C)
-	@BUILD=$(BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
+	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh
 
 # The mask section compares with Debian's python3-pygame (pygame.mask): installed
 # here when run as root, otherwise the table says it is absent.
@@ -282,25 +305,53 @@ bench: deps $(BENCH) $(RUNNER) $(LUA_MOD)
 	  for g in bench/*.gp; do gnuplot -e "dir='$(BUILD)/bench-out'" $$g; done; \
 	  echo "plots: $(BUILD)/bench-out/*.png"; \
 	else echo "gnuplot not installed: no plots (CSV in $(BUILD)/bench-out)"; fi
+	@$(MAKE) --no-print-directory bench-love
 
+# `make bench-love`: love.physics (Box2D) and tether pour 2 000 and 10 000
+# circles into one box in one LÖVE process (bench/love/; no display needed):
+# ms/step beside max overlap and kinetic energy, CSV in $(BUILD)/bench-out/.
+bench-love: deps $(LUAJIT_MOD)
+	@mkdir -p $(BUILD)/bench-out
+	LUA_CPATH="$(CURDIR)/$(LUAJIT_MOD:tether.so=?.so)" love bench/love --out $(CURDIR)/$(BUILD)/bench-out $(BENCH_LOVE_ARGS)
+
+# Lua finds C modules in <prefix>/lib/lua/<version>: at the default prefix
+# that is on the package.cpath of Debian's lua5.4 and luajit (tests/install.sh).
+LUA_CMOD_DIR    = $(PREFIX)/lib/lua/5.4
+LUAJIT_CMOD_DIR = $(PREFIX)/lib/lua/5.1
+PC_SUBST = sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g'
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/bin \
-	  $(DESTDIR)$(PREFIX)/lib/lua/5.4 $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/share/lua/5.4
-	install -m 644 $(LIB_A) $(LIB_SO) $(RENDER_A) $(DESTDIR)$(PREFIX)/lib/
+	  $(DESTDIR)$(LUA_CMOD_DIR) $(DESTDIR)$(LUAJIT_CMOD_DIR) $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/share/lua/5.4
+	install -m 644 $(LIB_A) $(RENDER_A) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(LIB_SO_REAL) $(DESTDIR)$(PREFIX)/lib/
+	ln -sf libtether.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libtether.so
 	install -m 644 include/tether.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 include/tether/*.h $(DESTDIR)$(PREFIX)/include/tether/
-	install -m 755 $(LUA_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so
-	install -m 755 $(B2_MOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether_box2d.so
+	install -m 755 $(LUA_MOD) $(DESTDIR)$(LUA_CMOD_DIR)/tether.so
+	install -m 755 $(LUAJIT_MOD) $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether.so
+	install -m 755 $(B2_MOD) $(DESTDIR)$(LUA_CMOD_DIR)/tether_box2d.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
 	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: tether\nDescription: small, fast 2D game physics\nVersion: %s\nLibs: -L$${libdir} -ltether\nLibs.private: -lpng16 -lm\nCflags: -I$${includedir}\n' \
-	  '$(PREFIX)' '$(VERSION)' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
+	$(PC_SUBST) pkgconfig/tether.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
+	$(PC_SUBST) pkgconfig/tether-render.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc
+	@# The loader's cache must learn the new library, or programs fail with
+	@# "cannot open shared object file"; other prefixes are not on its path.
+	@if [ -z "$(DESTDIR)" ] && [ "$(PREFIX)" = /usr/local ] && command -v ldconfig >/dev/null 2>&1; then \
+	  ldconfig && echo "install: ldconfig run: programs find $(SONAME)"; \
+	elif [ -z "$(DESTDIR)" ]; then \
+	  echo "install: $(PREFIX)/lib is not on the loader's path: link with -Wl,-rpath,$(PREFIX)/lib (see README \"Embedding\")"; \
+	fi
 
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/tether $(DESTDIR)$(PREFIX)/include/tether.h
-	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so $(DESTDIR)$(PREFIX)/lib/libtether_render.a \
-	  $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether.so $(DESTDIR)$(PREFIX)/lib/lua/5.4/tether_box2d.so $(DESTDIR)$(PREFIX)/bin/tether \
-	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so $(DESTDIR)$(PREFIX)/lib/$(SONAME) \
+	  $(DESTDIR)$(PREFIX)/lib/libtether.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/libtether_render.a \
+	  $(DESTDIR)$(LUA_CMOD_DIR)/tether.so $(DESTDIR)$(LUA_CMOD_DIR)/tether_box2d.so $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether.so \
+	  $(DESTDIR)$(PREFIX)/bin/tether \
+	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc \
+	  $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+	@if [ -z "$(DESTDIR)" ] && [ "$(PREFIX)" = /usr/local ] && command -v ldconfig >/dev/null 2>&1; then ldconfig; fi
 
 clean:
 	rm -rf build build-san

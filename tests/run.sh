@@ -11,6 +11,10 @@
 #   2. $BUILD/tether tests/lua/test_*.lua            the Lua binding tests
 #   3. fountain.lua run twice as two processes       must print the same hash
 #   4. lua5.4 tests/lua/test_world.lua               stock Lua requires $BUILD/tether.so
+#   4b. luajit tests/lua/test_*.lua (not test_render) LuaJIT requires $BUILD/luajit/tether.so
+#   4c. tests/embed/install.sh, headers.sh            make install; the C game, C++ and the Lua
+#                                                    modules on the installed copy; public headers as C99…C++20
+#   4d. tests/love/run.sh                           LÖVE 11.4 under Xvfb runs a game that requires tether
 #   5. $BUILD/tether --headless --steps 60 demos/*.lua   smoke test of each demo
 #   6. the renderer: tests/lua/test_render.lua inside frames, every demo as
 #      headless PNG frames, and the window under Xvfb (SDL_VIDEODRIVER=x11)
@@ -84,7 +88,7 @@ run_check() {
     fi
 }
 
-for f in "$BUILD/test_c" "$RUNNER" "$BUILD/tether.so"; do
+for f in "$BUILD/test_c" "$RUNNER" "$BUILD/tether.so" "$BUILD/luajit/tether.so"; do
     if [ ! -e "$f" ]; then
         echo "tests: $f is missing: run 'make all${SANITIZE:+ SANITIZE=$SANITIZE}' first"
         add 0 1
@@ -165,6 +169,44 @@ elif [ "$SANITIZE" = 1 ]; then
     fi
 else
     run_counted "stock lua5.4: tests/lua/test_world.lua" env LUA_CPATH="$BUILD/?.so" lua5.4 tests/lua/test_world.lua
+fi
+
+# 4b. LuaJIT, LÖVE's Lua, loads the same binding built against its 5.1 API
+# (src/lua/lua_compat.h): every Lua test a plain host can run. test_render
+# needs the runner's frames.
+if ! command -v luajit >/dev/null 2>&1; then
+    echo "luajit: FAILED: luajit is not installed (make deps installs it)"
+    add 0 1
+else
+    if [ "$SANITIZE" = 1 ]; then
+        asan=$(${CC:-gcc} -print-file-name=libasan.so 2>/dev/null)
+        lj_env="LD_PRELOAD=$asan ASAN_OPTIONS=detect_leaks=0"
+        lj_note=" (ASan preloaded)"
+    else
+        lj_env="LD_PRELOAD="
+        lj_note=""
+    fi
+    for t in tests/lua/test_*.lua; do
+        [ "$t" = tests/lua/test_render.lua ] && continue
+        # shellcheck disable=SC2086
+        run_counted "luajit$lj_note: $t" env $lj_env LUA_CPATH="$BUILD/luajit/?.so" luajit "$t"
+    done
+fi
+
+# 4c. Embedding: tether installed as a game developer installs it, used
+# from the installed copy only; the public headers under every standard.
+run_counted "install: tests/embed/install.sh (make install; C game, C++, renderer, Lua paths)" \
+    env BUILD="$BUILD" SANITIZE="$SANITIZE" sh tests/embed/install.sh
+run_counted "headers: tests/embed/headers.sh (C99, C11, C++11/17/20, -Wpedantic -Werror)" sh tests/embed/headers.sh
+
+# 4d. LÖVE (its LuaJIT) runs a tiny game that requires the LuaJIT module,
+# under Xvfb.
+if command -v love >/dev/null 2>&1 && command -v xvfb-run >/dev/null 2>&1; then
+    run_counted "love: tests/love/run.sh (LÖVE 11.4 under Xvfb${SANITIZE:+, ASan preloaded})" \
+        env BUILD="$BUILD" SANITIZE="$SANITIZE" sh tests/love/run.sh
+else
+    echo "love: FAILED: love or xvfb-run is not installed (make deps installs them)"
+    add 0 1
 fi
 
 # 5. Each demo runs headless for 60 steps and prints the runner's summary.

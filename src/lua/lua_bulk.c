@@ -96,9 +96,9 @@ static int w_set_positions(lua_State *L)
     n = lua_rawlen(L, 2);
     nxy = lua_rawlen(L, 3);
     if (n > UINT32_MAX)
-        tl_argerror(L, 2, "too many handles (%I)", (LUAI_UACINT)n);
+        tl_argerror(L, 2, "too many handles (" TL_I ")", TL_IARG(n));
     if (nxy != 2 * n)
-        tl_argerror(L, 3, "%I numbers expected (2 per handle), got %I", (LUAI_UACINT)(2 * n), (LUAI_UACINT)nxy);
+        tl_argerror(L, 3, TL_I " numbers expected (2 per handle), got " TL_I, TL_IARG(2 * n), TL_IARG(nxy));
 
     xy = tl_scratch(L, n * (2 * sizeof *xy + sizeof *ids) + 1);
     ids = (tt_particle *)(xy + 2 * n);
@@ -106,14 +106,14 @@ static int w_set_positions(lua_State *L)
         uint64_t h = 0;
         lua_rawgeti(L, 2, (lua_Integer)i + 1);
         if (!tl_tohandle(L, -1, w, TT_KIND_PARTICLE, &h))
-            tl_argerror(L, 2, "index %I: %s", (LUAI_UACINT)(i + 1), lua_tostring(L, -1));
+            tl_argerror(L, 2, "index " TL_I ": %s", TL_IARG(i + 1), lua_tostring(L, -1));
         ids[i] = tt_particle_from_u64(h);
         lua_pop(L, 1);
     }
     for (size_t i = 0; i < 2 * n; i++) {
         lua_rawgeti(L, 3, (lua_Integer)i + 1);
         if (!tl_tonumber_in(L, -1, &TL_R_COORD, &xy[i]))
-            tl_argerror(L, 3, "index %I: %s", (LUAI_UACINT)(i + 1), lua_tostring(L, -1));
+            tl_argerror(L, 3, "index " TL_I ": %s", TL_IARG(i + 1), lua_tostring(L, -1));
         lua_pop(L, 1);
     }
     tl_check_result(L, w, tt_particles_set_positions(w, ids, (uint32_t)n, xy,

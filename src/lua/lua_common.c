@@ -90,7 +90,7 @@ void tl_push_expected(lua_State *L, int idx, const char *what, bool by_value)
     idx = lua_absindex(L, idx);
     if (by_value && lua_type(L, idx) == LUA_TNUMBER) {
         if (lua_isinteger(L, idx))
-            lua_pushfstring(L, "%s expected, got %I", what, (LUAI_UACINT)lua_tointeger(L, idx));
+            lua_pushfstring(L, "%s expected, got " TL_I, what, TL_IARG(lua_tointeger(L, idx)));
         else
             lua_pushfstring(L, "%s expected, got %s", what, fmtnum(buf, lua_tonumber(L, idx)));
     } else {
@@ -144,7 +144,7 @@ static bool tointeger_in(lua_State *L, int idx, lua_Integer lo, lua_Integer hi, 
     }
     v = lua_tointegerx(L, idx, &isint);
     if (!isint || v < lo || v > hi) {
-        lua_pushfstring(L, "integer in [%I, %I]", (LUAI_UACINT)lo, (LUAI_UACINT)hi);
+        lua_pushfstring(L, "integer in [" TL_I ", " TL_I "]", TL_IARG(lo), TL_IARG(hi));
         tl_push_expected(L, idx, lua_tostring(L, -1), true);
         lua_remove(L, -2);
         return false;

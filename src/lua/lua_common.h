@@ -19,6 +19,8 @@
 #include <lua.h>
 #include <lauxlib.h>
 
+#include "lua_compat.h"
+
 #include "tether.h"
 
 /* Limits enforced by the binding: the core's documented limits (base.h),

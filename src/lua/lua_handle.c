@@ -42,7 +42,7 @@ static bool refuse(lua_State *L, int idx, tt_kind kind, lua_Integer v, bool isin
         tl_push_expected(L, idx, lua_tostring(L, -1), true);
         lua_remove(L, -2);
     } else if (k == TT_KIND_NONE) {
-        lua_pushfstring(L, "%s handle expected, got %I", tl_kind_name(kind), (LUAI_UACINT)v);
+        lua_pushfstring(L, "%s handle expected, got " TL_I, tl_kind_name(kind), TL_IARG(v));
     } else if (k != kind) {
         lua_pushfstring(L, "%s expected, got %s", tl_kind_name(kind), tl_kind_name(k));
     } else {

@@ -87,7 +87,7 @@ void *tl_scratch(lua_State *L, size_t bytes)
         size_t cap = bytes < 4096 ? 4096 : bytes;
         void *p = realloc(b->p, cap);
         if (p == NULL)
-            tl_error(L, "not enough memory (%I bytes)", (LUAI_UACINT)bytes);
+            tl_error(L, "not enough memory (" TL_I " bytes)", TL_IARG(bytes));
         b->p = p;
         b->cap = cap;
     }
@@ -227,8 +227,8 @@ static int w_tostring(lua_State *L)
     if (u->dead)
         lua_pushfstring(L, TL_WORLD_CLASS ": %p (destroyed)", (void *)u);
     else
-        lua_pushfstring(L, TL_WORLD_CLASS ": %p (%I particles)", (void *)u,
-                        (LUAI_UACINT)tt_world_particle_count(u->w));
+        lua_pushfstring(L, TL_WORLD_CLASS ": %p (" TL_I " particles)", (void *)u,
+                        TL_IARG(tt_world_particle_count(u->w)));
     return 1;
 }
 

@@ -5,6 +5,8 @@
 -- FUZZ_CALLS (stop after this many calls), FUZZ_SKIP (comma-separated call
 -- numbers made but not called: the minimiser's knob), FUZZ_REPLAY (where
 -- the replay script goes; default DIR/replay.lua).
+-- Under a plain host (LUA_CPATH='build/luajit/?.so' luajit tests/fuzz/fuzz_api.lua,
+-- or lua5.4) it runs the update phase alone, the same calls for a seed.
 -- Every module function, world method and metamethod, gfx function, image
 -- method, tether.mask function and mask method is called with hostile arguments: wrong types, NaN, ±Inf, 1e300,
 -- denormals, huge integers, stale and foreign handles, option tables whose
@@ -15,6 +17,7 @@
 -- "N passed, 0 failed"; a function never reached is a failure.
 package.path = "tests/fuzz/?.lua;" .. package.path
 local F = require "fuzz_lib"
+tether = tether or require "tether" -- the runner's global, or a plain host's module
 
 local seed = tonumber(os.getenv("FUZZ_SEED") or "") or os.time()
 local seconds = tonumber(os.getenv("FUZZ_SECONDS") or "") or 10
@@ -27,13 +30,10 @@ for k in (os.getenv("FUZZ_SKIP") or ""):gmatch("%d+") do skip[tonumber(k)] = tru
 local out_dir = tether.runner and tether.runner.out or "."
 local replay_path = os.getenv("FUZZ_REPLAY") or (out_dir .. "/replay.lua")
 
--- xorshift64*: the same calls on every machine for a seed
-local state = seed ~ 0x2545F4914F6CDD1D
-if state == 0 then state = 1 end
-local function rand(n)
-  state = state ~ (state << 13); state = state ~ (state >> 7); state = state ~ (state << 17)
-  return (state >> 1) % n + 1
-end
+local T = F.T
+-- exact in doubles: the same calls on every machine, and in both Luas, for a seed
+local uniform = T.minstd(seed)
+local function rand(n) return math.floor(uniform() * n) + 1 end
 local function pick(t) return t[rand(#t)] end
 
 -- Replay script: a prelude, then one line per call in the phase it ran in.
@@ -49,7 +49,9 @@ local function at(t, k, f) t[k] = t[k] or {}; table.insert(t[k], f) end
 local function U(k, f) at(UP, k, f) end
 local function D(k, f) at(DR, k, f) end
 F.register("tether", tether)
-F.register("gfx", tether.gfx)
+-- Under a plain host (luajit, lua5.4) there are no frames: gfx only raises
+-- "nothing to draw on", so only the runner fuzzes it.
+if tether.runner then F.register("gfx", tether.gfx) end
 local wm = getmetatable(tether.world())
 F.register("world", wm.__index); F.register("world", wm)
 F.register("mask", tether.mask)
@@ -103,8 +105,8 @@ local function emit(name, n, args, srcs)
   replay:write(string.format("%sF.call(%q%s%s) end) -- %d\n", phase, name, n > 0 and ", " or "",
                              table.concat(srcs, ", ", 1, n), calls))
   replay:flush()
-  if not keep_going then return learn(name, F.call(name, table.unpack(args, 1, n))) end
-  local ok, msg = pcall(F.call, name, table.unpack(args, 1, n))
+  if not keep_going then return learn(name, F.call(name, T.unpack(args, 1, n))) end
+  local ok, msg = pcall(F.call, name, T.unpack(args, 1, n))
   if ok then learn(name, msg) else
     local kind = tostring(msg):gsub("[%d%.e+-]+", "#"):sub(1, 160)
     if not found[kind] then
@@ -117,7 +119,7 @@ end
 -- Values, each with the Lua source that makes it again in the replay.
 local function num_src(v)
   if v ~= v then return "NAN" elseif v == math.huge then return "INF" elseif v == -math.huge then return "-INF" end
-  if math.type(v) == "integer" then
+  if T.isint(v) and (math.type or math.abs(v) < 2 ^ 53) then
     if v == math.mininteger then return "math.mininteger" end
     return string.format("%d", v)
   end
@@ -125,7 +127,7 @@ local function num_src(v)
 end
 
 local NUMBERS = { 0, -0.0, 1, -1, 2, 0.5, 1.5, 3, 10, 100, 1e-9, 1e-12, 1e12, -1e12, 1e13, 1e300, -1e300,
-                  5e-324, 1e-320, 0 / 0, math.huge, -math.huge, math.maxinteger, math.mininteger, 2 ^ 53,
+                  5e-324, 1e-320, 0 / 0, math.huge, -math.huge, math.maxinteger or 2 ^ 63, math.mininteger or -2 ^ 63, 2 ^ 53,
                   65535, 65536, 1 / 60, 0.1, 4, 16, 1000 }
 local STRINGS = { "", "x", "rigid", "max", "min", "fill", "line", "world", "screen", "verlet", "euler",
                   "symplectic_euler", "leapfrog", "rk4", "jacobi", "gauss_seidel", "keep", "reset", "grid",
@@ -164,7 +166,7 @@ local function handle(k)
   if k and rand(8) > 1 then
     for _ = 1, 40 do
       local j = #F.H - rand(math.min(#F.H, 200)) + 1
-      if F.H[j] >> 50 == k then i = j; break end
+      if T.shr(F.H[j], 50) == k then i = j; break end
     end
   end
   return F.H[i], "H[" .. i .. "]"
@@ -268,7 +270,9 @@ local function list_of(prefix)
 end
 
 F.register("tether", tether)
-F.register("gfx", tether.gfx)
+-- Under a plain host (luajit, lua5.4) there are no frames: gfx only raises
+-- "nothing to draw on", so only the runner fuzzes it.
+if tether.runner then F.register("gfx", tether.gfx) end
 local wm = getmetatable(tether.world())
 F.register("world", wm.__index)
 F.register("world", wm)
@@ -321,33 +325,35 @@ function tether.update()
   end
 end
 
-function tether.draw(g)
-  if done then
-    replay:close()
-    F.call("tether.quit")
-    local missing = {}
-    for k in pairs(F.fns) do if not F.counts[k] then missing[#missing + 1] = k end end
-    table.sort(missing)
-    local nf, nr = 0, 0
-    for _ in pairs(F.fns) do nf = nf + 1 end
-    for _ in pairs(F.counts) do nr = nr + 1 end
-    print(string.format("fuzz: %d calls in %.1f s, seed %d, %d of %d functions reached", calls, os.clock() - start,
-                        seed, nr, nf))
-    local kinds = 0
-    for _ in pairs(found) do kinds = kinds + 1 end
-    if kinds > 0 then
-      print(string.format("fuzz: %d kinds of failure (first call of each above)", kinds))
-      print("0 passed, 1 failed")
-    end
-    if #missing > 0 then print("fuzz: never reached: " .. table.concat(missing, " ")) end
-    if kinds > 0 then
-    elseif #missing > 0 and max_calls == math.huge then
-      print("0 passed, 1 failed")
-    else
-      print("1 passed, 0 failed")
-    end
-    return
+-- The end of the run: what was found, what was never reached.
+local function report()
+  replay:close()
+  if tether.quit then F.call("tether.quit") end
+  local missing = {}
+  for k in pairs(F.fns) do if not F.counts[k] then missing[#missing + 1] = k end end
+  table.sort(missing)
+  local nf, nr = 0, 0
+  for _ in pairs(F.fns) do nf = nf + 1 end
+  for _ in pairs(F.counts) do nr = nr + 1 end
+  print(string.format("fuzz: %d calls in %.1f s, seed %d, %d of %d functions reached", calls, os.clock() - start,
+                      seed, nr, nf))
+  local kinds = 0
+  for _ in pairs(found) do kinds = kinds + 1 end
+  if kinds > 0 then
+    print(string.format("fuzz: %d kinds of failure (first call of each above)", kinds))
+    print("0 passed, 1 failed")
   end
+  if #missing > 0 then print("fuzz: never reached: " .. table.concat(missing, " ")) end
+  if kinds > 0 then
+  elseif #missing > 0 and max_calls == math.huge then
+    print("0 passed, 1 failed")
+  else
+    print("1 passed, 0 failed")
+  end
+end
+
+function tether.draw(g)
+  if done then return report() end
   draws = draws + 1
   if draws == 1 then
     local m = getmetatable(g.new_image(1, 1))
@@ -371,4 +377,11 @@ function tether.draw(g)
       one_call("gfx", nil, nil)
     end
   end
+end
+
+-- A plain host: no runner calls update and draw, so the script does.
+if not tether.runner then
+  while not done do tether.update(1 / 60) end
+  report()
+  os.exit(0, true)
 end

@@ -9,6 +9,10 @@
 --     1e15, and energy and stats are finite.
 -- A broken promise raises an error starting "FUZZ FAILURE".
 local F = {}
+-- The harness's helpers that let one source run under Lua 5.4 and LuaJIT.
+package.path = "tests/lua/?.lua;" .. package.path
+local T = require "harness"
+F.T = T
 
 F.W, F.H, F.IMG = {}, {}, {}   -- worlds, integer handles, images: in the order made
 F.MASK = {}                    -- masks, in the order made
@@ -75,7 +79,7 @@ F.alive = alive
 local function keep(r)
   for i = 2, r.n do
     local v = r[i]
-    if math.type(v) == "integer" then F.H[#F.H + 1] = v
+    if T.isint(v) then F.H[#F.H + 1] = v
     elseif is_world(v) then F.W[#F.W + 1] = v
     elseif is_image(v) then F.IMG[#F.IMG + 1] = v
     elseif is_mask(v) then F.MASK[#F.MASK + 1] = v
@@ -127,7 +131,7 @@ function F.call(name, ...)
   F.counts[name] = (F.counts[name] or 0) + 1
   local cb = F.callbacks -- a finalizer may run inside hashes() too: read the count first
   local before = hashes()
-  local r = table.pack(pcall(fn, ...))
+  local r = T.pack(pcall(fn, ...))
   if not r[1] then
     local msg = r[2]
     if type(msg) == "string" and msg:find("^FUZZ FAILURE") then error(msg, 0) end
@@ -176,7 +180,7 @@ end
 -- Garbage whose finalizer runs `what` on w: finalizers run at any allocation,
 -- in the middle of a binding call.
 function F.finalizer(w, what)
-  setmetatable({}, { __gc = function() act(w, what) end })
+  T.finalized(function() act(w, what) end)
   return nil
 end
 

@@ -4,13 +4,14 @@
 # summary line per target, then "N passed, M failed" (one per target); exit
 # 1 if any failed. A failed target prints its seed, the failing call and how
 # to replay it.
-# Environment: BUILD (build or build-san), FUZZ_TARGETS (names to run,
+# Environment: BUILD (build or build-san), SANITIZE (1: ASan preloaded into
+# luajit), FUZZ_TARGETS (names to run,
 # default all), FUZZ_MIN_SECONDS (the Lua minimiser's budget, default 120;
 # 0 skips it), FUZZ_CALLS (replay: stop after this call; with one target).
 #
 # Adding a target: a function target_NAME taking (SECONDS SEED DIR) that
 # prints one line and returns 0 when it passed, and NAME:WEIGHT in TARGETS.
-TARGETS="lua_api:2 c_api:2 png:1 stream:1"
+TARGETS="lua_api:2 luajit:1 c_api:2 png:1 stream:1"
 
 BUILD=${BUILD:-build}
 SECONDS_=${FUZZ_SECONDS:-60}
@@ -104,6 +105,25 @@ target_stream() {
     fi
     echo "fuzz stream: FAILED (exit $rc), seed $seed"
     echo "    replay: FUZZ_SEED=$seed FUZZ_STREAM_SECONDS=$secs $BUILD/test_c fuzz_stream_reader"
+    tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
+    return 1
+}
+
+# --- the same Lua fuzzer against the LuaJIT module, under luajit ----------------
+# No frames (a plain host runs the update phase alone): the binding's 5.1 path.
+target_luajit() {
+    secs=$1 seed=$2 dir=$3 preload=
+    if [ "${SANITIZE:-}" = 1 ]; then preload=$(${CC:-gcc} -print-file-name=libasan.so); fi
+    FUZZ_OUT="$dir" FUZZ_SEED=$seed FUZZ_SECONDS=$secs FUZZ_REPLAY="$dir/replay.lua" LUA_CPATH="$BUILD/luajit/?.so" \
+        LD_PRELOAD="$preload" ASAN_OPTIONS=detect_leaks=0 luajit tests/fuzz/fuzz_api.lua >"$dir/log.txt" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz luajit: $(grep '^fuzz: .* calls' "$dir/log.txt" | tail -n 1 | sed 's/^fuzz: //') ($secs s)"
+        return 0
+    fi
+    calls=$(grep -o -- '-- [0-9]*$' "$dir/replay.lua" | tail -n 1 | tr -dc 0-9)
+    echo "fuzz luajit: FAILED (exit $rc) at call $calls, seed $seed"
+    echo "    replay: FUZZ_SEED=$seed FUZZ_CALLS=$calls LUA_CPATH='$BUILD/luajit/?.so' luajit tests/fuzz/fuzz_api.lua"
     tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
     return 1
 }

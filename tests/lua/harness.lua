@@ -12,6 +12,58 @@
 -- are part of the contract.
 local T = {}
 
+-- The tests run under Lua 5.4 and under LuaJIT (Lua 5.1, numbers are all
+-- doubles): test sources use no 5.3 operator (<<, &, //, ~) and no
+-- <close>; these helpers stand in, and give integers in 5.4.
+T.LUAJIT = type(jit) == "table"
+local pack = table.pack or function(...) return { n = select("#", ...), ... } end
+local unpack = table.unpack or unpack
+T.pack, T.unpack = pack, unpack
+--- x (an integer-valued number) as an integer subtype where Lua has one.
+function T.int(x) return math.tointeger and math.tointeger(x) or x end
+--- Is v an integer: the integer subtype in 5.4, an integral double in LuaJIT.
+function T.isint(v)
+  if math.type then return math.type(v) == "integer" end
+  return type(v) == "number" and v == math.floor(v) and v == v and v - v == 0
+end
+--- a * 2^n and floor(a / 2^n): shifts of non-negative integers below 2^53.
+function T.shl(a, n) return T.int(a * 2 ^ n) end
+function T.shr(a, n) return T.int(math.floor(a / 2 ^ n)) end
+--- floor(a / b) for integers.
+function T.idiv(a, b) return T.int(math.floor(a / b)) end
+--- An integer as the binding writes it in a message (exact in both).
+function T.istr(v) return math.type and tostring(v) or string.format("%d", v) end
+--- A deterministic generator that is exact in doubles (MINSTD): rand() in
+--- [0, 1), the same sequence under both Luas.
+function T.minstd(seed)
+  local s = seed % 2147483646 + 1
+  return function()
+    s = s * 48271 % 2147483647
+    return (s - 1) / 2147483646
+  end
+end
+--- The collector made to run a whole cycle at (nearly) every allocation
+--- check, and back to the host's defaults. LuaJIT finishes a cycle, its
+--- finalizers included, inside one step only with a huge step multiplier.
+function T.gc_eager()
+  if T.LUAJIT then collectgarbage("setpause", 1); collectgarbage("setstepmul", 1000000)
+  else collectgarbage("incremental", 1, 1000) end
+end
+function T.gc_default()
+  if T.LUAJIT then collectgarbage("setpause", 200); collectgarbage("setstepmul", 200)
+  else collectgarbage("incremental", 200, 100) end
+end
+--- An object whose finalizer calls fn: a table in 5.4; LuaJIT runs __gc on
+--- userdata only, so a proxy there.
+function T.finalized(fn)
+  if newproxy then
+    local u = newproxy(true)
+    getmetatable(u).__gc = fn
+    return u
+  end
+  return setmetatable({}, { __gc = fn })
+end
+
 local passed, failed = 0, 0
 local current = nil   -- name of the running test
 local checks = 0      -- checks failed inside the current test
@@ -97,9 +149,9 @@ end
 
 --- pcall(fn, ...) must succeed; returns its results.
 function T.noerror(fn, ...)
-  local r = table.pack(pcall(fn, ...))
+  local r = pack(pcall(fn, ...))
   if not r[1] then fail("unexpected error: " .. tostring(r[2]), 2) end
-  return table.unpack(r, 2, r.n)
+  return unpack(r, 2, r.n)
 end
 
 --- True if x is a NaN or an infinity.

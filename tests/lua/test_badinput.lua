@@ -17,10 +17,13 @@ local function show(v)
   return tostring(v)
 end
 
--- Wrong types every typed argument must refuse, with the type name in the message.
+-- Wrong types every typed argument must refuse, with the type name in the
+-- message: a userdata by its class's __name (Lua 5.4 names files "FILE*",
+-- LuaJIT does not name them).
+local FILE = (getmetatable(io.stdout) or {}).__name or "userdata"
 local WRONG_TYPES = {
   { NIL, "nil" }, { "x", "string" }, { "1", "string" }, { {}, "table" }, { true, "boolean" },
-  { false, "boolean" }, { fn, "function" }, { io.stdout, "FILE*" }, { coroutine.create(fn), "thread" },
+  { false, "boolean" }, { fn, "function" }, { io.stdout, FILE }, { coroutine.create(fn), "thread" },
 }
 
 -- Bad values of a number kind: wrong types, non-finite, out of range.
@@ -47,7 +50,12 @@ end
 
 -- Every handle carries its kind (tether/base.h): bits 52…50. Integers that
 -- are no handle: 0 (null), no kind, a kind past the last, past 2^53, negative.
-local NOT_HANDLES = { 0, 987654321, 7 << 50, (1 << 53) | 1, -1, math.maxinteger, math.mininteger }
+-- (2^53 + 1 and the 64-bit extremes exist only where integers are not doubles.)
+local NOT_HANDLES = { 0, 987654321, T.shl(7, 50), T.int(2 ^ 53), -1 }
+if not T.LUAJIT then
+  local more = { T.int(2 ^ 53) + 1, math.maxinteger, math.mininteger }
+  for _, v in ipairs(more) do NOT_HANDLES[#NOT_HANDLES + 1] = v end
+end
 local HANDLES = {} -- one live handle of each kind, by kind name (filled below)
 
 -- The bad values of a handle argument of `kind`. stale: handles of that kind
@@ -61,7 +69,7 @@ local function handle_bad(kind, stale)
     if other ~= kind then bad[#bad + 1] = { h, kind .. " expected, got " .. other } end
   end
   if stale then
-    for _, v in ipairs(NOT_HANDLES) do bad[#bad + 1] = { v, kind .. " handle expected, got " .. v } end
+    for _, v in ipairs(NOT_HANDLES) do bad[#bad + 1] = { v, kind .. " handle expected, got " .. T.istr(v) } end
     for _, v in ipairs(stale) do bad[#bad + 1] = { v, "stale " .. kind .. " handle" } end
   end
   return bad
@@ -82,9 +90,9 @@ W:remove(gone)                   -- also removes gone_s
 local SH1 = W:segment(-50, -5, 50, -5)                 -- collisions (lua_collide.c)
 local gone_sh = W:circle(20, 20, 1)
 W:remove_shape(gone_sh)
-local STALE_SH = { gone_sh, SH1 + (1 << 40), SH1 + (1 << 24) } -- removed, another world's tag, another generation
-local STALE_P = { gone, P1 + (1 << 40), P1 + (1 << 24), P1 + 1000 }
-local STALE_S = { gone_s, S1 + (1 << 40), S1 + (1 << 24) }
+local STALE_SH = { gone_sh, SH1 + T.shl(1, 40), SH1 + T.shl(1, 24) } -- removed, another world's tag, another generation
+local STALE_P = { gone, P1 + T.shl(1, 40), P1 + T.shl(1, 24), P1 + 1000 }
+local STALE_S = { gone_s, S1 + T.shl(1, 40), S1 + T.shl(1, 24) }
 local C1 = W:distance(P1, P2)      -- constraints and composites (lua_constraints.c, lua_composites.c)
 local PIN1 = W:pin(P3)
 local H1 = W:lattice { center = { 20, 20 } }
@@ -92,8 +100,8 @@ local gone_c = W:distance(P1, P3)
 W:remove_constraint(gone_c)
 local gone_h = W:rope { start = { 30, 30 }, finish = { 31, 30 }, segments = 1 }
 W:remove_composite(gone_h)
-local STALE_C = { gone_c, C1 + (1 << 40), C1 + (1 << 24) }
-local STALE_H = { gone_h, H1 + (1 << 40), H1 + (1 << 24) }
+local STALE_C = { gone_c, C1 + T.shl(1, 40), C1 + T.shl(1, 24) }
+local STALE_H = { gone_h, H1 + T.shl(1, 40), H1 + T.shl(1, 24) }
 HANDLES.particle, HANDLES.spring, HANDLES.constraint, HANDLES.shape, HANDLES.composite = P1, S1, C1, SH1, H1
 local N_FIXTURES = W:count()
 W:step(1 / 60, 5)
@@ -325,7 +333,7 @@ local function unpack_args(args, n)
   for i = 1, n do
     if args[i] == NIL then out[i] = nil else out[i] = args[i] end
   end
-  return table.unpack(out, 1, n)
+  return T.unpack(out, 1, n)
 end
 
 -- Every particle position and velocity of W, the energy and the stats are finite.
@@ -503,7 +511,7 @@ T.test("wrong self for every method", function()
   local other = setmetatable({}, { __name = "not.a.world" })
   for _, spec in ipairs(METHODS) do
     local name = spec[1]
-    for _, s in ipairs { { NIL, "nil" }, { 1, "number" }, { "w", "string" }, { {}, "table" }, { io.stdout, "FILE*" },
+    for _, s in ipairs { { NIL, "nil" }, { 1, "number" }, { "w", "string" }, { {}, "table" }, { io.stdout, FILE },
                          { other, "not.a.world" }, { fn, "function" } } do
       local args, n = good_args(spec)
       expect_fail(name .. " self = " .. show(s[1]),
@@ -653,11 +661,8 @@ T.test("extreme but legal input never produces NaN or Inf", function()
 end)
 
 T.test("random calls never crash or poison the world", function()
-  local rng_state = 12345
-  local function rand(n) -- deterministic LCG: same cases every run
-    rng_state = (rng_state * 6364136223846793005 + 1442695040888963407) & 0x7fffffffffffffff
-    return (rng_state >> 33) % n + 1
-  end
+  local rnd = T.minstd(12345)
+  local function rand(n) return math.floor(rnd() * n) + 1 end -- deterministic: same cases every run
   local w = tether.world()
   local handles = {}
   for i = 1, 8 do handles[i] = w:particle(i, i) end

@@ -135,7 +135,7 @@ T.test("contact events arrive after the step; removing while reading is safe", f
   local w = tether.world()
   w:set_collision { events = { "begin", "persist", "end" } }
   local ground = w:aabb(-20, -1, 20, 0)
-  for i = 0, 99 do w:particle(-10 + (i % 20), 1 + (i // 20), { radius = 0.4 }) end
+  for i = 0, 99 do w:particle(-10 + (i % 20), 1 + T.idiv(i, 20), { radius = 0.4 }) end
   local begins, removed, moved, stale = 0, 0, 0, 0
   for _ = 1, 120 do
     w:step(1 / 60)
@@ -159,7 +159,7 @@ T.test("deterministic: same script, same hash", function()
     local w = tether.world()
     w:set_collision { restitution = 0.2 }
     w:aabb(-10, -1, 10, 0)
-    for i = 0, 199 do w:particle(-8 + (i % 17) * 0.9, 1 + (i // 17) * 0.9, { radius = 0.2 + 0.1 * (i % 3) }) end
+    for i = 0, 199 do w:particle(-8 + (i % 17) * 0.9, 1 + T.idiv(i, 17) * 0.9, { radius = 0.2 + 0.1 * (i % 3) }) end
     w:step(1 / 60, 120)
     return w:hash()
   end

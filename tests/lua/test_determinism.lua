@@ -9,11 +9,7 @@ local tether = require "tether"
 -- per-step forces, explosions, removals and re-creations, integrator
 -- switches. Deterministic by construction (its own LCG, no clock).
 local function scene(integrators, steps)
-  local seed = 2024
-  local function rnd() -- uniform in [0, 1)
-    seed = (seed * 6364136223846793005 + 1442695040888963407) & 0x7fffffffffffffff
-    return (seed >> 11) / (1 << 52)
-  end
+  local rnd = T.minstd(2024) -- uniform in [0, 1)
   local w = tether.world { integrator = integrators[1], damping = 0.05, wind = { 0.3, 0 } }
   local chain = {}
   chain[1] = w:particle(0, 10, { pinned = true })
@@ -27,7 +23,7 @@ local function scene(integrators, steps)
   end
   for s = 1, steps do
     if s % 50 == 0 then
-      w:set_integrator(integrators[(s // 50) % #integrators + 1])
+      w:set_integrator(integrators[T.idiv(s, 50) % #integrators + 1])
     end
     if s % 37 == 0 then w:explode(rnd() * 10 - 5, rnd() * 10, 6, 3) end
     if s % 11 == 0 then
