@@ -187,7 +187,13 @@ else
         lj_note=""
     fi
     for t in tests/lua/test_*.lua; do
-        [ "$t" = tests/lua/test_render.lua ] && continue
+        case "$t" in
+        # the runner's frames; a Lua 5.4 module (Box2D's cross-check); and
+        # three whose sources still use Lua 5.3 operators and integers
+        # (porting them to the harness's helpers is left to do)
+        tests/lua/test_render.lua | tests/lua/test_box2d.lua | tests/lua/test_golden_demos.lua | \
+            tests/lua/test_mask.lua | tests/lua/test_snapshot.lua) continue ;;
+        esac
         # shellcheck disable=SC2086
         run_counted "luajit$lj_note: $t" env $lj_env LUA_CPATH="$BUILD/luajit/?.so" luajit "$t"
     done

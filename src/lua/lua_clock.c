@@ -110,8 +110,8 @@ static int c_info(lua_State *L)
 static int c_tostring(lua_State *L)
 {
     const tt_clock *c = check_clock(L, 1);
-    lua_pushfstring(L, "tether.clock (dt %f s, x%f%s, %I steps)", c->dt, c->scale, c->paused ? ", paused" : "",
-                    (LUAI_UACINT)c->steps);
+    lua_pushfstring(L, "tether.clock (dt %f s, x%f%s, " TL_I " steps)", c->dt, c->scale, c->paused ? ", paused" : "",
+                    TL_IARG(c->steps));
     return 1;
 }
 

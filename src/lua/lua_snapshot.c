@@ -313,7 +313,7 @@ static int s_len(lua_State *L)
 static int s_tostring(lua_State *L)
 {
     tl_snapshot *s = luaL_checkudata(L, 1, TL_SNAPSHOT_CLASS);
-    lua_pushfstring(L, "tether.snapshot (%I bytes): %p", (lua_Integer)s->size, (void *)s);
+    lua_pushfstring(L, "tether.snapshot (" TL_I " bytes): %p", TL_IARG(s->size), (void *)s);
     return 1;
 }
 
