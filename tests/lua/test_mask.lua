@@ -72,7 +72,7 @@ T.test("overlap family agrees with a per-pixel reference", function()
     local a, b = M.new(1 + rnd(70), 1 + rnd(20)), M.new(1 + rnd(70), 1 + rnd(20))
     for _, m in ipairs({ a, b }) do
       local w, h = m:size()
-      for _ = 1, w * h // 3 do m:set(rnd(w), rnd(h)) end
+      for _ = 1, T.idiv(w * h, 3) do m:set(rnd(w), rnd(h)) end
     end
     local dx, dy = rnd(150) - 75, rnd(40) - 20
     local area, fx, fy = ref(a, b, dx, dy)
