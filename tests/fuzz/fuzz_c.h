@@ -134,6 +134,7 @@ extern const fz_entry fz_constraint_entries[];
 extern const fz_entry fz_composite_entries[];
 extern const fz_entry fz_collide_entries[];
 extern const fz_entry fz_scene_entries[];
+extern const fz_entry fz_stream_entries[]; /* fuzz_c_stream.c */
 
 /* Handle conversions: all five structs share fz_h's layout. Functions, not
  * macros, so an argument with draws in it is evaluated once. */
