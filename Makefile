@@ -276,7 +276,7 @@ test: all $(TEST_C) $(FUZZ_C) $(TEST_B2)
 # `make memcheck`: the C tests under valgrind memcheck; any error or leak
 # of ours fails (libOSMesa's own leak is suppressed by library).
 memcheck: all $(TEST_C)
-	valgrind --quiet --error-exitcode=3 --leak-check=full --errors-for-leak-kinds=definite,indirect \
+	TT_MEMCHECK=1 valgrind --quiet --error-exitcode=3 --leak-check=full --errors-for-leak-kinds=definite,indirect \
 	  --suppressions=tests/valgrind.supp $(TEST_C) >$(BUILD)/memcheck.log 2>&1; rc=$$?; \
 	  grep -v '^ok ' $(BUILD)/memcheck.log | tail -n 40; exit $$rc
 
