@@ -14,7 +14,7 @@ local world, cloth, grab, steps, torn = nil, nil, nil, 0, 0
 local lines = {}
 
 function tether.load(args)
-  N = math.tointeger(tonumber(args[1] or "")) or N
+  N = tonumber((args[1] or ""):match("^%d+$")) or N
   world = tether.world { iterations = 15, substeps = 2, damping = 0.1 }
   cloth = world:cloth { origin = { -2, 3 }, width = 4, height = 3, columns = N, rows = N,
                         mass = 0.01, pin_top_row = true, break_strain = 0.6,
@@ -30,7 +30,8 @@ function tether.update(dt)
   if steps == 240 then -- a hand grabs five particles in the middle of the bottom hem …
     local ps = world:composite_particles(cloth)
     grab = {}
-    for c = N // 2 - 2, N // 2 + 2 do grab[#grab + 1] = world:pin(ps[(N - 1) * N + c]) end
+    local mid = math.floor(N / 2)
+    for c = mid - 2, mid + 2 do grab[#grab + 1] = world:pin(ps[(N - 1) * N + c]) end
   end
   if grab then         -- … and pulls them down and away
     for _, g in ipairs(grab) do

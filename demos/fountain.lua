@@ -22,8 +22,8 @@ local handles, xy = {}, {}  -- reused by the bulk accessors: no garbage per fram
 -- A small deterministic generator (the same fountain on every run).
 local seed = 20240601
 local function rnd()
-  seed = (seed * 6364136223846793005 + 1442695040888963407) & 0x7fffffffffffffff
-  return (seed >> 11) / (1 << 52)
+  seed = seed * 48271 % 2147483647 -- MINSTD: exact in doubles, so LuaJIT draws the same numbers
+  return (seed - 1) / 2147483646
 end
 
 local function emit()
@@ -57,7 +57,7 @@ local function sweep()
 end
 
 function tether.load(args)
-  emit_per_step = math.tointeger(tonumber(args[1] or "")) or emit_per_step
+  emit_per_step = tonumber((args[1] or ""):match("^%d+$")) or emit_per_step
   world = tether.world { gravity = { 0, -9.81 }, damping = 0.02, integrator = "verlet", capacity = MAX_PARTICLES }
   print(("fountain: %d particles per step, floor at %.1f m, explosion every %d steps")
     :format(emit_per_step, FLOOR, EXPLODE_EVERY))

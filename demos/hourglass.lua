@@ -27,7 +27,7 @@ function tether.load()
   w:chain({ 6, 24, 6, 6, NECK, 0, 6, -6, 6, -12 }, { friction = 0.3 })
   local cols, d = 50, 2.2 * R
   for i = 0, GRAINS - 1 do
-    local row = i // cols
+    local row = math.floor(i / cols)
     local x = -5.4 + (i % cols) * d + (row % 2) * 0.5 * d
     w:particle(x, 7 + row * d, { radius = R * (0.9 + 0.2 * ((i * 37) % 11) / 10) })
   end

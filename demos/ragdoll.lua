@@ -13,7 +13,7 @@ local LOG_EVERY = 60
 local world, dolls, limits, steps = nil, {}, {}, 0
 
 function tether.load(args)
-  local count = math.tointeger(tonumber(args[1] or "")) or 3
+  local count = tonumber((args[1] or ""):match("^%d+$")) or 3
   world = tether.world { iterations = 20, substeps = 2, damping = 0.05 }
   -- the staircase: step k spans x in [k·TREAD, (k+1)·TREAD], top at (STEPS − k)·RISE
   world:set_collision { friction = 0.6 }

@@ -24,7 +24,7 @@ local function area(ps)
 end
 
 function tether.load(args)
-  local count = math.tointeger(tonumber(args[1] or "")) or 5
+  local count = tonumber((args[1] or ""):match("^%d+$")) or 5
   world = tether.world { iterations = 20, substeps = 2, damping = 0.2 }
   world:set_collision { friction = 0.7 }
   world:aabb(-6, -1, 6, 0, { friction = 0.7 })                            -- floor

@@ -16,8 +16,8 @@ local world
 local steps = 0
 local seed = 7
 local function rnd()
-  seed = (seed * 6364136223846793005 + 1442695040888963407) & 0x7fffffffffffffff
-  return (seed >> 11) / (1 << 52)
+  seed = seed * 48271 % 2147483647 -- MINSTD: exact in doubles, so LuaJIT draws the same numbers
+  return (seed - 1) / 2147483646
 end
 
 function tether.load()

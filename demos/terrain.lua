@@ -37,11 +37,11 @@ function tether.load()
   w:aabb(X1, -10, X1 + 1, 20)
   for i = 0, 149 do
     local r = 0.2 + 0.3 * ((i * 7) % 5) / 4
-    local p = w:particle(X0 + 2 + (i % 50) * 1.5, 8 + (i // 50) * 2, { radius = r, mass = r * r })
+    local p = w:particle(X0 + 2 + (i % 50) * 1.5, 8 + math.floor(i / 50) * 2, { radius = r, mass = r * r })
     w:set_material(p, 0.1 + 0.5 * ((i * 3) % 4) / 3, 0.8)
     balls[#balls + 1] = p
   end
-  print(("terrain: %d balls on a %d-point polyline from x = %d to %d"):format(#balls, #pts // 2, X0, X1))
+  print(("terrain: %d balls on a %d-point polyline from x = %d to %d"):format(#balls, #pts / 2, X0, X1))
 end
 
 function tether.update(dt)

@@ -188,11 +188,8 @@ else
     fi
     for t in tests/lua/test_*.lua; do
         case "$t" in
-        # the runner's frames; a Lua 5.4 module (Box2D's cross-check); and
-        # two that need Lua 5.3 integers (64-bit user values, string.pack
-        # and 64-bit FNV), still to be written for both Luas
-        tests/lua/test_render.lua | tests/lua/test_box2d.lua | tests/lua/test_golden_demos.lua | \
-            tests/lua/test_snapshot.lua) continue ;;
+        # the runner's frames, and a Lua 5.4 module (Box2D's cross-check)
+        tests/lua/test_render.lua | tests/lua/test_box2d.lua) continue ;;
         esac
         # shellcheck disable=SC2086
         run_counted "luajit$lj_note: $t" env $lj_env LUA_CPATH="$BUILD/luajit/?.so" luajit "$t"

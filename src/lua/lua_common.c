@@ -128,7 +128,9 @@ bool tl_tonumber_in(lua_State *L, int idx, const tl_range *r, double *out)
         lua_remove(L, -2);
         return false;
     }
-    *out = v;
+    /* -0 becomes +0: LuaJIT has no integer zero, so a script's -i * d at
+     * i = 0 is -0 there and +0 in Lua 5.4; one script, one world in both. */
+    *out = v + 0.0;
     return true;
 }
 

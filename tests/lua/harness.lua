@@ -31,6 +31,44 @@ function T.shl(a, n) return T.int(a * 2 ^ n) end
 function T.shr(a, n) return T.int(math.floor(a / 2 ^ n)) end
 --- floor(a / b) for integers.
 function T.idiv(a, b) return T.int(math.floor(a / b)) end
+--- a xor b for integers in [0, 2^31): the 5.3 operator where Lua has it
+--- (loaded as text, so LuaJIT never parses it), LuaJIT's bit library there.
+T.bxor = bit and bit.bxor or load("return function(a, b) return a ~ b end")()
+--- The largest integer both Luas hold exactly: math.maxinteger in 5.4, 2^53 - 1 in LuaJIT.
+T.maxint = math.maxinteger or 2 ^ 53 - 1
+--- The 8 bytes of a double, little-endian (string.pack in 5.4, the FFI in LuaJIT).
+function T.double_bytes(x)
+  if string.pack then return string.pack("<d", x) end
+  local ffi = require "ffi"
+  local u = ffi.new("union { double d; uint8_t b[8]; }")
+  u.d = x
+  local b, le = {}, ffi.abi("le")
+  for i = 0, 7 do b[#b + 1] = string.char(u.b[le and i or 7 - i]) end
+  return table.concat(b)
+end
+--- FNV-1a 64 over strings, in four 16-bit limbs so that every product is
+--- exact in a double: the same digest under both Luas as 5.4's integer
+--- arithmetic. fnv.new() starts, fnv.add(h, s) feeds, fnv.hex(h) gives %016x.
+T.fnv = {}
+function T.fnv.new() return { 0x2325, 0x8422, 0x9ce4, 0xcbf2 } end -- 0xcbf29ce484222325
+function T.fnv.add(h, s)
+  for k = 1, #s do
+    local lo = h[1] % 256
+    h[1] = h[1] - lo + T.bxor(lo, s:byte(k))
+    -- h * 0x100000001b3 = h * 0x1b3 + h * 2^40 (mod 2^64), limb by limb
+    local r, carry = {}, 0
+    for i = 1, 4 do
+      local v = h[i] * 0x1b3 + carry
+      if i == 3 then v = v + h[1] * 256 end
+      if i == 4 then v = v + h[2] * 256 end
+      r[i] = v % 65536
+      carry = math.floor(v / 65536)
+    end
+    h[1], h[2], h[3], h[4] = r[1], r[2], r[3], r[4]
+  end
+  return h
+end
+function T.fnv.hex(h) return ("%04x%04x%04x%04x"):format(h[4], h[3], h[2], h[1]) end
 --- An integer as the binding writes it in a message (exact in both).
 function T.istr(v) return math.type and tostring(v) or string.format("%d", v) end
 --- A deterministic generator that is exact in doubles (MINSTD): rand() in
