@@ -75,6 +75,7 @@ B2_OBJ     := $(call obj_of,$(B2_SRC)) $(BUILD)/obj/box2d/box2d_bridge.o
 B2_LUA_OBJ := $(call obj_of,$(B2_LUA_SRC))
 # The same binding sources compiled a second time against LuaJIT (src/lua/lua_compat.h).
 LUAJIT_OBJ := $(patsubst src/lua/%.c,$(BUILD)/obj/luajit/%.o,$(LUA_SRC))
+B2_LUAJIT_OBJ := $(patsubst src/box2d/%.c,$(BUILD)/obj/luajit_box2d/%.o,$(B2_LUA_SRC))
 RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
@@ -102,12 +103,13 @@ FUZZ_C  := $(BUILD)/fuzz_c
 SCENES_A := $(BUILD)/libtether_scenes.a
 B2_A     := $(BUILD)/libtether_box2d.a
 B2_MOD   := $(BUILD)/tether_box2d.so
+B2_LUAJIT_MOD := $(BUILD)/luajit/tether_box2d.so
 TEST_B2  := $(BUILD)/test_box2d
 BENCH   := $(BUILD)/bench
 
 .PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-love crosscheck install uninstall clean
-all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD)
-luajit: deps $(LUAJIT_MOD)
+all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD) $(B2_LUAJIT_MOD)
+luajit: deps $(LUAJIT_MOD) $(B2_LUAJIT_MOD)
 
 # --- dependencies -----------------------------------------------------------
 # Installs what is missing when run as root on Debian; otherwise prints the
@@ -168,6 +170,10 @@ $(BUILD)/obj/box2d/lua_%.o: src/box2d/lua_%.c $(HEADERS) | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -MMD -c $< -o $@
 
+$(BUILD)/obj/luajit_box2d/lua_%.o: src/box2d/lua_%.c $(HEADERS) | deps
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_ALL) $(LUAJIT_CFLAGS) -MMD -c $< -o $@
+
 $(BUILD)/obj/tests/%.o: tests/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Itests -MMD -c $< -o $@
@@ -191,6 +197,10 @@ $(B2_A): $(B2_OBJ)
 # The cross-check's Lua module carries its own copy of the engine (like
 # tether.so) and is the one product that links Box2D and libstdc++.
 $(B2_MOD): $(B2_LUA_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
+	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm
+
+$(B2_LUAJIT_MOD): $(B2_LUAJIT_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
+	@mkdir -p $(@D)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm
 
 # The Lua module is not linked against liblua: the host (lua5.4 or our runner)
@@ -233,7 +243,7 @@ $(BENCH): $(BENCH_SRC) $(RENDER_A) $(B2_A) $(SCENES_A) $(LIB_A) | deps
 	$(CC) $(CFLAGS_ALL) $(RENDER_CFLAGS) -Ibench -o $@ $(BENCH_SRC) $(RENDER_A) $(B2_A) $(SCENES_A) $(LIB_A) $(LDFLAGS_ALL) \
 	  $(RENDER_LIBS) $(BOX2D_LIBS) -lstdc++ -lm
 
--include $(wildcard $(BUILD)/obj/*/*.d $(BUILD)/obj/tests/*/*.d $(BUILD)/obj/tests/*.d)
+-include $(wildcard $(BUILD)/obj/*/*.d $(BUILD)/obj/luajit_box2d/*.d $(BUILD)/obj/tests/*/*.d $(BUILD)/obj/tests/*.d)
 
 # `make crosscheck [QUICK=1]`: the seven scenes in tether and in Box2D 2.4.1,
 # one table on the terminal, CSV and Markdown in $(BUILD)/crosscheck/.
@@ -331,8 +341,9 @@ install: all
 	install -m 755 $(LUA_MOD) $(DESTDIR)$(LUA_CMOD_DIR)/tether.so
 	install -m 755 $(LUAJIT_MOD) $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether.so
 	install -m 755 $(B2_MOD) $(DESTDIR)$(LUA_CMOD_DIR)/tether_box2d.so
+	install -m 755 $(B2_LUAJIT_MOD) $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether_box2d.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
-	install -m 644 lua/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+	install -m 644 lua/tether.d.lua lua/tether_box2d.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/
 	$(PC_SUBST) pkgconfig/tether.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
 	$(PC_SUBST) pkgconfig/tether-render.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc
 	@# The loader's cache must learn the new library, or programs fail with
@@ -348,9 +359,9 @@ uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/lib/libtether.a $(DESTDIR)$(PREFIX)/lib/libtether.so $(DESTDIR)$(PREFIX)/lib/$(SONAME) \
 	  $(DESTDIR)$(PREFIX)/lib/libtether.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/libtether_render.a \
 	  $(DESTDIR)$(LUA_CMOD_DIR)/tether.so $(DESTDIR)$(LUA_CMOD_DIR)/tether_box2d.so $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether.so \
-	  $(DESTDIR)$(PREFIX)/bin/tether \
+	  $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether_box2d.so $(DESTDIR)$(PREFIX)/bin/tether \
 	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc \
-	  $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua
+	  $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether_box2d.d.lua
 	@if [ -z "$(DESTDIR)" ] && [ "$(PREFIX)" = /usr/local ] && command -v ldconfig >/dev/null 2>&1; then ldconfig; fi
 
 clean:

@@ -188,8 +188,8 @@ else
     fi
     for t in tests/lua/test_*.lua; do
         case "$t" in
-        # the runner's frames, and a Lua 5.4 module (Box2D's cross-check)
-        tests/lua/test_render.lua | tests/lua/test_box2d.lua) continue ;;
+        # the runner's frames
+        tests/lua/test_render.lua) continue ;;
         esac
         # shellcheck disable=SC2086
         run_counted "luajit$lj_note: $t" env $lj_env LUA_CPATH="$BUILD/luajit/?.so" luajit "$t"

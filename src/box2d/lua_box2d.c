@@ -15,6 +15,7 @@
 #include "lua_box2d.h"
 
 #include <lauxlib.h>
+#include "lua/lua_compat.h" /* one source for Lua 5.4 and LuaJIT */
 #include <lua.h>
 
 #include <math.h>
@@ -97,7 +98,7 @@ static int opt_list(lua_State *L, int t, const char *fn, const char *key, double
     int got = 0;
     if (!lua_isnil(L, -1)) {
         if (!lua_istable(L, -1)) luaL_error(L, "%s: option '%s' must be a list of numbers", fn, key);
-        got = (int)luaL_len(L, -1);
+        got = (int)lua_rawlen(L, -1);
         if (got > n) luaL_error(L, "%s: option '%s' has %d numbers, at most %d", fn, key, got, n);
         for (int i = 0; i < got; i++) {
             lua_rawgeti(L, -1, i + 1);

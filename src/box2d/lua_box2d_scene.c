@@ -4,7 +4,9 @@
 #include "lua_box2d.h"
 
 #include <lauxlib.h>
+#include "lua/lua_compat.h" /* one source for Lua 5.4 and LuaJIT */
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -123,7 +125,7 @@ static void build_joints(lua_State *L, tb_world *w, int t, const char *fn)
     }
     if (!lua_istable(L, -1)) luaL_error(L, "%s: 'joints' must be a list of joint tables", fn);
     const int jt = lua_gettop(L);
-    for (lua_Integer i = 1, n = luaL_len(L, jt); i <= n; i++) {
+    for (lua_Integer i = 1, n = lua_rawlen(L, jt); i <= n; i++) {
         lua_rawgeti(L, jt, i);
         const int j = lua_gettop(L);
         if (!lua_istable(L, j)) luaL_error(L, "%s: joints[%d] must be a table", fn, (int)i);
@@ -131,6 +133,8 @@ static void build_joints(lua_State *L, tb_world *w, int t, const char *fn)
         lua_getfield(L, j, "a");
         lua_getfield(L, j, "b");
         const lua_Integer a = lua_tointeger(L, -2), b = lua_tointeger(L, -1);
+        if (!lua_isinteger(L, -2) || !lua_isinteger(L, -1) || a < 0 || b < 1 || a > INT_MAX || b > INT_MAX)
+            luaL_error(L, "%s: joints[%d]: 'a' and 'b' must be body numbers (a may be 0, the ground)", fn, (int)i);
         double pa[2], pb[2];
         get_pair(L, j, fn, "anchor_a", pa);
         lua_getfield(L, j, "anchor_b");
@@ -161,7 +165,7 @@ int tl_b2_build(lua_State *L)
     lua_getfield(L, 1, "bodies");
     if (!lua_istable(L, -1)) return luaL_error(L, "%s: the scene's 'bodies' must be a list of body tables", fn);
     const int bt = lua_gettop(L);
-    for (lua_Integer i = 1, n = luaL_len(L, bt); i <= n; i++) {
+    for (lua_Integer i = 1, n = lua_rawlen(L, bt); i <= n; i++) {
         lua_rawgeti(L, bt, i);
         if (!lua_istable(L, -1)) return luaL_error(L, "%s: bodies[%d] must be a table", fn, (int)i);
         const tb_body_def b = tl_b2_body_def(L, lua_gettop(L), fn);

@@ -2,7 +2,8 @@
 -- tether world, the shared scenes as tables, the cross-check's rows, and
 -- errors that name the function and the argument.
 package.path = "tests/lua/?.lua;" .. package.path
-package.cpath = (os.getenv("BUILD") or "build") .. "/?.so;" .. package.cpath
+-- the module built for this Lua: build/ for 5.4, build/luajit/ for LuaJIT
+package.cpath = (os.getenv("BUILD") or "build") .. (type(jit) == "table" and "/luajit" or "") .. "/?.so;" .. package.cpath
 local T = require "harness"
 local tether = require "tether"
 local b2 = require "tether_box2d"
@@ -74,6 +75,23 @@ T.test("the cross-check's rows come back as tables", function()
   T.near(rows[1].box2d / rows[1].expected - 1, 1 / 60, 1e-4, "Box2D's fall 1.7 % long at 1 s")
   T.ok(math.abs(rows[1].tether / rows[1].expected - 1) < 1e-3, "tether within 0.1 %")
   T.ok(costs[1].box2d_ms > 0 and costs[1].tether_ms > 0, "both timed")
+end)
+
+T.test("lua/tether_box2d.d.lua annotates every function of the module", function()
+  local f = io.open("lua/tether_box2d.d.lua", "r")
+  T.ok(f, "lua/tether_box2d.d.lua readable (tests run from the repository root)")
+  if not f then return end
+  local ann = f:read("*a")
+  f:close()
+  for name, v in pairs(b2) do
+    local seen = type(v) == "function" and ann:find("function tether_box2d." .. name .. "(", 1, true)
+      or ann:find("---@field " .. name .. " ", 1, true)
+    T.ok(seen, "annotations: tether_box2d." .. name)
+  end
+  local methods = getmetatable(b2.world()).__index
+  for name in pairs(methods) do
+    T.ok(ann:find("function world:" .. name .. "(", 1, true), "annotations: world:" .. name)
+  end
 end)
 
 T.done()
