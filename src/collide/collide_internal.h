@@ -249,7 +249,6 @@ static inline tt__collide *tt__collide_peek(const tt_world *w)
 {
     return (tt__collide *)tt__group_find(w, &tt__contacts_ops);
 }
-bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem);
 
 /* The stages of the contacts group (contacts.c registers them): detection
  * (contact_detect.c), projection and the velocity pass

@@ -29,18 +29,6 @@ tt_shape_def tt_shape_def_default(void)
     return d;
 }
 
-bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem)
-{
-    if (need <= *cap) return true;
-    uint32_t n = *cap ? *cap : 16;
-    while (n < need) n = n > UINT32_MAX / 2 ? need : n * 2;
-    void *q = realloc(*p, (size_t)n * elem);
-    if (!q) return false;
-    *p = q;
-    *cap = n;
-    return true;
-}
-
 bool tt__shape_ok(const tt__collide *c, tt_shape s)
 {
     return c && s.index < c->spool.count && s.gen != 0 && c->spool.gen[s.index] == s.gen && c->shapes[s.index].alive;

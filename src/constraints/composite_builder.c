@@ -48,7 +48,7 @@ static void undo(tt__builder *b)
         if (tt_constraint_is_valid(w, b->c.cons[i])) tt_constraint_destroy(w, b->c.cons[i]);
     for (uint32_t i = 0; i < b->c.np; i++) tt_particle_destroy(w, b->c.parts[i]);
     /* removal bumped generations and reordered free lists: put both back */
-    tt__cgroup *g = tt__cgroup_get(w, false);
+    tt__cgroup *g = tt__cgroup_find(w);
     if (g) {
         for (uint32_t i = 0; i < b->c.nc; i++) tt_pool_unalloc(&g->pool, b->cmark, i, b->c.cons[i].index, b->c.cons[i].gen);
         tt_pool_rewind(&g->pool, b->cmark);
@@ -95,7 +95,7 @@ bool tt__builder_spawn(tt__builder *b)
     b->fresh_count = w->fresh_count;
     b->epoch = w->epoch;
     b->had_group = tt__cgroup_peek(w) != NULL;
-    tt__cgroup *g = tt__cgroup_get(w, true); /* made here, it starts empty: a mark like any other */
+    tt__cgroup *g = tt__cgroup_make(w); /* made here, it starts empty: a mark like any other */
     if (g) b->cmark = tt_pool_mark_now(&g->pool);
     if (!g || !reserve_record(g)) {
         tt__fail(w, TT_ENOMEM, "%s: out of memory", b->fn);
@@ -175,7 +175,7 @@ void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, doubl
 tt_composite tt__builder_finish(tt__builder *b)
 {
     tt_world *w = b->w;
-    tt__cgroup *g = tt__cgroup_get(w, false);
+    tt__cgroup *g = tt__cgroup_find(w);
     bool grew;
     uint32_t s = b->failed ? UINT32_MAX : tt_pool_alloc(&g->cpool, UINT32_MAX - 1, &grew);
     if (s == UINT32_MAX) {

@@ -12,13 +12,12 @@
 /* ---- reading back --------------------------------------------------------------- */
 
 /* Slots with a record (a slot taken when growing the records failed has none). */
-static uint32_t comp_slots(const tt__cgroup *g) { return g->cpool.count < g->comp_cap ? g->cpool.count : g->comp_cap; }
 
 static tt_result comp_check(const tt_world *w, tt_composite c, const char *fn, const tt__composite **out)
 {
     if (!w) return tt__fail(NULL, TT_EINVAL, "%s: world is NULL", fn);
     const tt__cgroup *g = tt__cgroup_peek(w);
-    if (!g || c.gen == 0 || c.index >= comp_slots(g) || g->cpool.gen[c.index] != c.gen || !g->comps[c.index].alive)
+    if (!g || c.gen == 0 || c.index >= tt__comp_slots(g) || g->cpool.gen[c.index] != c.gen || !g->comps[c.index].alive)
         return tt__fail(w, TT_ESTALE, "%s: stale composite handle (index %u, generation %u)", fn, c.index, c.gen);
     *out = &g->comps[c.index];
     return TT_OK;
@@ -27,7 +26,7 @@ static tt_result comp_check(const tt_world *w, tt_composite c, const char *fn, c
 bool tt_composite_is_valid(const tt_world *w, tt_composite c)
 {
     const tt__cgroup *g = tt__cgroup_peek(w);
-    return g && c.gen != 0 && c.index < comp_slots(g) && g->cpool.gen[c.index] == c.gen && g->comps[c.index].alive;
+    return g && c.gen != 0 && c.index < tt__comp_slots(g) && g->cpool.gen[c.index] == c.gen && g->comps[c.index].alive;
 }
 
 tt_result tt_composite_destroy(tt_world *w, tt_composite c)
@@ -35,7 +34,7 @@ tt_result tt_composite_destroy(tt_world *w, tt_composite c)
     const tt__composite *cc;
     tt_result r = comp_check(w, c, "tt_composite_destroy", &cc);
     if (r != TT_OK) return r;
-    tt__cgroup *g = tt__cgroup_get(w, false);
+    tt__cgroup *g = tt__cgroup_find(w);
     tt__composite *k = &g->comps[c.index];
     for (uint32_t i = 0; i < k->nc; i++)
         if (tt_constraint_is_valid(w, k->cons[i])) tt_constraint_destroy(w, k->cons[i]);
@@ -138,26 +137,3 @@ uint32_t tt_world_composite_count(const tt_world *w)
 }
 
 /* ---- group hooks ------------------------------------------------------------------ */
-
-
-void tt__composites_free(tt__cgroup *g)
-{
-    for (uint32_t i = 0; i < comp_slots(g); i++) {
-        free(g->comps[i].parts);
-        free(g->comps[i].cons);
-        free(g->comps[i].rest);
-    }
-    free(g->comps);
-    tt_pool_destroy(&g->cpool);
-}
-
-size_t tt__composites_memory(const tt__cgroup *g)
-{
-    size_t b = (size_t)g->comp_cap * sizeof(tt__composite) + tt_pool_bytes(&g->cpool);
-    for (uint32_t i = 0; i < comp_slots(g); i++) {
-        const tt__composite *k = &g->comps[i];
-        if (!k->alive) continue;
-        b += (size_t)k->np * (sizeof(tt_particle) + 2 * sizeof(double)) + (size_t)k->ccap * sizeof(tt_constraint);
-    }
-    return b;
-}

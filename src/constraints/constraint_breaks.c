@@ -5,7 +5,7 @@
 
 static bool event_push(tt__cgroup *g, tt_break_event e)
 {
-    if (!tt__constraints_grow((void **)&g->ev_new, sizeof *g->ev_new, &g->cap_new, g->nnew + 1)) return false;
+    if (!tt__grow((void **)&g->ev_new, &g->cap_new, g->nnew + 1, sizeof *g->ev_new)) return false;
     g->ev_new[g->nnew++] = e;
     return true;
 }
@@ -18,7 +18,7 @@ bool tt__cgroup_reserve(tt_world *w, void *self)
     tt__cgroup *g = self;
     if (!tt__distance_plan_reserve(w, g)) return false;
     if (!g->nbreakable) return true;
-    return tt__constraints_grow((void **)&g->ev_new, sizeof *g->ev_new, &g->cap_new, g->nnew + g->nbreakable) &&
+    return tt__grow((void **)&g->ev_new, &g->cap_new, g->nnew + g->nbreakable, sizeof *g->ev_new) &&
            tt_pool_reserve_free(&g->pool, g->nbreakable);
 }
 

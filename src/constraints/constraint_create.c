@@ -118,10 +118,10 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     }
     if (tt__constraint_check_rate(w, d->max_rate, fn) != TT_OK) return NONE;
     const bool had = tt__cgroup_peek(w) != NULL; /* a group made here goes again if this fails */
-    tt__cgroup *g = tt__cgroup_get(w, true);
+    tt__cgroup *g = tt__cgroup_make(w);
     if (!g || !tt__cgroup_refs_reserve(w, g) ||
-        !tt__constraints_grow((void **)&g->dist, sizeof *g->dist, &g->dist_cap, g->ndist + 1) ||
-        !tt__constraints_grow((void **)&g->dx, sizeof *g->dx, &g->dx_cap, g->ndist + 1))
+        !tt__grow((void **)&g->dist, &g->dist_cap, g->ndist + 1, sizeof *g->dist) ||
+        !tt__grow((void **)&g->dx, &g->dx_cap, g->ndist + 1, sizeof *g->dx))
         goto nomem;
     if (!d->collide && !tt__constraint_pair_add(g, d->a.index, d->b.index)) goto nomem;
     uint32_t slot;
@@ -156,10 +156,10 @@ nomem:
 static tt__gcon *gen_new(tt_world *w, uint8_t kind, tt_constraint *h, const char *fn)
 {
     const bool had = tt__cgroup_peek(w) != NULL;
-    tt__cgroup *g = tt__cgroup_get(w, true);
+    tt__cgroup *g = tt__cgroup_make(w);
     uint32_t slot;
     if (!g || !tt__cgroup_refs_reserve(w, g) ||
-        !tt__constraints_grow((void **)&g->gen, sizeof *g->gen, &g->gen_cap, g->ngen + 1) ||
+        !tt__grow((void **)&g->gen, &g->gen_cap, g->ngen + 1, sizeof *g->gen) ||
         !tt__cgroup_slot_new(g, kind, g->ngen, &slot)) {
         tt__cgroup_unmake(w, had);
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
@@ -195,7 +195,7 @@ tt_constraint tt_pin_create(tt_world *w, const tt_pin_def *d)
     c->alpha = d->compliance;
     c->v[0] = d->anchor_here ? w->px[i] : d->anchor.x;
     c->v[1] = d->anchor_here ? w->py[i] : d->anchor.y;
-    tt__cgroup *g = tt__cgroup_get(w, false);
+    tt__cgroup *g = tt__cgroup_find(w);
     g->slots[c->slot].max_rate = d->max_rate;
     tt__cgroup_gen_refs(g, c, +1);
     return h;
@@ -266,7 +266,7 @@ tt_constraint tt_bounds_create(tt_world *w, const tt_bounds_def *d)
     c->v[1] = d->min.y;
     c->v[2] = d->max.x;
     c->v[3] = d->max.y;
-    tt__cgroup_gen_refs(tt__cgroup_get(w, false), c, +1);
+    tt__cgroup_gen_refs(tt__cgroup_find(w), c, +1);
     return h;
 }
 
@@ -301,7 +301,7 @@ tt_constraint tt_angle_create(tt_world *w, const tt_angle_def *d)
     double th = tt__constraint_angle_at(w, c->p[0], c->p[1], c->p[2]);
     c->v[0] = d->use_current ? th : d->min;
     c->v[1] = d->use_current ? th : d->max;
-    tt__cgroup_gen_refs(tt__cgroup_get(w, false), c, +1);
+    tt__cgroup_gen_refs(tt__cgroup_find(w), c, +1);
     return h;
 }
 
@@ -326,8 +326,8 @@ tt_constraint tt_area_create(tt_world *w, const tt_area_def *d)
     uint32_t *list = copy_list(w, d->particles, d->count, true, fn);
     if (!list) return NONE;
     const bool had = tt__cgroup_peek(w) != NULL;
-    tt__cgroup *g = tt__cgroup_get(w, true);
-    if (!g || !tt__constraints_grow((void **)&g->grad, 2 * sizeof(double), &g->grad_cap, d->count)) {
+    tt__cgroup *g = tt__cgroup_make(w);
+    if (!g || !tt__grow((void **)&g->grad, &g->grad_cap, d->count, 2 * sizeof(double))) {
         free(list);
         tt__cgroup_unmake(w, had);
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
@@ -346,7 +346,7 @@ tt_constraint tt_area_create(tt_world *w, const tt_area_def *d)
     c->alpha = d->compliance;
     c->v[0] = d->use_current ? tt__constraint_polygon_area(w, list, d->count) : d->area;
     c->v[1] = d->pressure;
-    tt__cgroup_gen_refs(tt__cgroup_get(w, false), c, +1);
+    tt__cgroup_gen_refs(tt__cgroup_find(w), c, +1);
     return h;
 }
 
@@ -361,6 +361,6 @@ tt_constraint tt_collinear_create(tt_world *w, const tt_collinear_def *d)
     tt_constraint h;
     tt__gcon *c = gen_new_triple(w, TT_CONSTRAINT_COLLINEAR, abc, d->stiffness, d->compliance, &h, fn);
     if (!c) return NONE;
-    tt__cgroup_gen_refs(tt__cgroup_get(w, false), c, +1);
+    tt__cgroup_gen_refs(tt__cgroup_find(w), c, +1);
     return h;
 }

@@ -8,6 +8,7 @@
 
 #include "core/internal.h"
 #include "core/simd.h"
+#include "core/stream.h" /* TT__ID */
 #include "tether/composite.h"
 
 /* Distance constraints, the hot loop: dense, swap-removed, 40 bytes each.
@@ -130,21 +131,25 @@ typedef struct tt__cgroup {
 
 static const double TT_PI = 3.14159265358979323846;
 
-/* ---- the group and its storage (constraints.c) ---------------------------- */
+/* ---- the group and its storage (constraint_group.c; made in constraints.c) -- */
 
-/* The group of w, made and registered on first use when create is true (NULL on no memory). */
-tt__cgroup *tt__cgroup_get(tt_world *w, bool create);
-const tt__cgroup *tt__cgroup_peek(const tt_world *w);
+#define TT__CONS_ID TT__ID('C', 'O', 'N', 'S') /* its snapshot section, and how its files find it */
+extern const tt__group_ops tt__constraints_ops;
+/* The group of w, or NULL: found by its id, so no part names the ops table. */
+static inline tt__cgroup *tt__cgroup_find(const tt_world *w) { return w ? (tt__cgroup *)tt__group_find_id(w, TT__CONS_ID) : NULL; }
+static inline const tt__cgroup *tt__cgroup_peek(const tt_world *w) { return tt__cgroup_find(w); }
+/* The group of w, made and registered on first use (constraints.c; NULL on no memory). */
+tt__cgroup *tt__cgroup_make(tt_world *w);
 /* Takes the group back when the failing call that made it was its first use
  * (had: whether it was there before the call). */
 void tt__cgroup_unmake(tt_world *w, bool had);
-/* Grows *p (elem bytes each) to hold need, doubling from 64; false on no memory. */
-bool tt__constraints_grow(void **p, size_t elem, uint32_t *cap, uint32_t need);
 bool tt__cgroup_slot_new(tt__cgroup *g, uint8_t kind, uint32_t dense, uint32_t *out);
 bool tt__cgroup_refs_reserve(const tt_world *w, tt__cgroup *g);
 void tt__cgroup_gen_refs(tt__cgroup *g, const tt__gcon *c, int delta);
 void tt__cgroup_dist_remove(tt__cgroup *g, uint32_t d);
 void tt__cgroup_slot_remove(tt__cgroup *g, uint32_t s);
+void tt__cgroup_particle_removed(tt_world *w, void *self, uint32_t index);
+size_t tt__cgroup_memory(const tt_world *w, const void *self);
 static inline tt_constraint tt__cgroup_handle(const tt__cgroup *g, uint32_t slot)
 {
     return (tt_constraint){slot, g->pool.gen[slot]};
@@ -200,12 +205,14 @@ bool tt__target_move(tt__cgroup *g, uint32_t slot, const double to[2]);
 /* Once per substep from begin: sets every moving target's effective value. */
 void tt__targets_substep(tt_world *w, tt__cgroup *g, double h);
 /* The slot's constraint goes: forget its move. */
-void tt__target_forget(tt__cgroup *g, uint32_t slot);
+void tt__target_forget(tt__cgroup *g, uint32_t slot); /* constraint_group.c */
 
 /* ---- breaking (constraint_breaks.c) ---------------------------------------- */
 void tt__cgroup_break_links(tt_world *w, tt__cgroup *g);
 
-/* ---- composites: the group's hooks (composites.c) ------------------------- */
+/* ---- composites' storage (constraint_group.c) ------------------------ */
+/* Composite slots in use (the pool may count past the array after a failed grow). */
+static inline uint32_t tt__comp_slots(const tt__cgroup *g) { return g->cpool.count < g->comp_cap ? g->cpool.count : g->comp_cap; }
 void tt__composites_free(tt__cgroup *g);
 size_t tt__composites_memory(const tt__cgroup *g);
 

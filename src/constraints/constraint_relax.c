@@ -104,16 +104,6 @@ static void set_effective(tt__cgroup *g, uint32_t slot, const double v[2])
     }
 }
 
-static void drop(tt__cgroup *g, uint32_t k)
-{
-    g->slots[g->moving[k].slot].mover = 0;
-    uint32_t last = --g->nmoving;
-    if (k != last) {
-        g->moving[k] = g->moving[last];
-        g->slots[g->moving[k].slot].mover = k + 1;
-    }
-}
-
 bool tt__target_move(tt__cgroup *g, uint32_t slot, const double to[2])
 {
     uint32_t k = g->slots[slot].mover;
@@ -125,15 +115,10 @@ bool tt__target_move(tt__cgroup *g, uint32_t slot, const double to[2])
     double now[2];
     effective(g, slot, now);
     if (now[0] == to[0] && now[1] == to[1]) return true; /* set where it is: nothing to move */
-    if (!tt__constraints_grow((void **)&g->moving, sizeof *g->moving, &g->moving_cap, g->nmoving + 1)) return false;
+    if (!tt__grow((void **)&g->moving, &g->moving_cap, g->nmoving + 1, sizeof *g->moving)) return false;
     g->moving[g->nmoving] = (tt__mover){slot, {now[0], now[1]}, {to[0], to[1]}, {now[0], now[1]}};
     g->slots[slot].mover = ++g->nmoving;
     return true;
-}
-
-void tt__target_forget(tt__cgroup *g, uint32_t slot)
-{
-    if (g->slots[slot].mover) drop(g, g->slots[slot].mover - 1);
 }
 
 /* Where this step of dt ends: the target itself, assigned (not reached by
@@ -167,7 +152,7 @@ void tt__targets_substep(tt_world *w, tt__cgroup *g, double h)
         set_effective(g, m->slot, m->end); /* exactly the end: the substeps' fractions do not add up to it */
         m->at[0] = m->end[0];
         m->at[1] = m->end[1];
-        if (m->end[0] == m->to[0] && m->end[1] == m->to[1]) drop(g, k);
+        if (m->end[0] == m->to[0] && m->end[1] == m->to[1]) tt__target_forget(g, g->moving[k].slot);
     }
 }
 

@@ -85,20 +85,11 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
  * sweeps (Zen 4, make bench, median of 5): the scalar loop 6.2 ms a step,
  * this 1.97 ms. */
 
-bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode)
-{
-    if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && tt__simd_kind((uint8_t)mode) == TT__SIMD_SCALAR) return false;
-    tt__cgroup *g = tt__cgroup_get(w, true);
-    if (!g) return false;
-    g->simd = (uint8_t)mode;
-    return true;
-}
-
 /* Room for the plan of n links over particles [0, np). */
 static bool plan_reserve(tt__cgroup *g, uint32_t n, uint32_t np, uint32_t W)
 {
-    if (!tt__constraints_grow((void **)&g->stamp, sizeof *g->stamp, &g->stamp_cap, np) ||
-        !tt__constraints_grow((void **)&g->plan, sizeof *g->plan, &g->plan_cap, 2 * (n / W + 1)))
+    if (!tt__grow((void **)&g->stamp, &g->stamp_cap, np, sizeof *g->stamp) ||
+        !tt__grow((void **)&g->plan, &g->plan_cap, 2 * (n / W + 1), sizeof *g->plan))
         return false;
     if (!tt__rows_reserve(&g->pk, &g->pk_cap, np)) return false;
     if (n > g->hot_cap) { /* one block: four double arrays, then two uint32 ones */

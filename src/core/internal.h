@@ -143,6 +143,9 @@ struct tt_world {
     tt_pool spool;
     tt__spring *springs;
     uint32_t scap, springs_alive;
+    /* Removing a particle reaches its springs through this (set by
+     * tt_world_create), so particles.c does not depend on springs.c. */
+    void (*springs_detach)(tt_world *w, uint32_t particle);
 
     tt_stats stats;
     uint64_t epoch;       /* bumped when particles appear, move or change radius outside a step, and by each step (query caches) */
@@ -169,6 +172,9 @@ static inline void tt__zero(void *dst, size_t bytes)
     if (bytes) memset(dst, 0, bytes);
 }
 double tt__now_ms(void);
+/* *p grown to hold need elements of elem bytes (doubling, at least 16):
+ * false, and *p and *cap as they were, when memory runs out. */
+bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem);
 
 /* Particles. */
 tt_result tt__particles_reserve(tt_world *w, uint32_t cap);
@@ -221,6 +227,10 @@ void *tt__group_find(const tt_world *w, const tt__group_ops *ops);
  * that registered it and then failed takes it back, since a group, even
  * empty, is swept and hashed. */
 void tt__group_remove(tt_world *w, const tt__group_ops *ops);
+/* The same by the group's section id (ops->id): a feature's files find
+ * their group without naming its ops table, which names them all. */
+void *tt__group_find_id(const tt_world *w, uint32_t id);
+void tt__group_remove_id(tt_world *w, uint32_t id);
 void tt__solve(tt_world *w, double h);
 void tt__solver_after_step(tt_world *w);
 void tt__solver_particle_removed(tt_world *w, uint32_t index);

@@ -187,7 +187,7 @@ tt_result tt_particle_destroy(tt_world *w, tt_particle p)
     tt_result r = tt__particle_check(w, p, "tt_particle_destroy");
     if (r != TT_OK) return r;
     uint32_t i = p.index;
-    tt__springs_detach(w, i);
+    if (w->springs_alive) w->springs_detach(w, i);
     tt__solver_particle_removed(w, i);
     w->flags[i] = 0;
     w->inv_mass[i] = 0.0;

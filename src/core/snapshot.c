@@ -352,6 +352,7 @@ static tt_world *parse(const void *data, size_t size, uint64_t epoch, char *why,
     tt_world *w = calloc(1, sizeof *w);
     if (!w) { snprintf(why, whylen, "out of memory"); return NULL; }
     w->epoch = epoch;
+    w->springs_detach = tt__springs_detach; /* as tt_world_create sets it */
     tt__source s = {.p = b + TT__SNAP_HEADER, .len = (size_t)body};
     load_sections(w, &s);
     if (!s.failed) return w;

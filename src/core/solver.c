@@ -30,6 +30,22 @@ void *tt__group_find(const tt_world *w, const tt__group_ops *ops)
     return NULL;
 }
 
+void *tt__group_find_id(const tt_world *w, uint32_t id)
+{
+    for (int g = 0; g < w->group_count; g++)
+        if (w->groups[g].ops->id == id) return w->groups[g].self;
+    return NULL;
+}
+
+void tt__group_remove_id(tt_world *w, uint32_t id)
+{
+    for (int g = 0; g < w->group_count; g++)
+        if (w->groups[g].ops->id == id) {
+            tt__group_remove(w, w->groups[g].ops);
+            return;
+        }
+}
+
 void tt__group_remove(tt_world *w, const tt__group_ops *ops)
 {
     for (int g = 0; g < w->group_count; g++) {

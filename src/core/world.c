@@ -1,35 +1,10 @@
 /* tether — the world: creation, settings, the step pipeline, stats. */
 #include "internal.h"
 
-#include <stdarg.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static _Thread_local char g_error[256];
-
-tt_result tt__fail(const tt_world *w, tt_result code, const char *fmt, ...)
-{
-    /* The message buffer is diagnostic state, not simulation state. */
-    char *buf = w ? ((tt_world *)w)->error : g_error;
-    size_t n = w ? sizeof w->error : sizeof g_error;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, n, fmt, ap);
-    va_end(ap);
-    return code;
-}
-
-const char *tt_last_error(const tt_world *w) { return w ? w->error : g_error; }
-
-double tt__now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
 
 const char *tt_version(void) { return TT_VERSION_STRING; }
 
@@ -114,6 +89,7 @@ tt_world *tt_world_create(const tt_world_def *def)
     static atomic_uint next_tag;
     w->tag = atomic_fetch_add(&next_tag, 1) % TT_POOL_MAX_TAG + 1;
     w->ppool.tag = w->spool.tag = w->tag;
+    w->springs_detach = tt__springs_detach;
     w->gravity = d.gravity;
     w->wind = d.wind;
     w->damping = d.damping;
@@ -184,11 +160,6 @@ tt_result tt_world_step(tt_world *w, double dt)
         tt__fail(w, TT_OK, "tt_world_step: %u particle(s) passed |x| or |v| > %g and were stopped",
                  w->stats.diverged, TT_DIVERGED);
     return TT_OK;
-}
-
-void tt__step_oom(tt_world *w, const char *what)
-{
-    if (!w->step_oom) w->step_oom = what; /* the first says the most */
 }
 
 tt_result tt_world_set_gravity(tt_world *w, tt_vec2 g)

@@ -265,6 +265,34 @@ TEST(snapshot_refuses_a_spring_joining_a_removed_particle)
     tt_world_destroy(w);
 }
 
+/* Removing a particle in a loaded or restored world removes its springs, as
+ * in the world that was saved (the removal reaches the springs through a
+ * hook the world sets when it is made, by tt_world_create or the loader). */
+TEST(snapshot_loaded_world_removes_a_particles_springs_with_it)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle a = tt_particle_create(w, &pd), b = tt_particle_create(w, &pd);
+    tt_spring_def sd = tt_spring_def_default();
+    sd.a = a;
+    sd.b = b;
+    ENSURE(tt_spring_create(w, &sd).gen);
+    size_t n;
+    unsigned char *s = save(w, &n);
+    ENSURE(s);
+    tt_world *l = tt_world_load(s, n);
+    ENSURE(l);
+    ENSURE_OK(tt_particle_destroy(l, a));
+    ENSURE(tt_world_spring_count(l) == 0);
+    ENSURE_OK(tt_world_restore(w, s, n));
+    ENSURE_OK(tt_particle_destroy(w, b));
+    ENSURE(tt_world_spring_count(w) == 0);
+    for (int i = 0; i < 3; i++) ENSURE_OK(tt_world_step(l, 1.0 / 60));
+    free(s);
+    tt_world_destroy(l);
+    tt_world_destroy(w);
+}
+
 TEST(hash_covers_collision_filters_shape_points_and_free_lists)
 {
     /* before the hash was the stream's, each of these pairs hashed alike */
