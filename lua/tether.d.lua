@@ -679,7 +679,7 @@ function world:contacts() end
 ---@class tether.terrain_options
 ---@field origin? number[] {x, y}: pixel (0, 0)'s top-left corner, m; default {0, 0}
 ---@field pixel? number m per pixel, > 0; default 0.05
----@field band? integer distance band, 4…32 pixels; default 10 (radii up to band − 3 pixels)
+---@field band? integer distance band, 5…32 pixels; default 10 (radii up to band − 4 pixels)
 ---@field restitution? number 0…1; default 0
 ---@field friction? number sets both frictions
 ---@field friction_static? number default 0.6

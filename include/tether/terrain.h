@@ -12,12 +12,12 @@
  *
  * Contacts read a signed distance to the solid pixels' boundary kept per
  * pixel (clamped to ±band pixels) and sampled bilinearly; the normal is its
- * gradient over two pixels, the distances blurred over 5 × 5 pixels, so a
+ * gradient over two pixels, the distances blurred over 7 × 7 pixels, so a
  * ball rolls down a pixel slope as down a straight one. A particle whose
- * radius is above band − 3 pixels collides as if it were band − 3 pixels
- * (the default band, 10, fits radii up to 7 pixels). Carves and fills update the bits and the
+ * radius is above band − 4 pixels collides as if it were band − 4 pixels
+ * (the default band, 10, fits radii up to 6 pixels: 0.3 m at 0.05 m). Carves and fills update the bits and the
  * distances around the changed pixels only: their cost is in proportion to
- * the changed area (plus a border of 2·band + 4), not to the terrain's.
+ * the changed area (plus a border of 2·band + 8), not to the terrain's.
  *
  * A world without terrains pays nothing for them and hashes as before. */
 #ifndef TETHER_TERRAIN_H
@@ -37,7 +37,7 @@ typedef struct tt_terrain_def {
     const tt_mask *solid;    ///< set pixels are solid ground (copied); required
     tt_vec2 origin;          ///< m, the top-left corner of pixel (0, 0); default (0, 0)
     double pixel;            ///< m per pixel, > 0; default 0.05
-    int band;                ///< pixels of distance kept each side of the surface, 4…TT_TERRAIN_MAX_BAND; default 10
+    int band;                ///< pixels of distance kept each side of the surface, 5…TT_TERRAIN_MAX_BAND; default 10
     double restitution;      ///< bounce, 0…1; default 0
     double friction_static;  ///< μs ≥ 0; default 0.6
     double friction_kinetic; ///< μk ≥ 0; default 0.5

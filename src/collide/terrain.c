@@ -103,11 +103,13 @@ static bool scratch(tt__terrains *ts, size_t n)
 
 static inline int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-/* The band is blurred by a box of 2·BLUR + 1 pixels each way: a straight
+/* The band is blurred by a box of 2·BLUR + 1 pixels each way (7: at 5 a
+ * frictionless ball on a 30° pixel slope lost 4.7 % of g·sin θ to the
+ * remaining bumps, at 7 1.4 %, at 40° 6.1 % and 2.3 %): a straight
  * surface's distance is linear and a box keeps it, while the bumps of its
  * pixel stairs (the nearest pixel hopping from one stair to the next) are
  * averaged away, so the gradient turns smoothly along a slope. */
-#define BLUR 2
+#define BLUR 3
 
 typedef struct regions_t {
     region R; /* read: states and vectors (a ring outside the terrain included) */

@@ -38,8 +38,8 @@ static tt_result check_def(const tt_world *w, const tt_terrain_def *d, const cha
     const double side = (mw > mh ? mw : mh);
     if (!(d->pixel > 0.0) || !(d->pixel * side <= TT_MAX_VALUE) || !(d->pixel >= 1e-9))
         return tt__fail(w, TT_EINVAL, "%s: pixel must be in [1e-9, %g / side] m, got %g", fn, TT_MAX_VALUE, d->pixel);
-    if (d->band < 4 || d->band > TT_TERRAIN_MAX_BAND)
-        return tt__fail(w, TT_EINVAL, "%s: band must be in [4, %d] pixels, got %d", fn, TT_TERRAIN_MAX_BAND, d->band);
+    if (d->band < 5 || d->band > TT_TERRAIN_MAX_BAND)
+        return tt__fail(w, TT_EINVAL, "%s: band must be in [5, %d] pixels, got %d", fn, TT_TERRAIN_MAX_BAND, d->band);
     return material_check(w, d->restitution, d->friction_static, d->friction_kinetic, fn);
 }
 

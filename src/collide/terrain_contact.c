@@ -46,12 +46,12 @@ static inline const tt__terrain *terrain_of(const tt__collide *c, uint32_t code)
     return &c->terr->t[code & ~TT__PRIM_TERRAIN];
 }
 
-/* The radius a terrain sees: at most band − 3 pixels (the band is exact
- * to 2 pixels short of its clamp, the blur's reach, and the gradient reads
+/* The radius a terrain sees: at most band − 4 pixels (the band is exact
+ * to 3 pixels short of its clamp, the blur's reach, and the gradient reads
  * a pixel further). */
 static inline double seen_radius(const tt__terrain *T, double r)
 {
-    const double lim = (T->def.band - 3) * T->def.pixel;
+    const double lim = (T->def.band - 4) * T->def.pixel;
     return r < lim ? r : lim;
 }
 

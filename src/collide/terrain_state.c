@@ -54,7 +54,7 @@ static bool load_one(tt__terrains *ts, tt__terrain *T, tt__source *s)
     d.user = tt__get_u64(s);
     const uint32_t w = tt__get_u32(s), h = tt__get_u32(s);
     if (s->failed) return false;
-    if (band < 4 || band > TT_TERRAIN_MAX_BAND) return tt__src_fail(s, "terrain band %u", band);
+    if (band < 5 || band > TT_TERRAIN_MAX_BAND) return tt__src_fail(s, "terrain band %u", band);
     if (w < 1 || h < 1 || w > TT_MASK_MAX_SIDE || h > TT_MASK_MAX_SIDE) return tt__src_fail(s, "terrain size %ux%u", w, h);
     if (d.pixel * (w > h ? w : h) > TT_MAX_VALUE) return tt__src_fail(s, "terrain pixel %g", d.pixel);
     d.band = (int)band;

@@ -17,7 +17,7 @@ static tt_terrain check_terrain(lua_State *L, tt_world *w, int arg)
 static const char *const terrain_opts[] = {"origin", "pixel", "band", "restitution", "friction", "friction_static",
                                            "friction_kinetic", "category", "mask", NULL};
 
-/* w:terrain(m [, {origin = {x, y} (pixel (0, 0)'s top-left corner, m), pixel = 0.05 (m), band = 10 (pixels),
+/* w:terrain(m [, {origin = {x, y} (pixel (0, 0)'s top-left corner, m), pixel = 0.05 (m), band = 10 (pixels, 5…32),
  * restitution = 0, friction =, friction_static = 0.6, friction_kinetic = 0.5, category = 1, mask = 0xFFFF}]) → terrain */
 static int w_terrain(lua_State *L)
 {
@@ -28,7 +28,7 @@ static int w_terrain(lua_State *L)
     tl_checkopts(L, 3, terrain_opts);
     d.origin = tl_optfield_vec2(L, 3, "origin", &TL_R_COORD, d.origin);
     d.pixel = tl_optfield_number(L, 3, "pixel", &R_PIXEL, d.pixel);
-    d.band = (int)tl_optfield_integer(L, 3, "band", 4, TT_TERRAIN_MAX_BAND, d.band);
+    d.band = (int)tl_optfield_integer(L, 3, "band", 5, TT_TERRAIN_MAX_BAND, d.band);
     d.restitution = tl_optfield_number(L, 3, "restitution", &R_UNIT, d.restitution);
     double f = tl_optfield_number(L, 3, "friction", &TL_R_NONNEG, -1.0);
     if (f >= 0.0) d.friction_static = d.friction_kinetic = f;

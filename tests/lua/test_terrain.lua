@@ -78,7 +78,7 @@ T.test("bad input raises, naming the function and argument, and changes nothing"
   local h0 = w:hash()
   T.checkerror("bad argument #2 to 'terrain'", w.terrain, w, "x")
   T.checkerror("terrain: bad option 'pixel' (finite number expected, got nan)", w.terrain, w, floor_mask(), { pixel = 0 / 0 })
-  T.checkerror("terrain: bad option 'band' (integer in [4, 32] expected, got 2)", w.terrain, w, floor_mask(), { band = 2 })
+  T.checkerror("terrain: bad option 'band' (integer in [5, 32] expected, got 2)", w.terrain, w, floor_mask(), { band = 2 })
   T.checkerror("unknown option", w.terrain, w, floor_mask(), { pixle = 1 })
   T.eq(w:hash(), h0, "nothing made")
   local t = w:terrain(floor_mask())
