@@ -268,5 +268,5 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
-    if (c->terr) tt__terrain_detect(w, c, n); /* terrain.h: NULL in a world without terrains */
+    if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts (some were skipped)");
 }

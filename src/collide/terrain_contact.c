@@ -6,6 +6,8 @@
  * band, and rays. The response is the shapes' own (contact_response.c). */
 #include "terrain_internal.h"
 
+#include <stdlib.h>
+
 /* The band at pixel (x, y); outside the terrain, far. */
 static inline double at(const tt__terrain *T, int x, int y)
 {
@@ -120,7 +122,22 @@ static inline bool filter(const tt_world *w, const tt__terrain *T, uint32_t a)
     return (w->category[a] & T->def.mask) && (T->def.category & w->mask[a]);
 }
 
-void tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
+/* Room for one more static contact (the contacts group's array, grown as
+ * tt__grow grows it: this file calls nothing of the group's, so that the
+ * group may call it). */
+static bool room(tt__collide *c)
+{
+    if (c->nsc < c->sccap) return true;
+    uint32_t cap = c->sccap ? c->sccap * 2 : 16;
+    if (cap <= c->sccap) return false;
+    tt__scontact *p = realloc(c->sc, (size_t)cap * sizeof *p);
+    if (!p) return false;
+    c->sc = p;
+    c->sccap = cap;
+    return true;
+}
+
+bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
 {
     const tt__terrains *ts = c->terr;
     for (uint32_t i = 0; i < n; i++) {
@@ -136,13 +153,11 @@ void tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
             tt__hit hit;
             tt__terrain_hit(c, code, x, y, r, &hit);
             if (hit.depth <= -m) continue;
-            if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) {
-                tt__step_oom(w, "terrain contacts (some were skipped)");
-                return;
-            }
+            if (!room(c)) return false;
             c->sc[c->nsc++] = (tt__scontact){i, code, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0.0, 0.0, 0};
         }
     }
+    return true;
 }
 
 /* Sphere tracing of o + t·d, t in [0, tmax], for a circle of radius r

@@ -41,7 +41,8 @@ void tt__terrains_save(const tt__collide *c, tt__sink *s)
 /* One live terrain into T (zeroed); false with the source failed. */
 static bool load_one(tt__terrains *ts, tt__terrain *T, tt__source *s)
 {
-    tt_terrain_def d = tt_terrain_def_default();
+    tt_terrain_def d;
+    memset(&d, 0, sizeof d); /* every field but solid is read below */
     d.origin.x = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "terrain origin");
     d.origin.y = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "terrain origin");
     d.pixel = tt__get_num(s, 1e-9, TT_MAX_VALUE, "terrain pixel");
