@@ -39,14 +39,26 @@ typedef struct region {
     int x0, y0, w, h; /* the region read */
 } region;
 
-/* One neighbour offered to pixel k at (x, y): the neighbour (ox, oy) away. */
-static inline void offer(const region *R, const uint8_t *st, int16_t *vx, int16_t *vy, int x, int y, int ox, int oy)
+/* A pixel's best vector so far, kept in registers while its neighbours are
+ * offered (d: its squared length, INT32_MAX for none). */
+typedef struct best {
+    int x, y;
+    int32_t d;
+} best;
+
+static inline best load(const int16_t *vx, const int16_t *vy, size_t k)
 {
-    const int nxp = x + ox, nyp = y + oy;
-    if (nxp < 0 || nyp < 0 || nxp >= R->w || nyp >= R->h) return;
-    const size_t k = (size_t)y * (size_t)R->w + (size_t)x, n = (size_t)nyp * (size_t)R->w + (size_t)nxp;
+    best b = {vx[k], vy[k], INT32_MAX};
+    if (vx[k] != FAR) b.d = b.x * b.x + b.y * b.y;
+    return b;
+}
+
+/* Neighbour n, (ox, oy) away, offered to a pixel of state sk. */
+static inline void offer(best *b, const uint8_t *st, const int16_t *vx, const int16_t *vy, size_t n, uint8_t sk, int ox,
+                         int oy)
+{
     int cx, cy;
-    if (st[n] != st[k]) {
+    if (st[n] != sk) {
         cx = ox;
         cy = oy;
     } else {
@@ -54,34 +66,68 @@ static inline void offer(const region *R, const uint8_t *st, int16_t *vx, int16_
         cx = vx[n] + ox;
         cy = vy[n] + oy;
     }
-    const int32_t d = cx * cx + cy * cy, e = vx[k] == FAR ? INT32_MAX : vx[k] * vx[k] + vy[k] * vy[k];
-    if (d < e) {
-        vx[k] = (int16_t)cx;
-        vy[k] = (int16_t)cy;
+    const int32_t d = cx * cx + cy * cy;
+    if (d < b->d) {
+        b->x = cx;
+        b->y = cy;
+        b->d = d;
     }
 }
 
+static inline void store(int16_t *vx, int16_t *vy, size_t k, best b)
+{
+    vx[k] = (int16_t)b.x;
+    vy[k] = (int16_t)b.y;
+}
+
 /* Danielsson's two passes over the region: every pixel's vector to the
- * nearest pixel of the other state (approximately). */
+ * nearest pixel of the other state (approximately). Row passes offer the
+ * row above (below) and the left (right) neighbour, then a pass the other
+ * way offers the right (left) one. */
 static void propagate(const region *R, const uint8_t *st, int16_t *vx, int16_t *vy)
 {
-    for (int y = 0; y < R->h; y++) {
-        for (int x = 0; x < R->w; x++) {
-            offer(R, st, vx, vy, x, y, -1, 0);
-            offer(R, st, vx, vy, x, y, 0, -1);
-            offer(R, st, vx, vy, x, y, -1, -1);
-            offer(R, st, vx, vy, x, y, 1, -1);
+    const int w = R->w, h = R->h;
+    for (int y = 0; y < h; y++) {
+        const size_t row = (size_t)y * (size_t)w;
+        for (int x = 0; x < w; x++) {
+            const size_t k = row + (size_t)x;
+            const uint8_t sk = st[k];
+            best b = load(vx, vy, k);
+            if (x > 0) offer(&b, st, vx, vy, k - 1, sk, -1, 0);
+            if (y > 0) {
+                offer(&b, st, vx, vy, k - (size_t)w, sk, 0, -1);
+                if (x > 0) offer(&b, st, vx, vy, k - (size_t)w - 1, sk, -1, -1);
+                if (x < w - 1) offer(&b, st, vx, vy, k - (size_t)w + 1, sk, 1, -1);
+            }
+            store(vx, vy, k, b);
         }
-        for (int x = R->w - 1; x >= 0; x--) offer(R, st, vx, vy, x, y, 1, 0);
+        for (int x = w - 2; x >= 0; x--) {
+            const size_t k = row + (size_t)x;
+            best b = load(vx, vy, k);
+            offer(&b, st, vx, vy, k + 1, st[k], 1, 0);
+            store(vx, vy, k, b);
+        }
     }
-    for (int y = R->h - 1; y >= 0; y--) {
-        for (int x = R->w - 1; x >= 0; x--) {
-            offer(R, st, vx, vy, x, y, 1, 0);
-            offer(R, st, vx, vy, x, y, 0, 1);
-            offer(R, st, vx, vy, x, y, 1, 1);
-            offer(R, st, vx, vy, x, y, -1, 1);
+    for (int y = h - 1; y >= 0; y--) {
+        const size_t row = (size_t)y * (size_t)w;
+        for (int x = w - 1; x >= 0; x--) {
+            const size_t k = row + (size_t)x;
+            const uint8_t sk = st[k];
+            best b = load(vx, vy, k);
+            if (x < w - 1) offer(&b, st, vx, vy, k + 1, sk, 1, 0);
+            if (y < h - 1) {
+                offer(&b, st, vx, vy, k + (size_t)w, sk, 0, 1);
+                if (x < w - 1) offer(&b, st, vx, vy, k + (size_t)w + 1, sk, 1, 1);
+                if (x > 0) offer(&b, st, vx, vy, k + (size_t)w - 1, sk, -1, 1);
+            }
+            store(vx, vy, k, b);
         }
-        for (int x = 0; x < R->w; x++) offer(R, st, vx, vy, x, y, -1, 0);
+        for (int x = 1; x < w; x++) {
+            const size_t k = row + (size_t)x;
+            best b = load(vx, vy, k);
+            offer(&b, st, vx, vy, k - 1, st[k], -1, 0);
+            store(vx, vy, k, b);
+        }
     }
 }
 
@@ -179,19 +225,30 @@ static void blur(const tt__terrains *ts, tt__terrain *T, const regions_t *g)
     const float *fa = ts->fa;
     float *fb = ts->fb; /* rows of E, columns of W */
     const double inv = 1.0 / (2 * BLUR + 1);
-    for (int y = 0; y < E->h; y++)
+    const int ex1 = E->x0 + E->w - 1, ey1 = E->y0 + E->h - 1;
+    /* away from the terrain's border no tap is clamped: the same sums, without the clamps */
+    const bool xin = W->x0 - BLUR >= E->x0 && W->x0 + W->w - 1 + BLUR <= ex1;
+    const bool yin = W->y0 - BLUR >= E->y0 && W->y0 + W->h - 1 + BLUR <= ey1;
+    for (int y = 0; y < E->h; y++) {
+        const float *in = fa + (size_t)y * (size_t)E->w - E->x0;
+        float *out = fb + (size_t)y * (size_t)W->w - W->x0;
         for (int x = W->x0; x < W->x0 + W->w; x++) {
             double sum = 0.0;
-            for (int k = -BLUR; k <= BLUR; k++)
-                sum += fa[(size_t)y * (size_t)E->w + (size_t)(clampi(x + k, E->x0, E->x0 + E->w - 1) - E->x0)];
-            fb[(size_t)y * (size_t)W->w + (size_t)(x - W->x0)] = (float)(sum * inv);
+            if (xin)
+                for (int k = -BLUR; k <= BLUR; k++) sum += in[x + k];
+            else
+                for (int k = -BLUR; k <= BLUR; k++) sum += in[clampi(x + k, E->x0, ex1)];
+            out[x] = (float)(sum * inv);
         }
+    }
     for (int y = W->y0; y < W->y0 + W->h; y++) {
         float *out = T->sdf + (size_t)y * (size_t)T->m->w;
+        const float *rows[2 * BLUR + 1];
+        for (int k = -BLUR; k <= BLUR; k++)
+            rows[k + BLUR] = fb + (size_t)((yin ? y + k : clampi(y + k, E->y0, ey1)) - E->y0) * (size_t)W->w - W->x0;
         for (int x = W->x0; x < W->x0 + W->w; x++) {
             double sum = 0.0;
-            for (int k = -BLUR; k <= BLUR; k++)
-                sum += fb[(size_t)(clampi(y + k, E->y0, E->y0 + E->h - 1) - E->y0) * (size_t)W->w + (size_t)(x - W->x0)];
+            for (int k = 0; k <= 2 * BLUR; k++) sum += rows[k][x];
             out[x] = (float)(sum * inv);
         }
     }
