@@ -148,6 +148,9 @@ bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
             if (!T->alive || x < T->lox - reach || x > T->hix + reach || y < T->loy - reach || y > T->hiy + reach ||
                 !filter(w, T, i))
                 continue;
+            /* the band at the nearest pixel centre: within a pixel of the sample, whose slope is at most 1 */
+            const double u = (x - T->def.origin.x) * T->inv, v = (T->def.origin.y - y) * T->inv;
+            if ((at(T, (int)floor(u), (int)floor(v)) - 1.0) * T->def.pixel > reach) continue;
             const uint32_t code = TT__PRIM_TERRAIN | k;
             if (c->ccd_prim && i < c->bulletcap && c->ccd_prim[i] == (int32_t)code) continue; /* the sweep has it */
             tt__hit hit;
