@@ -240,6 +240,7 @@ typedef struct tt__collide {
     tt_contact_event *events;
     uint32_t nevents, evcap;
     uint32_t cells_used;
+    struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
 
 extern const tt__group_ops tt__contacts_ops;
