@@ -53,6 +53,7 @@ local tether = {}
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
+---@field file? string a snapshot file (w:save(path), tt_world_save_file): the new world is the saved one; a file that cannot be read or is damaged raises; no other option may be given
 
 ---A world's whole state at one moment (w:snapshot()): the engine's versioned,
 ---checksummed stream, and a copy of the particles' user values. `#s` is its size in bytes.
@@ -405,6 +406,25 @@ function world:snapshot() end
 ---@return true|nil ok
 ---@return string? reason
 function world:restore(s) end
+
+---Saves the world to a snapshot file: s:bytes(users) behind a header (signature,
+---file format version, engine version, length) and a checksum; written to path..".tmp"
+---and renamed over path, so a failed save leaves the old file whole. Returns nil and
+---the reason when the file cannot be written; raises on user values that are not
+---plain data (save(path, false) leaves them out).
+---@param path string
+---@param users? boolean default true
+---@return true|nil ok
+---@return string? reason
+function world:save(path, users) end
+
+---Makes this world the one saved in the file (as w:restore). A missing, truncated,
+---padded, corrupted, foreign or other-version file returns nil and the reason
+---("restore_file: 'path': checksum mismatch (corrupted); ..."), the world unchanged.
+---@param path string
+---@return true|nil ok
+---@return string? reason
+function world:restore_file(path) end
 
 ---Live particle handles in slot order. Reuses t if given (entries past n are cleared).
 ---@param t? tether.particle[]

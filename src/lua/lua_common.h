@@ -212,9 +212,10 @@ void tl_constraints_register(lua_State *L); /* lua_constraints.c */
 void tl_composites_register(lua_State *L);  /* lua_composites.c */
 void tl_collide_register(lua_State *L);     /* lua_collide.c */
 void tl_snapshot_register(lua_State *L);    /* lua_snapshot.c */
-/* Registry key of the function (world userdata, snapshot or string) that
- * loads the saved world into the userdata, its user values the snapshot's;
- * raises when the stream is refused. tether.world{snapshot = s} calls it. */
+/* Registry key of the function (world userdata, snapshot or string, is_file)
+ * that loads the saved world (from the file at that path when is_file) into
+ * the userdata, its user values the snapshot's; raises when the stream is
+ * refused. tether.world{snapshot = s} and tether.world{file = path} call it. */
 #define TL_SNAPSHOT_LOADER "tether.snapshot_loader"
 
 #endif
