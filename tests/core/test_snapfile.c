@@ -199,3 +199,35 @@ TEST(snapshot_a_large_area_from_current_positions_loads_again)
     tt_world_destroy(w);
     free(b);
 }
+
+/* Found by the rewind ring's fuzz wrapper: a segment made with radius
+ * INFINITY (a field segments do not use) was accepted, so the world held an
+ * Inf, saved it, and its own stream did not load ("shape radius is inf").
+ * NaN and Inf are refused at the door, in every field. */
+TEST(shape_create_refuses_inf_and_nan_even_in_fields_its_type_does_not_use)
+{
+    tt_world_def wd = tt_world_def_default();
+    tt_world *w = tt_world_create(&wd);
+    ENSURE(w);
+    tt_shape_def d = tt_shape_def_default();
+    d.type = TT_SHAPE_SEGMENT;
+    d.a = (tt_vec2){-1, 0};
+    d.b = (tt_vec2){1, 0};
+    d.radius = INFINITY;
+    ENSURE(!tt_shape_is_valid(w, tt_shape_create(w, &d)));
+    ENSURE(strstr(tt_last_error(w), "finite"));
+    d.radius = 0.5;
+    d.half_extents.y = NAN;
+    ENSURE(!tt_shape_is_valid(w, tt_shape_create(w, &d)));
+    d.half_extents.y = 1;
+    ENSURE(tt_shape_is_valid(w, tt_shape_create(w, &d)));
+    size_t n = 0;
+    tt_world_save(w, NULL, 0, &n);
+    unsigned char *b = malloc(n);
+    ENSURE(b && tt_world_save(w, b, n, &n) == TT_OK);
+    tt_world *c = tt_world_load(b, n);
+    ENSURE(c);
+    tt_world_destroy(c);
+    tt_world_destroy(w);
+    free(b);
+}
