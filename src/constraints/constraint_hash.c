@@ -139,10 +139,11 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
         tt__dist_x *x = &g->dx[i];
         d->a = tt__get_u32(s);
         d->b = tt__get_u32(s);
-        d->lo = tt__get_num(s, 0.0, TT_MAX_VALUE, "link length");
+        /* lengths taken from positions reach the world's diagonal, 2√2 × TT_MAX_VALUE */
+        d->lo = tt__get_num(s, 0.0, 3 * TT_MAX_VALUE, "link length");
         d->hi = tt__get_num(s, 0.0, INFINITY, "link length");
         d->k = get_soft(s, &d->alpha);
-        x->rest = tt__get_num(s, 0.0, TT_MAX_VALUE, "link rest length");
+        x->rest = tt__get_num(s, 0.0, 3 * TT_MAX_VALUE, "link rest length");
         x->break_strain = tt__get_num(s, 0.0, TT_MAX_VALUE, "break strain");
         x->slot = tt__get_u32(s);
         x->mode = tt__get_u8(s);
@@ -150,7 +151,7 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
         g->ndist = i + 1;
         if (s->failed) return;
         if (!alive(w, d->a) || !alive(w, d->b) || d->a == d->b) { tt__src_fail(s, "link %u joins %u and %u", i, d->a, d->b); return; }
-        if (x->mode > TT_DISTANCE_MIN || d->lo > d->hi || (x->mode != TT_DISTANCE_MIN && d->hi > TT_MAX_VALUE))
+        if (x->mode > TT_DISTANCE_MIN || d->lo > d->hi || (x->mode != TT_DISTANCE_MIN && d->hi > 3 * TT_MAX_VALUE))
             { tt__src_fail(s, "link %u: mode %u, length [%g, %g]", i, x->mode, d->lo, d->hi); return; }
         if (!slot_is(g, x->slot, i, true)) { tt__src_fail(s, "link %u: slot %u", i, x->slot); return; }
         g->refs[d->a]++;

@@ -254,3 +254,36 @@ TEST(snapshot_a_particle_friction_the_setter_takes_loads_again)
     tt_world_destroy(w);
     free(b);
 }
+
+/* Found by the rewind ring's fuzz wrapper: a link or spring whose length is
+ * taken from particles far apart (up to 2√2 × TT_MAX_VALUE) was refused by
+ * the stream reader above TT_MAX_VALUE ("link rest length is 1.4945e+12"). */
+TEST(snapshot_links_and_springs_as_long_as_the_world_is_wide_load_again)
+{
+    tt_world_def wd = tt_world_def_default();
+    tt_world *w = tt_world_create(&wd);
+    ENSURE(w);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){-TT_MAX_VALUE, -TT_MAX_VALUE};
+    tt_particle a = tt_particle_create(w, &pd);
+    pd.position = (tt_vec2){TT_MAX_VALUE, TT_MAX_VALUE};
+    tt_particle b = tt_particle_create(w, &pd);
+    tt_distance_def dd = tt_distance_def_default();
+    dd.a = a;
+    dd.b = b;
+    ENSURE(tt_constraint_is_valid(w, tt_distance_create(w, &dd)));
+    tt_spring_def sd = tt_spring_def_default();
+    sd.a = a;
+    sd.b = b;
+    ENSURE(tt_spring_is_valid(w, tt_spring_create(w, &sd)));
+    size_t n = 0;
+    tt_world_save(w, NULL, 0, &n);
+    unsigned char *buf = malloc(n);
+    ENSURE(buf && tt_world_save(w, buf, n, &n) == TT_OK);
+    tt_world *c = tt_world_load(buf, n);
+    if (!c) tt_test_fail(__FILE__, __LINE__, "%s", tt_last_error(NULL));
+    ENSURE(c && tt_world_hash(c) == tt_world_hash(w));
+    tt_world_destroy(c);
+    tt_world_destroy(w);
+    free(buf);
+}
