@@ -42,12 +42,6 @@ static bool get_leb(const unsigned char *d, size_t dn, size_t *at, uint64_t *v)
     return false;
 }
 
-/* The byte at plane position i of n bytes: which source byte goes there. */
-static inline size_t plane_src(size_t i, size_t words)
-{
-    return (i % words) * 8 + i / words;
-}
-
 bool tt__delta_encode(const unsigned char *t, size_t tn, const unsigned char *r, size_t rn, unsigned char **out,
                       size_t *outn)
 {
@@ -60,11 +54,10 @@ bool tt__delta_encode(const unsigned char *t, size_t tn, const unsigned char *r,
         return false;
     }
     const size_t words = tn / 8, body = words * 8;
-    for (size_t i = 0; i < body; i++) {
-        size_t s = plane_src(i, words);
-        x[i] = t[s] ^ (s < rn ? r[s] : 0);
-    }
-    for (size_t s = body; s < tn; s++) x[s] = t[s] ^ (s < rn ? r[s] : 0);
+    for (size_t s = 0; s < tn; s++) o[s] = t[s] ^ (s < rn ? r[s] : 0); /* o as scratch: it is tn bytes or more */
+    for (size_t p = 0; p < 8 && words; p++)
+        for (size_t k = 0; k < words; k++) x[p * words + k] = o[k * 8 + p];
+    memcpy(x + body, o + body, tn - body);
     size_t n = 0;
     memcpy(o, "TTD1", 4);
     n = 4 + put_leb(o + 4, tn);
@@ -116,11 +109,11 @@ bool tt__delta_decode(const unsigned char *d, size_t dn, const unsigned char *r,
     }
     if (ok && at == dn) {
         const size_t words = tn / 8, body = words * 8;
-        for (size_t k = 0; k < body; k++) {
-            size_t s = plane_src(k, words);
-            t[s] = x[k] ^ (s < rn ? r[s] : 0);
-        }
-        for (size_t s = body; s < tn; s++) t[s] = x[s] ^ (s < rn ? r[s] : 0);
+        for (size_t p = 0; p < 8 && words; p++)
+            for (size_t k = 0; k < words; k++) t[k * 8 + p] = x[p * words + k];
+        memcpy(t + body, x + body, tn - body);
+        const size_t m = rn < tn ? rn : tn;
+        for (size_t k = 0; k < m; k++) t[k] ^= r[k];
     }
     free(x);
     return ok && at == dn;

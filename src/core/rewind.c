@@ -1,8 +1,10 @@
 /* tether — the rewind ring. Keyframes are snapshot streams, oldest first in
  * one array; the newest is kept as it is and every older one is coded
  * (delta.c) against the next newer, so dropping the oldest costs nothing
- * and adding a keyframe re-codes only the one before it. Rebuilding a
- * keyframe decodes back from the newest; a cache keeps the last one
+ * and adding a keyframe re-codes only the one before it. Every ANCHOR-th
+ * keyframe is coded against nothing instead (it costs more, about twice
+ * the others on the pour), so rebuilding one decodes at most ANCHOR of them,
+ * not the whole history back from the newest; a cache keeps the last one
  * rebuilt, so scrubbing backwards decodes one keyframe per keyframe passed. */
 #include "core/delta.h"
 #include "core/internal.h"
@@ -11,12 +13,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAX_EVERY = 1000000 };
+enum { MAX_EVERY = 1000000, ANCHOR = 8 };
 
 typedef struct keyframe {
     uint64_t step;
     unsigned char *data; /* the stream (newest) or its coding against the next newer */
     size_t n;            /* bytes of data */
+    bool anchor;         /* coded against nothing (older ones than the newest only) */
 } keyframe;
 
 struct tt_rewind {
@@ -81,33 +84,39 @@ static bool reserve(unsigned char **p, size_t *cap, size_t n)
 
 /* Keyframe j's stream into r->buf (r->buf_n); false when out of memory
  * (or a coding that does not decode: a bug, reported as such). */
+static bool decode_into_work(tt_rewind *r, const keyframe *f, const unsigned char *ref, size_t refn, const char **why)
+{
+    size_t n = tt__delta_length(f->data, f->n);
+    if (!reserve(&r->work, &r->work_cap, n ? n : 1)) { *why = "out of memory"; return false; }
+    if (!n || !tt__delta_decode(f->data, f->n, ref, refn, r->work, n)) { *why = "a keyframe does not decode"; return false; }
+    unsigned char *t = r->buf;
+    size_t tc = r->buf_cap;
+    r->buf = r->work;
+    r->buf_cap = r->work_cap;
+    r->work = t;
+    r->work_cap = tc;
+    r->buf_n = n;
+    return true;
+}
+
+/* Keyframe j's stream into r->buf (r->buf_n); false when out of memory
+ * (or a coding that does not decode: a bug, reported as such). Starts
+ * from the nearest of: the cache, an anchor, the newest, at or after j. */
 static bool rebuild(tt_rewind *r, uint32_t j, const char **why)
 {
-    uint32_t c = r->count - 1;
-    if (r->cache_ok) { /* the cache is a keyframe at or after j: start there */
-        uint32_t i = j;
-        while (i < r->count && r->k[i].step < r->cache_step) i++;
-        if (i < r->count && r->k[i].step == r->cache_step) c = i;
-    }
-    if (c == r->count - 1 && !(r->cache_ok && r->cache_step == r->k[c].step)) {
+    uint32_t c = j;
+    while (c < r->count - 1 && !r->k[c].anchor && !(r->cache_ok && r->k[c].step == r->cache_step)) c++;
+    const bool cached = r->cache_ok && r->k[c].step == r->cache_step;
+    r->cache_ok = false;
+    if (!cached && c == r->count - 1) {
         if (!reserve(&r->buf, &r->buf_cap, r->k[c].n)) { *why = "out of memory"; return false; }
         memcpy(r->buf, r->k[c].data, r->k[c].n);
         r->buf_n = r->k[c].n;
+    } else if (!cached && !decode_into_work(r, &r->k[c], NULL, 0, why)) {
+        return false;
     }
-    r->cache_ok = false;
-    for (uint32_t i = c; i > j; i--) {
-        const keyframe *f = &r->k[i - 1];
-        size_t n = tt__delta_length(f->data, f->n);
-        if (!reserve(&r->work, &r->work_cap, n ? n : 1)) { *why = "out of memory"; return false; }
-        if (!n || !tt__delta_decode(f->data, f->n, r->buf, r->buf_n, r->work, n)) { *why = "a keyframe does not decode"; return false; }
-        unsigned char *t = r->buf;
-        size_t tc = r->buf_cap;
-        r->buf = r->work;
-        r->buf_cap = r->work_cap;
-        r->work = t;
-        r->work_cap = tc;
-        r->buf_n = n;
-    }
+    for (uint32_t i = c; i > j; i--)
+        if (!decode_into_work(r, &r->k[i - 1], r->buf, r->buf_n, why)) return false;
     r->cache_ok = true;
     r->cache_step = r->k[j].step;
     return true;
@@ -129,6 +138,7 @@ static bool truncate_after(tt_rewind *r, uint64_t step, const char **why)
         free(r->k[keep - 1].data);
         r->k[keep - 1].data = s;
         r->k[keep - 1].n = r->buf_n;
+        r->k[keep - 1].anchor = false;
         r->bytes += r->buf_n;
     }
     for (uint32_t i = keep; i < r->count; i++) {
@@ -152,15 +162,17 @@ static bool append(tt_rewind *r, uint64_t step, unsigned char *s, size_t n, cons
     }
     if (r->count > 0) {
         keyframe *prev = &r->k[r->count - 1];
+        const bool anchor = (prev->step / r->def.every) % ANCHOR == 0;
         unsigned char *d;
         size_t dn;
-        if (!tt__delta_encode(prev->data, prev->n, s, n, &d, &dn)) { *why = "out of memory"; return false; }
+        if (!tt__delta_encode(prev->data, prev->n, anchor ? NULL : s, anchor ? 0 : n, &d, &dn)) { *why = "out of memory"; return false; }
+        prev->anchor = anchor;
         r->bytes += dn - prev->n;
         free(prev->data);
         prev->data = d;
         prev->n = dn;
     }
-    r->k[r->count++] = (keyframe){step, s, n};
+    r->k[r->count++] = (keyframe){step, s, n, false};
     r->bytes += n;
     r->cache_ok = false;
     return true;
