@@ -105,6 +105,49 @@ function clock:info() end
 ---@return tether.clock
 function tether.clock(opts) end
 
+---A rewind ring: the last seconds of a world's history as keyframes every `every`
+---steps, delta-coded (tether/rewind.h). A step between keyframes is rebuilt by
+---stepping again from the keyframe before it, with the same inputs: give seek a
+---driver that does what the script did (a function of w:stats().steps does).
+---User values are not in the ring.
+---@class tether.rewind
+local rewind = {}
+---Call after each step (and once before the first). A world at or before the
+---newest keyframe starts a new timeline: the keyframes after it go.
+---@param w tether.world
+function rewind:record(w) end
+---Makes w the keyframe at or before `step`; with drive, calls drive(w) (it must step
+---w once) until w is at `step`. Returns the step w is at. Raises for a step outside
+---the ring ("seek: step 100 is not in the ring (140 … 200)"), the world unchanged.
+---@param w tether.world
+---@param step integer
+---@param drive? fun(w: tether.world)
+---@return integer
+function rewind:seek(w, step, drive) end
+---The oldest keyframe's step and the newest step recorded; nil when empty.
+---@return integer|nil first
+---@return integer? last
+function rewind:range() end
+---Bytes held now.
+---@return integer
+function rewind:memory() end
+---Keyframes held now.
+---@return integer
+function rewind:count() end
+---Frees the ring now (the collector does it otherwise); safe to repeat.
+function rewind:destroy() end
+
+---@class tether.rewind_options
+---@field every? integer steps between keyframes, 1 … 1 000 000, default 10
+---@field seconds? number history kept, default 10
+---@field dt? number s per step (turns seconds into steps), default 1/60
+---@field max_bytes? number memory bound, >= 1024, default 256 MB: the oldest keyframes go first
+
+---A new, empty rewind ring.
+---@param opts? tether.rewind_options
+---@return tether.rewind
+function tether.rewind(opts) end
+
 return tether.world
 function tether.world(opts) end
 
