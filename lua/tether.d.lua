@@ -143,6 +143,12 @@ function rewind:destroy() end
 ---@field dt? number s per step (turns seconds into steps), default 1/60
 ---@field max_bytes? number memory bound, >= 1024, default 256 MB: the oldest keyframes go first
 
+---Time reversal (position Verlet with forces only): swaps every particle's position
+---and previous position, so the next steps of the same dt run the motion backwards.
+---Raises naming what prevents it: another integrator, damping, constraints,
+---collisions, spring damping, a velocity set since the last step.
+function world:reverse() end
+
 ---A new, empty rewind ring.
 ---@param opts? tether.rewind_options
 ---@return tether.rewind

@@ -173,6 +173,15 @@ TT_API tt_result tt_world_restore_file(tt_world *w, const char *path);
 /// (tt_last_error(NULL) says why).
 TT_API tt_world *tt_world_load_file(const char *path);
 
+/// Time reversal: swaps every particle's position and previous position,
+/// so that the next steps (of the same dt) run the motion backwards: N steps,
+/// reverse, N steps comes back to the start (to rounding: see the README).
+/// Only for position Verlet with forces alone (gravity, wind, undamped
+/// springs, applied forces); TT_ESTATE naming what prevents it otherwise
+/// (another integrator, damping, constraints, collisions, spring damping, a
+/// velocity set since the last step), the world unchanged.
+TT_API tt_result tt_world_reverse(tt_world *w);
+
 /// The last error raised by a call on this world, or by tt_world_create when
 /// w is NULL (per thread). "" when none.
 TT_API const char *tt_last_error(const tt_world *w);

@@ -13,7 +13,7 @@
  *
  * drive must give the steps it re-runs the inputs it gave them the first
  * time (a function of w:stats().steps does); user values are not in the
- * ring: a seek leaves them as they are. */
+ * ring: a seek leaves them as they are. Also w:reverse() (time reversal). */
 #include "lua_common.h"
 #include "tether/rewind.h"
 
@@ -140,6 +140,17 @@ static int r_tostring(lua_State *L)
     return 1;
 }
 
+/* w:reverse(): the motion runs backwards from the next step (tt_world_reverse);
+ * raises naming what prevents it */
+static int w_reverse(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_reverse(w));
+    return 0;
+}
+
+static const luaL_Reg reverse_world_methods[] = {{"reverse", w_reverse}, {NULL, NULL}};
+
 static const luaL_Reg rewind_methods[] = {
     {"record", r_record}, {"seek", r_seek}, {"range", r_range}, {"memory", r_memory}, {"count", r_count},
     {"destroy", r_destroy}, {NULL, NULL}};
@@ -157,4 +168,5 @@ void tl_rewind_register(lua_State *L)
     }
     lua_pop(L, 1);
     tl_setfuncs(L, rewind_funcs, "tether.");
+    tl_world_add_methods(L, reverse_world_methods);
 }

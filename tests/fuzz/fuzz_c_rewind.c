@@ -112,7 +112,18 @@ static void c_rewind_queries(fz *f)
     if (!r && (tt_rewind_get_memory(r) || tt_rewind_get_count(r))) fz_fail(f, "a NULL ring has memory or keyframes");
 }
 
+static void c_world_reverse(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    fz_log(f, "tt_world_reverse(%s)", fz_wn(f, w));
+    FZ_HIT(f, tt_world_reverse);
+    tt_result r = tt_world_reverse(w);
+    fz_res(f, r);
+    if (w && r != TT_OK && r != TT_ESTATE) fz_fail(f, "tt_world_reverse gave %s", tt_result_string(r));
+}
+
 const fz_entry fz_rewind_entries[] = {
+    { "tt_world_reverse", c_world_reverse, 2 },
     { "tt_rewind_def_default", c_rewind_def_default, 1 },
     { "tt_rewind_create", c_rewind_create, 1 },
     { "tt_rewind_destroy", c_rewind_destroy, 1 },

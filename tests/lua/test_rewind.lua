@@ -86,4 +86,31 @@ T.test("bad arguments, a destroyed ring, a driver that does not step", function(
   T.eq(tostring(ring), "tether.rewind (destroyed)")
 end)
 
+T.test("w:reverse(): a spring under gravity runs back to where it was; irreversible worlds refused", function()
+  local w = tether.world { gravity = { 0, -8 }, integrator = "verlet", dt_hint = 1 / 64 }
+  local a = w:particle(0, 0, { pinned = true })
+  local b = w:particle(1, -1)
+  w:spring(a, b, { stiffness = 40, damping = 0 })
+  w:step(1 / 64)
+  local x0, y0 = w:position(b)
+  for _ = 1, 500 do w:step(1 / 64) end
+  local x1, y1 = w:position(b)
+  T.ok(math.abs(x1 - x0) + math.abs(y1 - y0) > 0.01, "it moved")
+  w:reverse()
+  for _ = 1, 500 do w:step(1 / 64) end
+  w:reverse()
+  local x, y = w:position(b)
+  T.near(x, x0, 1e-12)
+  T.near(y, y0, 1e-12)
+  w:set_damping(0.1)
+  local h = w:hash()
+  T.checkerror("reverse: cannot run backwards: velocity damping", w.reverse, w)
+  T.eq(w:hash(), h)
+  local c = tether.world { integrator = "rk4" }
+  T.checkerror("cannot run backwards: the integrator", c.reverse, c)
+  local d = tether.world {}
+  d:set_collision {}
+  T.checkerror("cannot run backwards: collisions", d.reverse, d)
+end)
+
 T.done()
