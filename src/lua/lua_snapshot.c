@@ -357,7 +357,12 @@ static int w_save(lua_State *L)
     lua_pushcfunction(L, s_bytes);
     lua_pushvalue(L, 4);
     lua_pushvalue(L, 3);
-    lua_call(L, 2, 1);           /* 5: its bytes */
+    if (lua_pcall(L, 2, 1, 0) != LUA_OK) { /* raised as save's own error, not s:bytes' */
+        const char *m = lua_tostring(L, -1);
+        if (m && strncmp(m, "?: ", 3) == 0) m += 3;
+        m = luaL_gsub(L, m ? m : "the user values cannot be written", "s:bytes(false)", "w:save(path, false)");
+        return tl_error(L, "%s", m);
+    }                            /* 5: its bytes */
     size_t n;
     const char *b = lua_tolstring(L, 5, &n);
     const unsigned kind = n >= 4 && memcmp(b, TL_USERS_MAGIC, 4) == 0 ? TT__FILE_LUA : TT__FILE_STREAM;

@@ -87,7 +87,8 @@ T.test("bad arguments raise, naming the function and argument", function()
   T.checkerror("bad option 'file' (string expected, got table)", tether.world, { file = {} })
   T.checkerror("option 'file' takes no other option", tether.world, { file = path, gravity = { 0, 0 } })
   w:set_user(w:particle(0, 0), { f = print })
-  T.checkerror("only plain data", w.save, w, path)
+  T.checkerror("save: a user value holds a value that is not plain data (nil, boolean, number, string, table): " ..
+    "only plain data can be written as bytes (w:save(path, false) leaves the user values out)", w.save, w, path)
   T.eq(w:save(path, false), true)
 end)
 
