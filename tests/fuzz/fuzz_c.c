@@ -5,7 +5,10 @@
  * FUZZ_CALLS (stop right after this call: replay), FUZZ_TRACE=1 (print every
  * call as a C-like line as it is made), FUZZ_KEEP_GOING=1 (a survey: each
  * kind of failure once, then on), FUZZ_COUNTS=1 (calls and seconds per
- * wrapper at the end).
+ * wrapper at the end), FUZZ_SKIP (calls to draw and not make: "12,40-97" or
+ * "@FILE" holding such a list; tests/fuzz/minimise_c.lua uses it).
+ * Each call draws from its own stream, seeded by the seed and the call
+ * number, so a skipped call leaves every later call's draws as they were.
  * After every call: a call that failed, or only read, left its world's hash
  * and counts as they were; a call that had to fail (NULL world, stale,
  * foreign, null or kind-turned handle) failed; after every step every
@@ -228,6 +231,63 @@ static void ensure_world(fz *f)
 }
 
 
+/* FUZZ_SKIP: sorted, merged ranges of call numbers. */
+static struct { unsigned long long lo, hi; } *skips;
+static size_t nskips;
+
+static void parse_skips(void)
+{
+    const char *s = getenv("FUZZ_SKIP");
+    char *text = NULL;
+    if (s && s[0] == '@') {
+        FILE *fp = fopen(s + 1, "r");
+        if (!fp) {
+            fprintf(stderr, "fuzz_c: FUZZ_SKIP: cannot read %s\n", s + 1);
+            exit(2);
+        }
+        size_t cap = 4096, n = 0;
+        text = malloc(cap);
+        for (int c; text && (c = fgetc(fp)) != EOF;) {
+            if (n + 1 == cap) text = realloc(text, cap *= 2);
+            if (text) text[n++] = (char)c;
+        }
+        fclose(fp);
+        if (!text) exit(2);
+        text[n] = 0;
+        s = text;
+    }
+    for (const char *p = s; p && *p;) {
+        if (!isdigit((unsigned char)*p)) { p++; continue; }
+        char *end;
+        unsigned long long lo = strtoull(p, &end, 10), hi = lo;
+        if (*end == '-') hi = strtoull(end + 1, &end, 10);
+        p = end;
+        void *grown = realloc(skips, (nskips + 1) * sizeof *skips);
+        if (!grown) exit(2);
+        skips = grown;
+        skips[nskips].lo = lo;
+        skips[nskips++].hi = hi;
+    }
+    free(text);
+}
+
+static bool skipped(unsigned long long call)
+{
+    for (size_t i = 0; i < nskips; i++)
+        if (call >= skips[i].lo && call <= skips[i].hi) return true;
+    return false;
+}
+
+/* The stream of one call (splitmix64 of seed and call number). */
+static uint64_t call_stream(uint64_t seed, uint64_t call)
+{
+    uint64_t z = seed ^ 0x9E3779B97F4A7C15ull ^ (call * 0xBF58476D1CE4E5B9ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return z ? z : 1;
+}
+
 static unsigned long long env_u64(const char *name, unsigned long long dflt)
 {
     const char *s = getenv(name);
@@ -274,8 +334,7 @@ int main(int argc, char **argv)
     static fz state;
     fz *f = &state;
     f->seed = env_u64("FUZZ_SEED", (unsigned long long)time(NULL));
-    f->rng = f->seed ^ 0x9E3779B97F4A7C15ull;
-    if (!f->rng) f->rng = 1;
+    parse_skips();
     f->trace = getenv("FUZZ_TRACE") && strcmp(getenv("FUZZ_TRACE"), "1") == 0;
     keep_going = getenv("FUZZ_KEEP_GOING") && strcmp(getenv("FUZZ_KEEP_GOING"), "1") == 0;
     const double seconds = (double)env_u64("FUZZ_SECONDS", 10);
@@ -289,18 +348,21 @@ int main(int argc, char **argv)
     setjmp(next_call); /* FUZZ_KEEP_GOING: a failed call's run goes on from here */
     while (max_calls ? f->call < max_calls : elapsed < seconds) {
         f->call++;
+        f->rng = call_stream(f->seed, f->call);
         ensure_world(f);
         f->cur = -1;
         f->failed = f->must_fail = f->readonly = f->stepped = false;
+        if ((f->call & 63) == 0) elapsed = now_s() - start;
         unsigned e = pick_entry(f);
+        if (nskips && skipped(f->call)) continue;
         entry_calls[e]++;
         double t0 = now_s();
         entries[e]->fn(f);
         after_call(f);
         entry_seconds[e] += now_s() - t0;
-        if ((f->call & 63) == 0) elapsed = now_s() - start;
     }
     cleanup(f);
+    free(skips);
     if (failures) {
         printf("fuzz_c: %u failed calls (FUZZ_KEEP_GOING)\n0 passed, 1 failed\n", failures);
         return 1;

@@ -6,8 +6,8 @@
 # to replay it.
 # Environment: BUILD (build or build-san), SANITIZE (1: ASan preloaded into
 # luajit), FUZZ_TARGETS (names to run,
-# default all), FUZZ_MIN_SECONDS (the Lua minimiser's budget, default 120;
-# 0 skips it), FUZZ_CALLS (replay: stop after this call; with one target).
+# default all), FUZZ_MIN_SECONDS (each minimiser's budget, default 120;
+# 0 skips it; tests/fuzz/minimise.lua and minimise_c.lua), FUZZ_CALLS (replay: stop after this call; with one target).
 #
 # Adding a target: a function target_NAME taking (SECONDS SEED DIR) that
 # prints one line and returns 0 when it passed, and NAME:WEIGHT in TARGETS.
@@ -76,6 +76,10 @@ target_c_api() {
     grep 'FUZZ FAILURE\|FUZZ CRASH\|ERROR: \|runtime error\|never reached' "$dir/log.txt" | head -5 | sed 's/^/    | /'
     grep 'replay: ' "$dir/log.txt" | head -n 1 | sed 's/^fuzz_c: /    /'
     tail -n 50 "$dir/log.txt" | cut -c1-300 | sed 's/^/    | /'
+    calls=$(grep -o 'FUZZ \(FAILURE\|CRASH\) at call [0-9]*' "$dir/log.txt" | head -n 1 | tr -dc 0-9)
+    if [ "${FUZZ_MIN_SECONDS:-120}" != 0 ] && [ -n "$calls" ] && command -v lua5.4 >/dev/null 2>&1; then
+        lua5.4 tests/fuzz/minimise_c.lua "$bin" "$seed" "$calls" "$dir" | sed 's/^/    /'
+    fi
     return 1
 }
 
