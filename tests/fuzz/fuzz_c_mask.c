@@ -352,11 +352,17 @@ static void c_mask_from_color(fz *f)
     fz_mask_put(f, m, "tt_mask_from_color");
 }
 
-/* The fuzzer's PNG file (one per process, removed at exit). */
+static void remove_png(void);
+
+/* The fuzzer's PNG file (one per process, removed at exit; a sanitizer's
+ * abort leaves it). */
 static const char *png_path(void)
 {
     static char path[64];
-    if (!path[0]) snprintf(path, sizeof path, "/tmp/fuzz_c_mask_%ld.png", (long)getpid());
+    if (!path[0]) {
+        snprintf(path, sizeof path, "/tmp/fuzz_c_mask_%ld.png", (long)getpid());
+        atexit(remove_png);
+    }
     return path;
 }
 
@@ -365,8 +371,6 @@ static void remove_png(void) { remove(png_path()); }
 /* The PNG bytes of m (tt_mask_save_png through the file; NULL if it failed). */
 static unsigned char *png_bytes(const tt_mask *m, size_t *n)
 {
-    static bool registered;
-    if (!registered) registered = atexit(remove_png) == 0;
     *n = 0;
     if (tt_mask_save_png(m, png_path()) != TT_OK) return NULL;
     FILE *fp = fopen(png_path(), "rb");
