@@ -230,9 +230,9 @@ FUZZ_PNG := $(BUILD)/fuzz_png
 $(FUZZ_PNG): tests/fuzz/fuzz_png.c $(LIB_A) | deps
 	$(CC) $(CFLAGS_ALL) $(PNG_CFLAGS) -o $@ $< $(LIB_A) $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
-# The C API fuzzer (tests/fuzz/fuzz_c*.c): the engine only, no allocation wrapping.
+# The C API fuzzer (tests/fuzz/fuzz_c*.c): the engine and its masks (libpng), no allocation wrapping.
 $(FUZZ_C): $(FUZZ_C_OBJ) $(LIB_A)
-	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 $(TEST_B2): $(TEST_B2_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm

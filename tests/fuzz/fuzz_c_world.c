@@ -166,8 +166,10 @@ static void c_world_destroy(fz *f)
 void fz_world_too_big(fz *f)
 {
     for (int i = 0; i < FZ_WORLDS; i++) {
-        if (!f->slots[i].w || tt_world_particle_count(f->slots[i].w) <= 2500) continue;
-        fz_log(f, "tt_world_destroy(w%d) /* over 2500 particles: a fresh start */", f->slots[i].name);
+        /* shapes too: masks turned into chains pile them up, and every call hashes them */
+        if (!f->slots[i].w || (tt_world_particle_count(f->slots[i].w) <= 2500 && tt_world_shape_count(f->slots[i].w) <= 1000))
+            continue;
+        fz_log(f, "tt_world_destroy(w%d) /* over 2500 particles or 1000 shapes: a fresh start */", f->slots[i].name);
         FZ_HIT(f, tt_world_destroy);
         retire(f, i);
     }
