@@ -290,6 +290,8 @@ TEST(snapshot_loaded_world_removes_a_particles_springs_with_it)
     for (int i = 0; i < 3; i++) ENSURE_OK(tt_world_step(l, 1.0 / 60));
     free(s);
     tt_world_destroy(l);
+    tt_world_destroy(w);
+}
 
 /* Found by the stream reader's fuzzer (make fuzz, seed 1796181652): a
  * distance's moving target (a reeled length) was read as any number in
