@@ -177,7 +177,7 @@ local function plot_script(scene, dir, labels)
     "set logscale xy", "set format y '10^{%L}'", "set grid", "set key outside right top noenhanced",
     "set xlabel 'cost: CPU µs per particle per simulated second (median of repeats)'",
     "set ylabel " .. q(scene.error_name or "error"),
-    "set title " .. q((scene.title or scene.name) .. "\n(grey: the Pareto front)") .. " noenhanced font ',10'",
+    'set title "' .. (scene.title or scene.name):gsub('[\\"]', "'") .. '\\n(grey: the Pareto front)" noenhanced font ",10"',
   }
   -- the front first, wide and translucent, so the settings' lines stay visible on it
   local parts = { ("%s using 1:2 with linespoints lw 7 lc rgb '#A0000000' pt 6 ps 2 title 'Pareto front'"):format(
