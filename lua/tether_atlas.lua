@@ -183,7 +183,10 @@ local function plot_script(scene, dir, labels)
   local parts = { ("%s using 1:2 with linespoints lw 7 lc rgb '#A0000000' pt 6 ps 2 title 'Pareto front'"):format(
     q(dir .. "/" .. scene.name .. ".front")) }
   for i, l in ipairs(labels) do
-    parts[#parts + 1] = ("%s index %d using 1:2 with linespoints lw 1.5 pt 7 ps 0.6 title %s"):format(q(data), i - 1, q(l))
+    -- gnuplot cycles 8 colours: past them, another point shape and dashes tell lines apart
+    local shape = ({ 7, 5, 9, 11, 13 })[((i - 1) // 8) % 5 + 1]
+    parts[#parts + 1] = ("%s index %d using 1:2 with linespoints lw 1.5 dt %d pt %d ps 0.7 title %s"):format(q(data), i - 1,
+      ((i - 1) // 8) % 5 + 1, shape, q(l))
   end
   out[#out + 1] = "plot " .. table.concat(parts, ", \\\n  ")
   return table.concat(out, "\n") .. "\n"
