@@ -244,7 +244,7 @@ crosscheck: all
 # ten reference scenes with known answers swept over integrator, dt,
 # substeps, iterations and solver order; CSV and log-log PNG plots of error
 # against cost, the Pareto front drawn thick, in $(BUILD)/atlas/. QUICK=1 is
-# the small sweep (under a minute); the full one about 20 minutes here.
+# the small sweep (6 CPU-seconds); the full one about 10 CPU-minutes.
 atlas: deps $(RUNNER)
 	$(RUNNER) atlas $(if $(QUICK),--quick) --out $(BUILD)/atlas
 
