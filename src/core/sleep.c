@@ -333,9 +333,11 @@ static void settle(tt_world *w, tt__sleep *s)
 static bool anything_holds(const tt_world *w)
 {
     if (w->springs_alive) return true;
-    for (int g = 0; g < w->group_count; g++)
-        if (w->groups[g].ops->relax) return true;
-    return false;
+    for (int g = 0; g < w->group_count; g++) {
+        const tt__group_ops *ops = w->groups[g].ops;
+        if (ops->relax && !(ops->idle && ops->idle(w, w->groups[g].self))) return true;
+    }
+    return false; /* (a query's idle collision state holds nothing: reading a world keeps its hash) */
 }
 
 /* Rest is measured on the mean velocity, not the last step's: a particle

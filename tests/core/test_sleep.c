@@ -275,3 +275,28 @@ TEST(sleep_snapshot_round_trip)
     tt_world_destroy(c);
     tt_world_destroy(w);
 }
+
+/* A pendulum swinging 5 cm never sleeps: found when a rest window of
+ * 0.05 m/s · 0.5 s put one to sleep at a turning point (it dwells 0.65 s
+ * within 2.5 cm of it); at the default 0.01 m/s it swings on. */
+TEST(sleep_a_slow_pendulum_swings_on)
+{
+    tt_world_def d = tt_world_def_default();
+    d.sleep = true;
+    tt_world *w = tt_world_create(&d);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.pinned = true;
+    tt_particle top = tt_particle_create(w, &pd);
+    pd.pinned = false;
+    pd.position = (tt_vec2){sin(0.05), -cos(0.05)};
+    tt_particle bob = tt_particle_create(w, &pd);
+    tt_distance_def dd = tt_distance_def_default();
+    dd.a = top, dd.b = bob;
+    dd.length = 1.0;
+    ENSURE(tt_constraint_is_valid(w, tt_distance_create(w, &dd)));
+    for (int s = 0; s < 12 * 60; s++) {
+        tt_world_step(w, 1.0 / 60.0);
+        ENSURE(sleeping(w) == 0);
+    }
+    tt_world_destroy(w);
+}
