@@ -79,7 +79,7 @@ static bool build(const ts_scene *sc, bool sleep, ts_tether *t)
         printf("sleep: %s\n", why);
         return false;
     }
-    if (sleep) tt_world_set_sleep(t->world, true, 0.01, 0.5);
+    if (sleep) tt_world_set_sleep(t->world, true, 0.05, 0.5);
     else tt_world_set_sleep(t->world, false, 0.0, 0.0);
     return true;
 }

@@ -53,7 +53,7 @@ local tether = {}
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
 ---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default false
----@field sleep_speed? number a particle rests while slower than this, m/s, in [0, 1e12]; default 0.01
+---@field sleep_speed? number a particle rests while slower than this, m/s, in [0, 1e12]; default 0.05
 ---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 0.5
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
 
@@ -385,7 +385,7 @@ function world:sleep() end
 
 ---Sleeping on or off; off wakes every sleeper.
 ---@param on boolean
----@param speed? number m/s, in [0, 1e12]; default 0.01
+---@param speed? number m/s, in [0, 1e12]; default 0.05
 ---@param time? number s, in [0, 1e12]; default 0.5
 function world:set_sleep(on, speed, time) end
 

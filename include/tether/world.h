@@ -33,7 +33,7 @@ typedef struct tt_world_def {
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
     tt_solver_order order;    ///< default TT_GAUSS_SEIDEL
     bool sleep;               ///< particles at rest fall asleep by islands and cost nothing until woken; default false
-    double sleep_speed;       ///< a particle rests while its mean speed (since its rest began) is under this, m/s; default 0.01 (Box2D's linear sleep tolerance); 0…TT_MAX_VALUE
+    double sleep_speed;       ///< a particle rests while its mean speed (since its rest began) is under this, m/s; default 0.05; 0…TT_MAX_VALUE
     double sleep_time;        ///< an island sleeps once all of it rested this long, s; default 0.5; 0…TT_MAX_VALUE
 } tt_world_def;
 

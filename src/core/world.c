@@ -81,7 +81,7 @@ tt_world_def tt_world_def_default(void)
     d.tolerance = 1e-6;
     d.order = TT_GAUSS_SEIDEL;
     d.sleep = false;
-    d.sleep_speed = 0.01;
+    d.sleep_speed = 0.05;
     d.sleep_time = 0.5;
     return d;
 }
