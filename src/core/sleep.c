@@ -93,6 +93,13 @@ static inline bool dynamic(const tt_world *w, uint32_t i)
     return (w->flags[i] & (TT_PF_ALIVE | TT_PF_PINNED)) == TT_PF_ALIVE;
 }
 
+/* Slots the arrays cover: particles made since the last step lie past
+ * them, and none of those sleeps. */
+static uint32_t covered(const tt_world *w, const tt__sleep *s)
+{
+    return w->ppool.count < s->cap ? w->ppool.count : s->cap;
+}
+
 static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
 {
     s->island[i] = 0;
@@ -115,7 +122,7 @@ static void wake_listed(tt_world *w, tt__sleep *s)
 {
     if (s->nwake == 0) return;
     qsort(s->wake, s->nwake, sizeof *s->wake, cmp_u32);
-    for (uint32_t i = 0; i < w->ppool.count && s->asleep; i++) {
+    for (uint32_t i = 0; i < covered(w, s) && s->asleep; i++) {
         uint32_t k = s->island[i];
         if (k && bsearch(&k, s->wake, s->nwake, sizeof k, cmp_u32)) wake_one(w, s, i);
     }
@@ -132,7 +139,7 @@ static void list_wake(tt_world *w, tt__sleep *s, uint32_t k)
         uint32_t cap = s->wake_cap ? s->wake_cap * 2 : 16;
         uint32_t *p = realloc(s->wake, (size_t)cap * sizeof *p);
         if (!p) {
-            for (uint32_t i = 0; i < w->ppool.count; i++)
+            for (uint32_t i = 0; i < covered(w, s); i++)
                 if (s->island[i] == k) wake_one(w, s, i);
             return;
         }
@@ -155,7 +162,7 @@ void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double
 {
     tt__sleep *s = peek(w);
     if (!s || s->asleep == 0) return;
-    for (uint32_t i = 0; i < w->ppool.count; i++) {
+    for (uint32_t i = 0; i < covered(w, s); i++) {
         if (!s->island[i]) continue;
         const double r = w->radius[i], x = w->px[i], y = w->py[i];
         if (x + r >= lox && x - r <= hix && y + r >= loy && y - r <= hiy) list_wake(w, s, s->island[i]);
@@ -474,7 +481,7 @@ void tt__sleep_disable(tt_world *w)
 {
     tt__sleep *s = peek(w);
     if (!s) return;
-    for (uint32_t i = 0; i < w->ppool.count && s->asleep; i++)
+    for (uint32_t i = 0; i < covered(w, s) && s->asleep; i++)
         if (s->island[i]) wake_one(w, s, i);
     tt__group_remove(w, &sleep_ops);
 }

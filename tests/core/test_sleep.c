@@ -303,3 +303,30 @@ TEST(sleep_a_slow_pendulum_swings_on_at_a_small_speed)
     }
     tt_world_destroy(w);
 }
+
+/* Particles made after the last step lie past the sleep arrays: waking a
+ * box, or turning sleeping off, before the next step must not read there
+ * (found reading the code; ASan in the SANITIZE=1 build is the check). */
+TEST(sleep_wake_with_particles_made_since_the_step)
+{
+    tt_particle a[N];
+    tt_world *w = pile(true, a, N);
+    ENSURE(settle(w, N, 1200) < 1200);
+    for (int k = 0; k < 40; k++) {
+        tt_particle_def p = tt_particle_def_default();
+        p.position = (tt_vec2){10.0 + k, 10.0};
+        tt_particle_create(w, &p);
+    }
+    ENSURE_OK(tt_world_explode(w, (tt_vec2){0.0, 0.3}, 0.5, 0.0));
+    ENSURE(sleeping(w) == 0);
+    tt_world_step(w, 1.0 / 60.0);
+    ENSURE(settle(w, N, 1200) < 1200 || sleeping(w) >= N);
+    for (int k = 0; k < 40; k++) {
+        tt_particle_def p = tt_particle_def_default();
+        p.position = (tt_vec2){-10.0 - k, 10.0};
+        tt_particle_create(w, &p);
+    }
+    ENSURE_OK(tt_world_set_sleep(w, false, 0, 0));
+    ENSURE(sleeping(w) == 0);
+    tt_world_destroy(w);
+}
