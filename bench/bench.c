@@ -201,6 +201,7 @@ static const struct {
     {"snapshot", bench_snapshot},
     {"terrain", bench_terrain},
     {"rewind", bench_rewind},
+    {"sleep", bench_sleep},
 };
 
 int main(int argc, char **argv)
@@ -210,5 +211,6 @@ int main(int argc, char **argv)
     printf("tether %s benchmarks (medians; CSV in %s)\n", tt_version(), dir);
     for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++)
         if (!only || strcmp(only, sections[k].name) == 0) sections[k].run(dir);
+    if (only && strcmp(only, "sleep-quick") == 0) bench_sleep_quick(dir); /* for callgrind: not in the full run */
     return 0;
 }

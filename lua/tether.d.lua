@@ -52,6 +52,9 @@ local tether = {}
 ---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
+---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default false
+---@field sleep_speed? number a particle rests while slower than this, m/s, in [0, 1e12]; default 0.05
+---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 0.5
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
 ---@field file? string a snapshot file (w:save(path), tt_world_save_file): the new world is the saved one; a file that cannot be read or is damaged raises; no other option may be given
 
@@ -204,6 +207,7 @@ function tether.quit() end
 ---@field diverged integer particles stopped in the last step because |x| or |v| ran away
 ---@field iterations integer relaxation sweeps in the last step
 ---@field max_error number largest constraint error left after the last step, m
+---@field sleeping integer particles asleep now (0 while sleeping is off)
 ---@field stages tether.stage_times
 
 ---What `w:energy` returns, J.
@@ -280,6 +284,11 @@ function world:set_mass(p, m) end
 ---@param p tether.particle
 ---@return boolean
 function world:pinned(p) end
+
+---Whether the particle sleeps (its island at rest). Any call that changes it wakes its island.
+---@param p tether.particle
+---@return boolean
+function world:asleep(p) end
 
 ---Pinning stops the particle where it is.
 ---@param p tether.particle
@@ -436,6 +445,17 @@ function world:set_tolerance(m) end
 
 ---@return tether.solver_name
 function world:solver() end
+
+---@return boolean on whether sleeping is on
+---@return number speed m/s below which a particle rests (0 when off)
+---@return number time s at rest before an island sleeps (0 when off)
+function world:sleep() end
+
+---Sleeping on or off; off wakes every sleeper.
+---@param on boolean
+---@param speed? number m/s, in [0, 1e12]; default 0.05
+---@param time? number s, in [0, 1e12]; default 0.5
+function world:set_sleep(on, speed, time) end
 
 ---@param name tether.solver_name
 function world:set_solver(name) end

@@ -46,6 +46,9 @@ TT_API tt_result tt_particle_get_mass(const tt_world *w, tt_particle p, double *
 /// kg, > 0. The mass is kept while pinned and comes back on unpin.
 TT_API tt_result tt_particle_set_mass(tt_world *w, tt_particle p, double mass);
 TT_API tt_result tt_particle_get_pinned(const tt_world *w, tt_particle p, bool *out);
+/// Whether the particle sleeps (world sleeping on, its island at rest). Any
+/// call that changes it wakes its island.
+TT_API tt_result tt_particle_get_asleep(const tt_world *w, tt_particle p, bool *out);
 /// Pinning stops the particle where it is (velocity 0).
 TT_API tt_result tt_particle_set_pinned(tt_world *w, tt_particle p, bool pinned);
 TT_API tt_result tt_particle_get_radius(const tt_world *w, tt_particle p, double *out);

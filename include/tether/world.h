@@ -32,6 +32,9 @@ typedef struct tt_world_def {
     uint32_t iterations;      ///< most relaxation sweeps per substep; default 10; 1…10 000
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
     tt_solver_order order;    ///< default TT_GAUSS_SEIDEL
+    bool sleep;               ///< particles at rest fall asleep by islands and cost nothing until woken; default false
+    double sleep_speed;       ///< a particle rests while its mean speed (since its rest began) is under this, m/s; default 0.05; 0…TT_MAX_VALUE
+    double sleep_time;        ///< an island sleeps once all of it rested this long, s; default 0.5; 0…TT_MAX_VALUE
 } tt_world_def;
 
 /// Pipeline stages timed by the world (milliseconds of the last step).
@@ -57,6 +60,7 @@ typedef struct tt_stats {
     uint32_t diverged;                   ///< particles stopped in the last step because |x| or |v| passed TT_DIVERGED
     uint32_t iterations;                 ///< relaxation sweeps run in the last step (all substeps)
     double max_error;                    ///< largest constraint/contact error left after the last sweep, m (0 if none)
+    uint32_t sleeping;                   ///< particles asleep now (0 while sleeping is off)
 } tt_stats;
 
 /// Mechanical energy of the world now, J. Computed on request (O(n)), so a
@@ -120,6 +124,11 @@ TT_API tt_result tt_world_set_tolerance(tt_world *w, double tolerance);
 TT_API double tt_world_get_tolerance(const tt_world *w);
 TT_API tt_result tt_world_set_solver_order(tt_world *w, tt_solver_order order);
 TT_API tt_solver_order tt_world_get_solver_order(const tt_world *w);
+/// Sleeping on or off, with its thresholds (speed m/s, time s; both finite,
+/// ≥ 0; ignored when off). Turning it off wakes every sleeper.
+TT_API tt_result tt_world_set_sleep(tt_world *w, bool on, double speed, double time);
+/// Whether sleeping is on; speed and time (may be NULL) get its thresholds.
+TT_API bool tt_world_get_sleep(const tt_world *w, double *speed, double *time);
 
 /// Point attractors a world holds (slots 0 … TT_MAX_ATTRACTORS − 1).
 #define TT_MAX_ATTRACTORS 8

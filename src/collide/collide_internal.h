@@ -79,6 +79,7 @@ typedef struct tt__grid {
     double ox, oy, cs, inv, rmax;
     int32_t nx, ny;
     uint32_t ncell, n;            /* cells, particles sorted */
+    uint32_t npinned;             /* of them with inverse mass 0 (pinned or asleep) */
     uint32_t *start;              /* ncell + 1 */
     uint32_t *cell;               /* per gathered particle: its (clamped) cell */
     uint32_t *idx;                /* sorted: particle slot */

@@ -245,6 +245,16 @@ static bool shapes_out_of_reach(const tt_world *w, const tt__collide *c, uint32_
     return !tt__sgrid_near(c, lox - m, loy - m, hix + m, hiy + m);
 }
 
+/* Whether some particle can move: one that can makes every pair and shape
+ * contact; a world all pinned or asleep (a settled pile) makes none, and
+ * finds its first movable particle at once when it has any. */
+static bool any_movable(const tt_world *w, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        if (w->inv_mass[i] != 0.0) return true;
+    return false;
+}
+
 void tt__contacts_begin(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
@@ -257,6 +267,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     bool pairs = c->set.particles;
     if (!pairs && c->nprim == 0 && !c->terr) return;
     const uint32_t n = w->ppool.count;
+    if (!c->nbullets && !any_movable(w, n)) return; /* nothing to detect: not even a grid to build */
     /* Shapes alone, far from every particle: no contact, and no other group
      * to carry a particle into a shape during the sweeps (the guard's job),
      * so nothing to prepare. (Verlet: the others keep the substep's start

@@ -62,6 +62,7 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     uint32_t *start = g->start, *cell = g->cell, *idx = g->idx, *out_list = g->out_list, nout = 0;
     double *sx = g->sx, *sy = g->sy, *sr = g->sr;
     uint8_t *bits = g->bits;
+    uint32_t npinned = 0;
     memset(start, 0, (size_t)ncell * sizeof *start);
     const double ox = g->ox, oy = g->oy, inv = g->inv;
     const int32_t nx = g->nx, ny = g->ny;
@@ -92,7 +93,9 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
         sy[k] = py[i];
         sr[k] = rad[i];
         bits[k] = (uint8_t)((cell[i] >> 31) | (im[i] == 0.0 ? TT__GRID_PINNED : 0));
+        npinned += im[i] == 0.0;
     }
+    g->npinned = npinned;
     for (uint32_t k = m; k < m + TT__GRID_PAD; k++) { /* read, never used */
         sx[k] = sy[k] = sr[k] = 0.0;
         idx[k] = 0;
@@ -211,6 +214,17 @@ TT_INLINE bool hit(tt_world *w, tt__collide *c, emit *e, const uint32_t *idx, co
     return push_pair(c, e, a, b, rs);
 }
 
+/* Whether every sorted particle in [a, b) has inverse mass 0. A world
+ * mostly pinned or asleep asks it per cell: a neighbourhood of such
+ * particles makes no pair (both filters refuse two of them), so its
+ * distance tests are skipped, which changes no result. */
+TT_INLINE bool all_pinned(const uint8_t *bits, uint32_t a, uint32_t b)
+{
+    for (uint32_t k = a; k < b; k++)
+        if (!(bits[k] & TT__GRID_PINNED)) return false;
+    return true;
+}
+
 #define TT__MARGIN2 ((1.0 + TT__CONTACT_MARGIN) * (1.0 + TT__CONTACT_MARGIN))
 
 /* Pairs of sorted particle k with the sorted range [j0, j1), in j order. */
@@ -277,6 +291,7 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
     {                                                                                                   \
         const int32_t nx = g->nx, ny = g->ny;                                                           \
         const uint32_t *st = g->start;                                                                  \
+        const bool mostly_pinned = g->npinned > g->n / 2;                                               \
         emit e = {c->pairs, c->npairs, c->paircap};                                                     \
         bool ok = true;                                                                                 \
         for (int32_t y = 0; y < ny && ok; y++) {                                                        \
@@ -289,12 +304,14 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
                 const uint32_t k0 = st[cell], k1 = st[cell + 1];                                        \
                 if (k0 == k1) continue;                                                                 \
                 const uint32_t e1 = x + 1 < nx ? st[cell + 2] : k1;                                     \
+                const uint32_t up = cell + (uint32_t)nx;                                                \
+                const uint32_t u0 = y + 1 < ny ? st[x > 0 ? up - 1 : up] : 0;                           \
+                const uint32_t u1 = y + 1 < ny ? st[(x + 1 < nx ? up + 1 : up) + 1] : 0;                \
+                if (mostly_pinned && all_pinned(g->bits, k0, e1) && all_pinned(g->bits, u0, u1))        \
+                    continue; /* every pair here is two pinned (or sleeping) particles: none is made */ \
                 for (uint32_t k = k0; k < k1 && ok; k++) ok = range(w, c, &e, g, plain, k, k + 1, e1);  \
-                if (y + 1 < ny) {                                                                       \
-                    const uint32_t up = cell + (uint32_t)nx;                                            \
-                    const uint32_t u0 = st[x > 0 ? up - 1 : up], u1 = st[(x + 1 < nx ? up + 1 : up) + 1]; \
+                if (y + 1 < ny)                                                                         \
                     for (uint32_t k = k0; k < k1 && ok; k++) ok = range(w, c, &e, g, plain, k, u0, u1); \
-                }                                                                                       \
             }                                                                                           \
             while (part < TT__PARTS) run[part++] = e.n;                                                 \
         }                                                                                               \

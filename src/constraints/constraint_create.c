@@ -143,6 +143,8 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     g->plan_ok = false;
     g->refs[c->a]++;
     g->refs[c->b]++;
+    tt__sleep_touch(w, c->a); /* a new link changes what rests */
+    tt__sleep_touch(w, c->b);
     if (d->break_strain > 0) g->nbreakable++;
     if (d->compliance > 0) g->nxpbd++;
     return tt__cgroup_handle(g, slot);

@@ -69,12 +69,16 @@ tt_spring tt_spring_create(tt_world *w, const tt_spring_def *d)
     s->rest = d->rest_length < 0.0 ? distance(w, s->a, s->b) : d->rest_length;
     s->alive = true;
     w->springs_alive++;
+    tt__sleep_touch(w, s->a); /* a new spring changes what rests */
+    tt__sleep_touch(w, s->b);
     return (tt_spring){i, w->spool.gen[i]};
 }
 
 static void spring_kill(tt_world *w, uint32_t i)
 {
     w->springs[i].alive = false;
+    tt__sleep_touch(w, w->springs[i].a);
+    tt__sleep_touch(w, w->springs[i].b);
     tt_pool_free(&w->spool, i);
     w->springs_alive--;
 }

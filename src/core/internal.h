@@ -20,7 +20,8 @@
 enum {
     TT_PF_ALIVE = 1u << 0,
     TT_PF_PINNED = 1u << 1,
-    TT_PF_FRESH = 1u << 2 /* Verlet: velocity was set exactly; first step starts with a·dt²/2 */
+    TT_PF_FRESH = 1u << 2, /* Verlet: velocity was set exactly; first step starts with a·dt²/2 */
+    TT_PF_ASLEEP = 1u << 3 /* sleep.c: at rest, held as if pinned (inverse mass 0) until woken */
 };
 
 typedef struct tt__spring {
@@ -55,6 +56,7 @@ typedef struct tt__group_ops {
      * world as it was; false on no memory */
     bool (*reserve)(tt_world *w, void *self);
     /* once per substep after integration, before the sweeps (detection, rest data) */
+    /* relax may be NULL for a group without sweeps (sleep.c): the solve then runs as if it were absent */
     void (*begin)(tt_world *w, void *self, double h);
     /* one sweep over every constraint; returns the largest error seen before correcting, m */
     double (*relax)(tt_world *w, void *self, double h);
@@ -259,6 +261,21 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
 bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
 /* Whether any constraint keeps its particles from colliding (else the test above is always false). */
 bool tt__constraint_pairs_any(const tt_world *w);
+
+/* Sleeping (sleep.c). A world that never turns it on has no sleep group
+ * and pays nothing. */
+bool tt__sleep_enable(tt_world *w, double speed, double time); /* false on no memory */
+void tt__sleep_disable(tt_world *w);                          /* wakes everything */
+bool tt__sleep_get(const tt_world *w, double *speed, double *time); /* false: off */
+uint32_t tt__sleep_count(const tt_world *w);
+/* Wakes particle i's island if it sleeps: every call that changes a particle
+ * calls it first (after its checks), so a sleeper never misses a change. */
+void tt__sleep_touch(tt_world *w, uint32_t i);
+/* Wakes every island with a sleeper whose circle meets the box: for what
+ * changes a region (terrain carved, an explosion, a shape placed). */
+void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double hiy);
+/* After a load: no particle sleeps in a world without the sleep section. */
+bool tt__sleep_loaded_ok(const tt_world *w);
 
 /* Geometry shared by the polygon shape and the lattice composite
  * (collide/shapes.c): the vertex at which pts[0..n) (n >= 3) stops being a

@@ -220,6 +220,7 @@ tt_result tt_particle_set_position(tt_world *w, tt_particle p, tt_vec2 pos, tt_m
     if (!tt__vec_ok(pos)) return tt__fail(w, TT_EINVAL, "tt_particle_set_position: position must be finite, |x| <= %g", TT_MAX_VALUE);
     if (mode != TT_MOVE_KEEP_VELOCITY && mode != TT_MOVE_RESET_VELOCITY)
         return tt__fail(w, TT_EINVAL, "tt_particle_set_position: unknown move mode %d", (int)mode);
+    tt__sleep_touch(w, i);
     if (w->integrator == TT_VERLET && mode == TT_MOVE_KEEP_VELOCITY) {
         w->qx[i] += pos.x - w->px[i]; /* x_old travels with x: the implied velocity is unchanged */
         w->qy[i] += pos.y - w->py[i];
@@ -243,6 +244,7 @@ tt_result tt_particle_set_velocity(tt_world *w, tt_particle p, tt_vec2 v)
     CHECK("tt_particle_set_velocity");
     if (!tt__vec_ok(v)) return tt__fail(w, TT_EINVAL, "tt_particle_set_velocity: velocity must be finite, |v| <= %g", TT_MAX_VALUE);
     if (w->flags[i] & TT_PF_PINNED) return tt__fail(w, TT_ESTATE, "tt_particle_set_velocity: the particle is pinned");
+    tt__sleep_touch(w, i);
     tt__set_velocity(w, i, v);
     return TT_OK;
 }
@@ -259,6 +261,7 @@ tt_result tt_particle_set_mass(tt_world *w, tt_particle p, double mass)
     CHECK("tt_particle_set_mass");
     if (!tt__in_range(mass, TT_MIN_MASS, TT_MAX_MASS))
         return tt__fail(w, TT_EINVAL, "tt_particle_set_mass: mass must be in [%g, %g], got %g", TT_MIN_MASS, TT_MAX_MASS, mass);
+    tt__sleep_touch(w, i);
     w->mass[i] = mass;
     if (!(w->flags[i] & TT_PF_PINNED)) w->inv_mass[i] = 1.0 / mass;
     return TT_OK;
@@ -275,6 +278,7 @@ tt_result tt_particle_set_pinned(tt_world *w, tt_particle p, bool pinned)
 {
     CHECK("tt_particle_set_pinned");
     if (pinned == ((w->flags[i] & TT_PF_PINNED) != 0)) return TT_OK;
+    tt__sleep_touch(w, i);
     tt__set_velocity(w, i, (tt_vec2){0, 0});
     if (pinned) {
         w->flags[i] |= TT_PF_PINNED;
@@ -283,6 +287,13 @@ tt_result tt_particle_set_pinned(tt_world *w, tt_particle p, bool pinned)
         w->flags[i] &= (uint16_t)~TT_PF_PINNED;
         w->inv_mass[i] = 1.0 / w->mass[i];
     }
+    return TT_OK;
+}
+
+tt_result tt_particle_get_asleep(const tt_world *w, tt_particle p, bool *out)
+{
+    CHECK_OUT("tt_particle_get_asleep");
+    *out = (w->flags[i] & TT_PF_ASLEEP) != 0;
     return TT_OK;
 }
 
@@ -298,6 +309,7 @@ tt_result tt_particle_set_radius(tt_world *w, tt_particle p, double radius)
     CHECK("tt_particle_set_radius");
     if (!tt__in_range(radius, 0.0, TT_MAX_VALUE))
         return tt__fail(w, TT_EINVAL, "tt_particle_set_radius: radius must be in [0, %g], got %g", TT_MAX_VALUE, radius);
+    tt__sleep_touch(w, i);
     w->radius[i] = (float)radius;
     w->epoch++;
     return TT_OK;
@@ -315,6 +327,7 @@ tt_result tt_particle_get_filter(const tt_world *w, tt_particle p, uint16_t *cat
 tt_result tt_particle_set_filter(tt_world *w, tt_particle p, uint16_t category, uint16_t mask)
 {
     CHECK("tt_particle_set_filter");
+    tt__sleep_touch(w, i);
     w->category[i] = category;
     w->mask[i] = mask;
     return TT_OK;
@@ -343,6 +356,7 @@ tt_result tt_particle_apply_force(tt_world *w, tt_particle p, tt_vec2 f)
     if (!tt__vec_ok(f)) return tt__fail(w, TT_EINVAL, "tt_particle_apply_force: force must be finite, |f| <= %g", TT_MAX_VALUE);
     tt_result r = need_forces(w);
     if (r != TT_OK) return r;
+    tt__sleep_touch(w, i);
     w->fx[i] += f.x;
     w->fy[i] += f.y;
     w->forces_pending = true;
@@ -353,6 +367,7 @@ tt_result tt_particle_apply_impulse(tt_world *w, tt_particle p, tt_vec2 j)
 {
     CHECK("tt_particle_apply_impulse");
     if (!tt__vec_ok(j)) return tt__fail(w, TT_EINVAL, "tt_particle_apply_impulse: impulse must be finite, |j| <= %g", TT_MAX_VALUE);
+    tt__sleep_touch(w, i);
     tt__add_velocity(w, i, j.x * w->inv_mass[i], j.y * w->inv_mass[i]);
     return TT_OK;
 }
@@ -363,6 +378,7 @@ tt_result tt_world_explode(tt_world *w, tt_vec2 c, double radius, double impulse
     if (!tt__vec_ok(c)) return tt__fail(w, TT_EINVAL, "tt_world_explode: centre must be finite, |c| <= %g", TT_MAX_VALUE);
     if (!tt__in_range(radius, 0.0, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "tt_world_explode: radius must be in [0, %g], got %g", TT_MAX_VALUE, radius);
     if (!tt__in_range(impulse, -TT_MAX_VALUE, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "tt_world_explode: impulse must be finite, |j| <= %g", TT_MAX_VALUE);
+    tt__sleep_wake_aabb(w, c.x - radius, c.y - radius, c.x + radius, c.y + radius);
     for (uint32_t i = 0; i < w->ppool.count; i++) {
         if (w->inv_mass[i] == 0.0) continue;
         double dx = w->px[i] - c.x, dy = w->py[i] - c.y;

@@ -240,14 +240,15 @@ static bool particle_valid(const tt_world *w, uint32_t i)
 {
     const double xmax = TT_DIVERGED, qmax = 1e3 * TT_DIVERGED;
     uint16_t f = w->flags[i];
-    if (f & ~(TT_PF_ALIVE | TT_PF_PINNED | TT_PF_FRESH)) return false;
+    if (f & ~(TT_PF_ALIVE | TT_PF_PINNED | TT_PF_FRESH | TT_PF_ASLEEP)) return false;
+    if ((f & TT_PF_PINNED) && (f & TT_PF_ASLEEP)) return false; /* sleep.c never puts a pinned particle to sleep */
     if (!(f & TT_PF_ALIVE))
         return f == 0 && w->px[i] == 0 && w->py[i] == 0 && w->qx[i] == 0 && w->qy[i] == 0 && w->inv_mass[i] == 0 &&
                w->mass[i] == 0 && w->radius[i] == 0 && w->category[i] == 0 && w->mask[i] == 0;
     if (!(fabs(w->px[i]) <= xmax && fabs(w->py[i]) <= xmax && fabs(w->qx[i]) <= qmax && fabs(w->qy[i]) <= qmax))
         return false;
     if (!(w->mass[i] >= TT_MIN_MASS && w->mass[i] <= TT_MAX_MASS)) return false;
-    if (w->inv_mass[i] != ((f & TT_PF_PINNED) ? 0.0 : 1.0 / w->mass[i])) return false;
+    if (w->inv_mass[i] != ((f & (TT_PF_PINNED | TT_PF_ASLEEP)) ? 0.0 : 1.0 / w->mass[i])) return false;
     return w->radius[i] >= 0.0f && w->radius[i] <= (float)TT_MAX_VALUE;
 }
 
@@ -363,6 +364,7 @@ static void load_sections(tt_world *w, tt__source *s)
         }
         tt__section_end(s, &sec);
     }
+    if (!s->failed && !tt__sleep_loaded_ok(w)) tt__src_fail(s, "particles asleep in a world without the sleep section");
 }
 
 /* A new world holding the stream's state, or NULL with the reason in why. */

@@ -10,54 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-int tt__group_add(tt_world *w, const tt__group_ops *ops, void *self)
-{
-    if (w->group_count == TT_MAX_GROUPS) return -1;
-    int at = w->group_count;
-    while (at > 0 && w->groups[at - 1].ops->rank > ops->rank) {
-        w->groups[at] = w->groups[at - 1];
-        at--;
-    }
-    w->groups[at] = (tt__group){ops, self};
-    w->group_count++;
-    return at;
-}
-
-void *tt__group_find(const tt_world *w, const tt__group_ops *ops)
-{
-    for (int g = 0; g < w->group_count; g++)
-        if (w->groups[g].ops == ops) return w->groups[g].self;
-    return NULL;
-}
-
-void *tt__group_find_id(const tt_world *w, uint32_t id)
-{
-    for (int g = 0; g < w->group_count; g++)
-        if (w->groups[g].ops->id == id) return w->groups[g].self;
-    return NULL;
-}
-
-void tt__group_remove_id(tt_world *w, uint32_t id)
-{
-    for (int g = 0; g < w->group_count; g++)
-        if (w->groups[g].ops->id == id) {
-            tt__group_remove(w, w->groups[g].ops);
-            return;
-        }
-}
-
-void tt__group_remove(tt_world *w, const tt__group_ops *ops)
-{
-    for (int g = 0; g < w->group_count; g++) {
-        if (w->groups[g].ops != ops) continue;
-        tt__group gone = w->groups[g];
-        memmove(&w->groups[g], &w->groups[g + 1], (size_t)(w->group_count - g - 1) * sizeof w->groups[0]);
-        w->group_count--;
-        if (gone.ops->destroy) gone.ops->destroy(w, gone.self);
-        return;
-    }
-}
-
 static bool grow_to(void **p, size_t elem, uint32_t n)
 {
     void *q = realloc(*p, elem * (n ? n : 1));
@@ -202,12 +154,15 @@ static void guard(tt_world *w, double h)
     }
 }
 
-/* Groups as they were made, nothing set (a query's collision state): the
- * substep is that of a world without them, stats included. */
+/* Groups as they were made, nothing set (a query's collision state), and
+ * groups without sweeps (sleeping): the substep is that of a world without
+ * them, stats included. */
 static bool all_idle(const tt_world *w)
 {
-    for (int g = 0; g < w->group_count; g++)
-        if (!w->groups[g].ops->idle || !w->groups[g].ops->idle(w, w->groups[g].self)) return false;
+    for (int g = 0; g < w->group_count; g++) {
+        const tt__group_ops *ops = w->groups[g].ops;
+        if (ops->relax && (!ops->idle || !ops->idle(w, w->groups[g].self))) return false;
+    }
     return true;
 }
 
@@ -246,6 +201,7 @@ void tt__solve(tt_world *w, double h)
     while (it < w->iterations) {
         err = 0.0;
         for (int g = 0; g < w->group_count; g++) {
+            if (!w->groups[g].ops->relax) continue;
             double e = w->groups[g].ops->relax(w, w->groups[g].self, h);
             moved |= e != 0.0;
             if (e > err) err = e;

@@ -55,6 +55,9 @@ tt_world_def tt_world_def_default(void)
     d.iterations = 10;
     d.tolerance = 1e-6;
     d.order = TT_GAUSS_SEIDEL;
+    d.sleep = false;
+    d.sleep_speed = 0.05;
+    d.sleep_time = 0.5;
     return d;
 }
 
@@ -79,6 +82,7 @@ tt_world *tt_world_create(const tt_world_def *def)
     if (d.iterations < 1 || d.iterations > TT_MAX_ITERATIONS) { tt__fail(NULL, TT_EINVAL, "%s: iterations must be in [1, %d], got %u", fn, TT_MAX_ITERATIONS, d.iterations); return NULL; }
     if (!tt__in_range(d.tolerance, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: tolerance must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.tolerance); return NULL; }
     if (d.order != TT_GAUSS_SEIDEL && d.order != TT_JACOBI) { tt__fail(NULL, TT_EINVAL, "%s: unknown solver order %d", fn, (int)d.order); return NULL; }
+    if (d.sleep && !(tt__in_range(d.sleep_speed, 0.0, TT_MAX_VALUE) && tt__in_range(d.sleep_time, 0.0, TT_MAX_VALUE))) { tt__fail(NULL, TT_EINVAL, "%s: sleep_speed and sleep_time must be in [0, %g]", fn, TT_MAX_VALUE); return NULL; }
     if (d.capacity > d.max_particles) { tt__fail(NULL, TT_EINVAL, "%s: capacity %u is over max_particles %u", fn, d.capacity, d.max_particles); return NULL; }
 
     tt_world *w = calloc(1, sizeof *w);
@@ -102,6 +106,11 @@ tt_world *tt_world_create(const tt_world_def *def)
     w->order = d.order;
     if (d.capacity && tt__particles_reserve(w, d.capacity) != TT_OK) {
         tt__fail(NULL, TT_ENOMEM, "%s: cannot reserve %u particles", fn, d.capacity);
+        tt_world_destroy(w);
+        return NULL;
+    }
+    if (d.sleep && !tt__sleep_enable(w, d.sleep_speed, d.sleep_time)) {
+        tt__fail(NULL, TT_ENOMEM, "%s: out of memory for sleeping", fn);
         tt_world_destroy(w);
         return NULL;
     }
@@ -250,6 +259,30 @@ tt_result tt_world_set_solver_order(tt_world *w, tt_solver_order order)
 
 tt_solver_order tt_world_get_solver_order(const tt_world *w) { return w ? w->order : TT_GAUSS_SEIDEL; }
 
+tt_result tt_world_set_sleep(tt_world *w, bool on, double speed, double time)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_sleep");
+    if (!on) {
+        tt__sleep_disable(w);
+        return TT_OK;
+    }
+    if (!tt__in_range(speed, 0.0, TT_MAX_VALUE))
+        return tt__fail(w, TT_EINVAL, "tt_world_set_sleep: speed must be in [0, %g], got %g", TT_MAX_VALUE, speed);
+    if (!tt__in_range(time, 0.0, TT_MAX_VALUE))
+        return tt__fail(w, TT_EINVAL, "tt_world_set_sleep: time must be in [0, %g], got %g", TT_MAX_VALUE, time);
+    if (!tt__sleep_enable(w, speed, time)) return tt__fail(w, TT_ENOMEM, "tt_world_set_sleep: out of memory");
+    return TT_OK;
+}
+
+bool tt_world_get_sleep(const tt_world *w, double *speed, double *time)
+{
+    double s = 0.0, t = 0.0;
+    bool on = w && tt__sleep_get(w, &s, &t);
+    if (speed) *speed = s;
+    if (time) *time = t;
+    return on;
+}
+
 tt_result tt_world_get_stats(const tt_world *w, tt_stats *out)
 {
     TT_CHECK_WORLD(w, "tt_world_get_stats");
@@ -257,6 +290,7 @@ tt_result tt_world_get_stats(const tt_world *w, tt_stats *out)
     *out = w->stats;
     out->particles = w->alive;
     out->springs = w->springs_alive;
+    out->sleeping = tt__sleep_count(w);
     return TT_OK;
 }
 
@@ -266,7 +300,7 @@ tt_result tt_world_get_energy(const tt_world *w, tt_energy *out)
     if (!out) return tt__fail(w, TT_EINVAL, "tt_world_get_energy: out is NULL");
     double ke = 0.0, pe = 0.0;
     for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if (w->inv_mass[i] == 0.0) continue; /* pinned or removed */
+        if ((w->flags[i] & (TT_PF_ALIVE | TT_PF_PINNED)) != TT_PF_ALIVE) continue; /* pinned or removed (a sleeper counts) */
         tt_vec2 v = tt__velocity(w, i);
         double m = w->mass[i];
         ke += 0.5 * m * (v.x * v.x + v.y * v.y);

@@ -153,6 +153,16 @@ static int w_pinned(lua_State *L)
     return 1;
 }
 
+static int w_asleep(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
+    bool b;
+    tl_check_result(L, w, tt_particle_get_asleep(w, p, &b));
+    lua_pushboolean(L, b);
+    return 1;
+}
+
 static int w_set_pinned(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -273,6 +283,7 @@ static const luaL_Reg particle_methods[] = {
     { "mass", w_mass },
     { "set_mass", w_set_mass },
     { "pinned", w_pinned },
+    { "asleep", w_asleep },
     { "set_pinned", w_set_pinned },
     { "radius", w_radius },
     { "set_radius", w_set_radius },

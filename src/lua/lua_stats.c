@@ -49,6 +49,7 @@ static int w_stats(lua_State *L)
     setint(L, "diverged", (lua_Integer)s.diverged);
     setint(L, "iterations", (lua_Integer)s.iterations);
     setnum(L, "max_error", s.max_error);
+    setint(L, "sleeping", (lua_Integer)s.sleeping);
     lua_createtable(L, 0, TT_STAGE_COUNT);
     for (int i = 0; i < TT_STAGE_COUNT; i++)
         setnum(L, stage_names[i], s.stage_ms[i]);

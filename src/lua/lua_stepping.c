@@ -161,6 +161,27 @@ static int w_attractor(lua_State *L)
     return 4;
 }
 
+/* w:sleep() → on, speed, time */
+static int w_sleep(lua_State *L)
+{
+    double speed, time;
+    lua_pushboolean(L, tt_world_get_sleep(tl_check_world(L, 1), &speed, &time));
+    lua_pushnumber(L, speed);
+    lua_pushnumber(L, time);
+    return 3;
+}
+
+/* w:set_sleep(on [, speed = 0.05, time = 0.5]) */
+static int w_set_sleep(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    bool on = tl_checkboolean(L, 2);
+    tt_world_def d = tt_world_def_default();
+    double speed = tl_optnumber(L, 3, &TL_R_NONNEG, d.sleep_speed), time = tl_optnumber(L, 4, &TL_R_NONNEG, d.sleep_time);
+    tl_check_result(L, w, tt_world_set_sleep(w, on, speed, time));
+    return 0;
+}
+
 /* --- registration ----------------------------------------------------------- */
 
 static const luaL_Reg stepping_methods[] = {
@@ -183,6 +204,8 @@ static const luaL_Reg stepping_methods[] = {
     { "set_solver", w_set_solver },
     { "attractor", w_attractor },
     { "set_attractor", w_set_attractor },
+    { "sleep", w_sleep },
+    { "set_sleep", w_set_sleep },
     { NULL, NULL }
 };
 

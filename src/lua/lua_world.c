@@ -97,7 +97,8 @@ void *tl_scratch(lua_State *L, size_t bytes)
 /* --- construction and life cycle -------------------------------------------- */
 
 static const char *const world_opts[] = { "gravity", "integrator", "damping", "wind", "dt_hint", "capacity",
-                                          "substeps", "iterations", "tolerance", "solver", "snapshot", "file", NULL };
+                                          "substeps", "iterations", "tolerance", "solver", "snapshot", "file",
+                                          "sleep", "sleep_speed", "sleep_time", NULL };
 /* Same order as tt_solver_order. */
 const char *const tl_solver_names[] = { "gauss_seidel", "jacobi", NULL };
 
@@ -118,6 +119,9 @@ int tl_world_new(lua_State *L)
     def.iterations = (uint32_t)tl_optfield_integer(L, 1, "iterations", 1, TT_MAX_ITERATIONS, def.iterations);
     def.tolerance = tl_optfield_number(L, 1, "tolerance", &TL_R_NONNEG, def.tolerance);
     def.order = (tt_solver_order)tl_optfield_option(L, 1, "solver", "solver", tl_solver_names, (int)def.order);
+    def.sleep = tl_optfield_boolean(L, 1, "sleep", def.sleep);
+    def.sleep_speed = tl_optfield_number(L, 1, "sleep_speed", &TL_R_NONNEG, def.sleep_speed);
+    def.sleep_time = tl_optfield_number(L, 1, "sleep_time", &TL_R_NONNEG, def.sleep_time);
 
     /* Harmless first: a userdata with no world, its metatable and its user
      * table; only then the world. An error in between leaves nothing. */

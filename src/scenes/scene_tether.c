@@ -213,6 +213,7 @@ static tt_world *make_world(const ts_scene *s, const ts_tether_settings *set)
     wd.substeps = set->substeps;
     wd.iterations = set->iterations;
     wd.capacity = s->body_count;
+    wd.sleep = false; /* the cross-check and the bench compare motion with Box2D's, run with its sleeping off */
     tt_world *w = tt_world_create(&wd);
     tt_collision_settings cs = tt_collision_settings_default();
     cs.friction_static = cs.friction_kinetic = 0.3;

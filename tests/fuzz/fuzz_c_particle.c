@@ -107,6 +107,7 @@ GET_OUT(tt_particle_get_position, PK, FZ_P, tt_vec2, fz_finite_vec(f, out, "a po
 GET_OUT(tt_particle_get_velocity, PK, FZ_P, tt_vec2, fz_finite_vec(f, out, "a velocity"))
 GET_OUT(tt_particle_get_mass, PK, FZ_P, double, fz_finite(f, out, "a mass"))
 GET_OUT(tt_particle_get_pinned, PK, FZ_P, bool, (void)out)
+GET_OUT(tt_particle_get_asleep, PK, FZ_P, bool, (void)out)
 GET_OUT(tt_particle_get_radius, PK, FZ_P, double, fz_finite(f, out, "a radius"))
 GET_OUT(tt_particle_get_user, PK, FZ_P, uint64_t, (void)out)
 SET_ONE(tt_particle_set_velocity, PK, FZ_P, tt_vec2, fz_vec(f, -20, 20), fz_v(v))
@@ -306,6 +307,7 @@ const fz_entry fz_particle_entries[] = {
     { "tt_particle_get_mass", c_tt_particle_get_mass, 1 },
     { "tt_particle_set_mass", c_tt_particle_set_mass, 2 },
     { "tt_particle_get_pinned", c_tt_particle_get_pinned, 1 },
+    { "tt_particle_get_asleep", c_tt_particle_get_asleep, 1 },
     { "tt_particle_set_pinned", c_tt_particle_set_pinned, 2 },
     { "tt_particle_get_radius", c_tt_particle_get_radius, 1 },
     { "tt_particle_set_radius", c_tt_particle_set_radius, 2 },

@@ -297,6 +297,29 @@ static void c_world_set_tolerance(fz *f)
     fz_res(f, tt_world_set_tolerance(w, v));
 }
 
+static void c_world_set_sleep(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    bool on = fz_chance(f, 70);
+    double speed = fz_chance(f, 10) ? -1.0 : fz_real(f, 0, 1), time = fz_chance(f, 10) ? NAN : fz_real(f, 0, 2);
+    fz_log(f, "tt_world_set_sleep(%s, %s, %s, %s)", fz_wn(f, w), on ? "true" : "false", fz_d(speed), fz_d(time));
+    FZ_HIT(f, tt_world_set_sleep);
+    fz_res(f, tt_world_set_sleep(w, on, speed, time));
+}
+
+static void c_world_get_sleep(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    f->readonly = true;
+    double speed, time;
+    fz_log(f, "tt_world_get_sleep(%s)", fz_wn(f, w));
+    FZ_HIT(f, tt_world_get_sleep);
+    if (tt_world_get_sleep(w, &speed, &time)) {
+        fz_finite(f, speed, "a sleep speed");
+        fz_finite(f, time, "a sleep time");
+    }
+}
+
 static void c_world_explode(fz *f)
 {
     tt_world *w = fz_world_pick(f);
@@ -375,6 +398,8 @@ const fz_entry fz_world_entries[] = {
     { "tt_world_set_iterations", c_tt_world_set_iterations, 4 },
     { "tt_world_get_iterations", c_tt_world_get_iterations, 1 },
     { "tt_world_set_tolerance", c_world_set_tolerance, 2 },
+    { "tt_world_set_sleep", c_world_set_sleep, 2 },
+    { "tt_world_get_sleep", c_world_get_sleep, 1 },
     { "tt_world_get_tolerance", c_tt_world_get_tolerance, 1 },
     { "tt_world_set_solver_order", c_tt_world_set_solver_order, 3 },
     { "tt_world_get_solver_order", c_tt_world_get_solver_order, 1 },

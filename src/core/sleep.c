@@ -1,0 +1,502 @@
+/* tether — sleeping: particles at rest stop costing anything.
+ *
+ * Regions are islands: particles joined by contacts (the last substep's
+ * particle pairs), springs and multi-particle constraints (distance, angle,
+ * area, collinear), found by union-find. Pinned particles, shapes, pins and
+ * bounds join nothing: they do not move, so they carry no motion from one
+ * particle to another. An island falls asleep when every particle in it has
+ * rested for sleep_time: stayed within sleep_speed·sleep_time of where its
+ * rest began (a mean speed under sleep_speed); it wakes whole. Islands
+ * rather than grid cells: a cell boundary cuts a pile in two, and the awake
+ * half would lean on a frozen half that ought to give way; an island is
+ * everything that can push on everything else, so nothing in it is left
+ * leaning on a sleeper (Box2D sleeps by islands for the same reason).
+ *
+ * A sleeping particle is stored as a pinned one is (inverse mass 0, its
+ * velocity zero), flagged TT_PF_ASLEEP, its mass kept: the integrator, shape
+ * detection and every relaxation sweep skip it, and the grid makes no pair
+ * of two sleepers, with no test of their own in any of those loops. An
+ * awake particle still meets a sleeper in the grid: that pair wakes the
+ * sleeper's island at the end of the step (for that one step the sleeper
+ * held like the ground). What the script does to a sleeping particle wakes
+ * its island first; a shape the script moves wakes what lies along its
+ * path before the step detects anything; tt__sleep_wake_aabb wakes a box
+ * (terrain carving, explosions). Waking starts a particle from rest where it
+ * slept: nothing jumps.
+ *
+ * The feature is a solver group without sweeps (rank after contacts): its
+ * hooks are the step's, its section of the snapshot ('SLEP') holds the
+ * settings, each particle's time at rest and island, so a restored world
+ * falls asleep and wakes exactly as the original would. */
+#include "internal.h"
+#include "stream.h"
+#include "collide/collide_internal.h"
+#include "constraints/constraint_internal.h"
+
+#include <stdlib.h>
+
+enum { TT__RANK_SLEEP = 15 }; /* begin before the contacts detect: woken particles are detected this substep */
+
+typedef struct tt__sleep {
+    double speed, time;   /* m/s: the mean speed under which a particle rests; s at rest before its island sleeps */
+    uint32_t next_island; /* ids are never reused while anything sleeps under them */
+    uint32_t asleep;
+    uint32_t cap;
+    double *rest;         /* per slot: seconds at rest (awake particles) */
+    double *ax, *ay;      /* per slot: where its rest began (awake particles) */
+    uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
+    uint32_t *parent;     /* union-find scratch */
+    double *minrest;      /* per root: the least time at rest in its island */
+    uint32_t *wake;       /* islands to wake at the end of the step */
+    uint32_t nwake, wake_cap;
+} tt__sleep;
+
+static const tt__group_ops sleep_ops;
+
+static tt__sleep *peek(const tt_world *w) { return (tt__sleep *)tt__group_find(w, &sleep_ops); }
+
+static bool grow(tt__sleep *s, uint32_t n)
+{
+    if (n <= s->cap) return true;
+    uint32_t cap = s->cap ? s->cap : 64;
+    while (cap < n) cap *= 2;
+    double *r = realloc(s->rest, (size_t)cap * sizeof *r);
+    if (!r) return false;
+    s->rest = r;
+    uint32_t *is = realloc(s->island, (size_t)cap * sizeof *is);
+    if (!is) return false;
+    s->island = is;
+    uint32_t *p = realloc(s->parent, (size_t)cap * sizeof *p);
+    if (!p) return false;
+    s->parent = p;
+    double *m = realloc(s->minrest, (size_t)cap * sizeof *m);
+    if (!m) return false;
+    s->minrest = m;
+    double *x = realloc(s->ax, (size_t)cap * sizeof *x);
+    if (!x) return false;
+    s->ax = x;
+    double *y = realloc(s->ay, (size_t)cap * sizeof *y);
+    if (!y) return false;
+    s->ay = y;
+    for (uint32_t i = s->cap; i < cap; i++) {
+        s->rest[i] = s->ax[i] = s->ay[i] = 0.0;
+        s->island[i] = 0;
+    }
+    s->cap = cap;
+    return true;
+}
+
+static bool reserve(tt_world *w, void *self) { return grow(self, w->ppool.count ? w->ppool.count : 1); }
+
+static inline bool dynamic(const tt_world *w, uint32_t i)
+{
+    return (w->flags[i] & (TT_PF_ALIVE | TT_PF_PINNED)) == TT_PF_ALIVE;
+}
+
+/* Slots the arrays cover: particles made since the last step lie past
+ * them, and none of those sleeps. */
+static uint32_t covered(const tt_world *w, const tt__sleep *s)
+{
+    return w->ppool.count < s->cap ? w->ppool.count : s->cap;
+}
+
+static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
+{
+    s->island[i] = 0;
+    s->rest[i] = 0.0;
+    s->ax[i] = w->px[i];
+    s->ay[i] = w->py[i];
+    w->flags[i] &= (uint16_t)~TT_PF_ASLEEP;
+    w->inv_mass[i] = 1.0 / w->mass[i];
+    s->asleep--;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Wakes the islands listed in s->wake: one pass over the particles. */
+static void wake_listed(tt_world *w, tt__sleep *s)
+{
+    if (s->nwake == 0) return;
+    qsort(s->wake, s->nwake, sizeof *s->wake, cmp_u32);
+    for (uint32_t i = 0; i < covered(w, s) && s->asleep; i++) {
+        uint32_t k = s->island[i];
+        if (k && bsearch(&k, s->wake, s->nwake, sizeof k, cmp_u32)) wake_one(w, s, i);
+    }
+    s->nwake = 0;
+}
+
+/* Lists island k to wake; false (and the island is woken at once, alone)
+ * when the list cannot grow. */
+static void list_wake(tt_world *w, tt__sleep *s, uint32_t k)
+{
+    for (uint32_t j = 0; j < s->nwake && j < 8; j++)
+        if (s->wake[s->nwake - 1 - j] == k) return; /* the common repeat: the same island again */
+    if (s->nwake == s->wake_cap) {
+        uint32_t cap = s->wake_cap ? s->wake_cap * 2 : 16;
+        uint32_t *p = realloc(s->wake, (size_t)cap * sizeof *p);
+        if (!p) {
+            for (uint32_t i = 0; i < covered(w, s); i++)
+                if (s->island[i] == k) wake_one(w, s, i);
+            return;
+        }
+        s->wake = p;
+        s->wake_cap = cap;
+    }
+    s->wake[s->nwake++] = k;
+}
+
+void tt__sleep_touch(tt_world *w, uint32_t i)
+{
+    if (!(w->flags[i] & TT_PF_ASLEEP)) return;
+    tt__sleep *s = peek(w);
+    if (!s) return;
+    list_wake(w, s, s->island[i]);
+    wake_listed(w, s);
+}
+
+void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double hiy)
+{
+    tt__sleep *s = peek(w);
+    if (!s || s->asleep == 0) return;
+    for (uint32_t i = 0; i < covered(w, s); i++) {
+        if (!s->island[i]) continue;
+        const double r = w->radius[i], x = w->px[i], y = w->py[i];
+        if (x + r >= lox && x - r <= hix && y + r >= loy && y - r <= hiy) list_wake(w, s, s->island[i]);
+    }
+    wake_listed(w, s);
+}
+
+uint32_t tt__sleep_count(const tt_world *w)
+{
+    const tt__sleep *s = peek(w);
+    return s ? s->asleep : 0;
+}
+
+/* The other features' state, read through the snapshot registry so that
+ * this file names none of their symbols (they call tt__sleep_touch). */
+static void *feature(const tt_world *w, uint32_t id)
+{
+    const tt__group_ops *ops = tt__feature_find(id);
+    return ops ? tt__group_find(w, ops) : NULL;
+}
+#define ID_CONTACTS TT__ID('C', 'O', 'L', 'L')
+#define ID_CONSTRAINTS TT__ID('C', 'O', 'N', 'S')
+
+/* The particles of constraint slot s of g (distance, angle, area,
+ * collinear; pins and bounds hold to the world, not to a particle): fills
+ * out (up to 3, or the area's list) and returns how many. */
+static uint32_t constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t out[3], const uint32_t **list)
+{
+    const tt__cslot *cs = &g->slots[slot];
+    *list = NULL;
+    if (cs->kind == TT_CONSTRAINT_DISTANCE) {
+        out[0] = g->dist[cs->dense].a;
+        out[1] = g->dist[cs->dense].b;
+        return 2;
+    }
+    const tt__gcon *c = &g->gen[cs->dense];
+    if (c->kind == TT_CONSTRAINT_ANGLE || c->kind == TT_CONSTRAINT_COLLINEAR) {
+        out[0] = c->p[0], out[1] = c->p[1], out[2] = c->p[2];
+        return 3;
+    }
+    if (c->kind == TT_CONSTRAINT_AREA) {
+        *list = c->list;
+        return c->n;
+    }
+    if (c->kind == TT_CONSTRAINT_PIN) { /* a moving pin drags its particle: wakes it, joins nothing */
+        out[0] = c->p[0];
+        return 1;
+    }
+    return 0;
+}
+
+/* Before the first substep detects anything: what a moved shape sweeps
+ * over (its primitives' boxes hold the whole path then), and what a
+ * constraint whose target the script moved drives, wake. */
+static void begin(tt_world *w, void *self, double h)
+{
+    (void)h;
+    tt__sleep *s = self;
+    if (w->substep != 0 || s->asleep == 0) return;
+    const tt__collide *c = feature(w, ID_CONTACTS);
+    if (c && c->any_moved)
+        for (uint32_t k = 0; k < c->nprim; k++) {
+            const tt__prim *p = &c->prims[k];
+            if (c->shapes[p->shape].moved) tt__sleep_wake_aabb(w, p->lox, p->loy, p->hix, p->hiy);
+        }
+    const tt__cgroup *g = feature(w, ID_CONSTRAINTS);
+    for (uint32_t k = 0; g && k < g->nmoving; k++) {
+        uint32_t ids[3];
+        const uint32_t *list;
+        uint32_t n = constraint_parts(g, g->moving[k].slot, ids, &list);
+        for (uint32_t j = 0; j < n; j++) tt__sleep_touch(w, list ? list[j] : ids[j]);
+    }
+}
+
+/* The last substep's particle pairs between a sleeper and an awake
+ * particle wake the sleeper's island. */
+static void wake_touched(tt_world *w, tt__sleep *s)
+{
+    const tt__collide *c = feature(w, ID_CONTACTS);
+    if (!c || s->asleep == 0) return;
+    for (uint32_t k = 0; k < c->npairs; k++) {
+        uint32_t a = c->pairs[k].a, b = c->pairs[k].b;
+        if (a >= w->ppool.count || b >= w->ppool.count) continue;
+        uint32_t ia = s->island[a], ib = s->island[b];
+        if (!ia == !ib) continue; /* both awake or both asleep */
+        uint32_t other = ia ? b : a;
+        if (!dynamic(w, other)) continue; /* a pinned particle wakes nothing */
+        list_wake(w, s, ia ? ia : ib);
+    }
+    wake_listed(w, s);
+}
+
+static uint32_t find(uint32_t *parent, uint32_t i)
+{
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+/* Joins the islands of a and b, the smaller root winning (deterministic);
+ * sleepers, pinned and removed particles join nothing. */
+static void unite(const tt_world *w, tt__sleep *s, uint32_t a, uint32_t b)
+{
+    if (a >= w->ppool.count || b >= w->ppool.count) return;
+    if (!dynamic(w, a) || !dynamic(w, b) || s->island[a] || s->island[b]) return;
+    uint32_t ra = find(s->parent, a), rb = find(s->parent, b);
+    if (ra < rb) s->parent[rb] = ra;
+    else if (rb < ra) s->parent[ra] = rb;
+}
+
+static void unite_all(const tt_world *w, tt__sleep *s)
+{
+    const tt__collide *c = feature(w, ID_CONTACTS);
+    for (uint32_t k = 0; c && k < c->npairs; k++) unite(w, s, c->pairs[k].a, c->pairs[k].b);
+    for (uint32_t k = 0; k < w->spool.count; k++)
+        if (w->springs[k].alive) unite(w, s, w->springs[k].a, w->springs[k].b);
+    const tt__cgroup *g = feature(w, ID_CONSTRAINTS);
+    for (uint32_t k = 0; g && k < g->pool.count; k++) {
+        if (!g->slots[k].kind) continue;
+        uint32_t ids[3];
+        const uint32_t *list;
+        uint32_t n = constraint_parts(g, k, ids, &list);
+        for (uint32_t j = 1; j < n; j++) unite(w, s, list ? list[0] : ids[0], list ? list[j] : ids[j]);
+    }
+}
+
+static void fall_asleep(tt_world *w, tt__sleep *s, uint32_t i, uint32_t island)
+{
+    s->island[i] = island;
+    s->rest[i] = 0.0;
+    w->flags[i] |= TT_PF_ASLEEP;
+    w->inv_mass[i] = 0.0;
+    if (w->integrator == TT_VERLET) {
+        w->qx[i] = w->px[i];
+        w->qy[i] = w->py[i];
+    } else {
+        w->qx[i] = w->qy[i] = 0.0;
+    }
+    s->asleep++;
+}
+
+/* Islands whose every particle rested long enough fall asleep. */
+static void settle(tt_world *w, tt__sleep *s)
+{
+    const uint32_t n = w->ppool.count;
+    for (uint32_t i = 0; i < n; i++) {
+        s->parent[i] = i;
+        s->minrest[i] = INFINITY;
+    }
+    unite_all(w, s);
+    for (uint32_t i = 0; i < n; i++) {
+        if (!dynamic(w, i) || s->island[i]) continue;
+        uint32_t r = find(s->parent, i);
+        if (s->rest[i] < s->minrest[r]) s->minrest[r] = s->rest[i];
+    }
+    /* island ids in slot order of their roots: the same world sleeps the same way */
+    for (uint32_t i = 0; i < n; i++) {
+        if (!dynamic(w, i) || s->island[i]) continue;
+        uint32_t r = find(s->parent, i);
+        if (!(s->minrest[r] >= s->time || s->minrest[r] < 0.0)) continue; /* < 0: its root's id, below */
+        if (r == i) { /* roots come first in slot order: the smaller index wins every union */
+            if (s->next_island == UINT32_MAX) s->next_island = 1;
+            s->minrest[r] = -(double)s->next_island++; /* the root's id, kept where its time was */
+        }
+        fall_asleep(w, s, i, (uint32_t)-s->minrest[r]);
+    }
+}
+
+/* Whether anything can hold a particle at rest: contacts, constraints or
+ * springs. Without them a particle at rest is one in free flight with no
+ * gravity, whose step costs what its rest test would: a plain world (on by
+ * default) pays nothing for sleeping. */
+static bool anything_holds(const tt_world *w)
+{
+    if (w->springs_alive) return true;
+    for (int g = 0; g < w->group_count; g++) {
+        const tt__group_ops *ops = w->groups[g].ops;
+        if (ops->relax && !(ops->idle && ops->idle(w, w->groups[g].self))) return true;
+    }
+    return false; /* (a query's idle collision state holds nothing: reading a world keeps its hash) */
+}
+
+/* Rest is measured on the mean velocity, not the last step's: a particle
+ * rests while it stays within sleep_speed·sleep_time of where its rest
+ * began. In a deep pile a few particles rattle in place at 0.1–0.2 m/s
+ * (found in the reference pour: 115 of 10 000 over 0.05 m/s after 40 s, none
+ * of them 1 mm from where they were half a second before); by their last
+ * velocity they would keep the whole pile awake for ever. */
+static void after_step(tt_world *w, void *self)
+{
+    tt__sleep *s = self;
+    wake_touched(w, s);
+    if (!anything_holds(w)) return;
+    const uint32_t n = w->ppool.count;
+    const double dt = w->dt_prev * w->substeps;
+    const double lim = s->speed * s->time, lim2 = lim * lim;
+    bool ready = false;
+    for (uint32_t i = 0; i < n; i++) {
+        if (w->inv_mass[i] == 0.0) continue; /* asleep, pinned or removed */
+        const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i];
+        if (dx * dx + dy * dy <= lim2) {
+            s->rest[i] += dt;
+            ready |= s->rest[i] >= s->time;
+        } else {
+            s->rest[i] = 0.0;
+            s->ax[i] = w->px[i];
+            s->ay[i] = w->py[i];
+        }
+    }
+    if (ready) settle(w, s);
+}
+
+static void particle_removed(tt_world *w, void *self, uint32_t i)
+{
+    tt__sleep *s = self;
+    tt__sleep_touch(w, i); /* what rested on it falls */
+    if (i < s->cap) s->rest[i] = 0.0;
+}
+
+static void save(const tt_world *w, const void *self, tt__sink *snk)
+{
+    const tt__sleep *s = self;
+    tt__put_f64(snk, s->speed);
+    tt__put_f64(snk, s->time);
+    tt__put_u32(snk, s->next_island);
+    for (uint32_t i = 0; i < w->ppool.count; i++) {
+        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        tt__put_f64(snk, i < s->cap ? s->rest[i] : 0.0);
+        tt__put_f64(snk, i < s->cap ? s->ax[i] : 0.0);
+        tt__put_f64(snk, i < s->cap ? s->ay[i] : 0.0);
+        tt__put_u32(snk, i < s->cap ? s->island[i] : 0);
+    }
+}
+
+static void destroy(tt_world *w, void *self)
+{
+    (void)w;
+    tt__sleep *s = self;
+    if (!s) return;
+    free(s->rest); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
+    free(s);
+}
+
+static void *load(tt_world *w, tt__source *src)
+{
+    tt__sleep *s = calloc(1, sizeof *s);
+    if (!s || !grow(s, w->ppool.count ? w->ppool.count : 1)) {
+        destroy(w, s);
+        tt__src_fail(src, "out of memory for the sleep state");
+        return NULL;
+    }
+    s->speed = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep speed");
+    s->time = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep time");
+    s->next_island = tt__get_u32(src);
+    if (s->next_island == 0) tt__src_fail(src, "sleep: island counter 0");
+    for (uint32_t i = 0; i < w->ppool.count && !src->failed; i++) {
+        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        s->rest[i] = tt__get_num(src, 0.0, TT_MAX_VALUE, "time at rest");
+        s->ax[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "where rest began");
+        s->ay[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "where rest began");
+        s->island[i] = tt__get_u32(src);
+        const bool asleep = (w->flags[i] & TT_PF_ASLEEP) != 0;
+        if (asleep != (s->island[i] != 0) || (asleep && s->rest[i] != 0.0))
+            tt__src_fail(src, "sleep: particle %u is %s but its island is %u", i, asleep ? "asleep" : "awake", s->island[i]);
+        s->asleep += asleep;
+    }
+    if (src->failed) {
+        destroy(w, s);
+        return NULL;
+    }
+    return s;
+}
+
+static size_t memory(const tt_world *w, const void *self)
+{
+    (void)w;
+    const tt__sleep *s = self;
+    return sizeof *s + (size_t)s->cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t);
+}
+
+static const tt__group_ops sleep_ops = {
+    .name = "sleep", .rank = TT__RANK_SLEEP,
+    .begin_stage = TT_STAGE_COLLIDE,
+    .reserve = reserve,
+    .begin = begin,
+    .after_step = after_step,
+    .particle_removed = particle_removed,
+    .id = TT__ID('S', 'L', 'E', 'P'),
+    .save = save,
+    .load = load,
+    .memory = memory,
+    .destroy = destroy,
+};
+
+__attribute__((constructor)) static void register_feature(void) { tt__feature_register(&sleep_ops); }
+
+bool tt__sleep_enable(tt_world *w, double speed, double time)
+{
+    tt__sleep *s = peek(w);
+    if (!s) {
+        s = calloc(1, sizeof *s);
+        if (!s || !grow(s, w->ppool.count ? w->ppool.count : 1) || tt__group_add(w, &sleep_ops, s) < 0) {
+            destroy(w, s);
+            return false;
+        }
+        s->next_island = 1;
+    }
+    s->speed = speed;
+    s->time = time;
+    return true;
+}
+
+void tt__sleep_disable(tt_world *w)
+{
+    tt__sleep *s = peek(w);
+    if (!s) return;
+    for (uint32_t i = 0; i < covered(w, s) && s->asleep; i++)
+        if (s->island[i]) wake_one(w, s, i);
+    tt__group_remove(w, &sleep_ops);
+}
+
+bool tt__sleep_get(const tt_world *w, double *speed, double *time)
+{
+    const tt__sleep *s = peek(w);
+    if (s) *speed = s->speed, *time = s->time;
+    return s != NULL;
+}
+
+bool tt__sleep_loaded_ok(const tt_world *w)
+{
+    if (peek(w)) return true;
+    for (uint32_t i = 0; i < w->ppool.count; i++)
+        if (w->flags[i] & TT_PF_ASLEEP) return false;
+    return true;
+}
