@@ -310,7 +310,6 @@ size_t tt__terrains_bytes(const tt__terrains *ts)
 
 void tt__terrain_changed(tt_world *w, double lox, double loy, double hix, double hiy)
 {
-    /* Sleeping (issue 22) wakes the particles in this rectangle here. Until
-     * then nothing rests without being tested every substep. */
-    (void)w; (void)lox; (void)loy; (void)hix; (void)hiy;
+    /* what rested on the old ground (or under the new) is no longer at rest */
+    tt__sleep_wake_aabb(w, lox, loy, hix, hiy);
 }

@@ -107,6 +107,34 @@ TEST(terrain_ball_rests_on_floor_and_falls_through_a_carved_hole)
     tt_world_destroy(w);
 }
 
+/* The same with sleeping on: the ball falls asleep on the floor, and the
+ * carve wakes it (the carve's box reaches the sleeping islands it touches). */
+TEST(terrain_carve_wakes_a_ball_asleep_on_it)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.sleep = true;
+    tt_world *w = tt_world_create(&wd);
+    tt_mask *m = floor_mask();
+    tt_terrain t = add_terrain(w, m, 0.6);
+    tt_mask_destroy(m);
+    const double r = 0.2;
+    tt_particle p = ball(w, 5.0, -1.0, r, 0.6);
+    bool asleep = false;
+    for (int k = 0; k < 600 && !asleep; k++) {
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE_OK(tt_particle_get_asleep(w, p, &asleep));
+    }
+    ENSURE(asleep);
+    ENSURE_OK(tt_terrain_paint_circle(w, t, (tt_vec2){5.0, -2.75}, 0.6, false));
+    ENSURE_OK(tt_particle_get_asleep(w, p, &asleep));
+    ENSURE(!asleep);
+    for (int k = 0; k < 60; k++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    ENSURE(x.y < -3.0 - r); /* through the floor */
+    tt_world_destroy(w);
+}
+
 TEST(terrain_snapshot_carve_restore_is_bit_exact)
 {
     tt_world_def wd = tt_world_def_default();

@@ -309,8 +309,7 @@ static void c_world_set_sleep(fz *f)
 
 static void c_world_get_sleep(fz *f)
 {
-    tt_world *w = fz_world_pick(f);
-    f->readonly = true;
+    tt_world *w = fz_world_any(f); /* a getter: no failure channel (false for NULL) */
     double speed, time;
     fz_log(f, "tt_world_get_sleep(%s)", fz_wn(f, w));
     FZ_HIT(f, tt_world_get_sleep);
