@@ -18,7 +18,7 @@ local function scene()
   w:circle(-3, 1, 0.5)
   w:capsule(2, 0, 4, 0.5, 0.2)
   w:polygon { -6, 2, -5, 2, -5.5, 3 }
-  local cloth = w:cloth { origin = { -2, 6 }, width = 2, height = 2, columns = 8, rows = 8, break_strain = 0.2,
+  local cloth = w:cloth { origin = { -2, 6 }, width = 2, height = 2, columns = 8, rows = 8, break_strain = 0.05, -- tears as it drapes over the shapes
                           shear_stiffness = 0.1, radius = 0.05 }
   w:rope { start = { 3, 6 }, finish = { 6, 6 }, segments = 6, radius = 0.1 }
   w:ragdoll { position = { -6, 5 }, radius = 0.1 }
