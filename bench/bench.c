@@ -180,6 +180,7 @@ static const struct {
     {"constraints", bench_constraints},
     {"mask", bench_mask},
     {"snapshot", bench_snapshot},
+    {"terrain", bench_terrain},
 };
 
 int main(int argc, char **argv)

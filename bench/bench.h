@@ -20,5 +20,6 @@ void bench_render(const char *dir);
 void bench_constraints(const char *dir);
 void bench_mask(const char *dir);
 void bench_snapshot(const char *dir);
+void bench_terrain(const char *dir);
 
 #endif

@@ -17,5 +17,6 @@
 #include "tether/collide.h"
 #include "tether/clock.h"
 #include "tether/mask.h"
+#include "tether/terrain.h"
 
 #endif

@@ -565,6 +565,7 @@ function world:composite_count() end
 ---@class tether.ray_hit
 ---@field particle? tether.particle
 ---@field shape? tether.shape
+---@field terrain? tether.terrain
 ---@field x number
 ---@field y number
 ---@field nx number
@@ -576,6 +577,7 @@ function world:composite_count() end
 ---@field a tether.particle
 ---@field b? tether.particle
 ---@field shape? tether.shape
+---@field terrain? tether.terrain
 ---@field x number
 ---@field y number
 ---@field nx number
@@ -667,6 +669,69 @@ function world:query_aabb(x1, y1, x2, y2, mask) end
 ---Contact events of the last step.
 ---@return tether.contact[]
 function world:contacts() end
+
+-- ---------------------------------------------------------------------------
+-- Terrains: carvable pixel-mask ground (include/tether/terrain.h). A terrain
+-- copies the mask it is made from: the mask may change or be collected at once.
+
+---@alias tether.terrain integer
+
+---@class tether.terrain_options
+---@field origin? number[] {x, y}: pixel (0, 0)'s top-left corner, m; default {0, 0}
+---@field pixel? number m per pixel, > 0; default 0.05
+---@field band? integer distance band, 5…32 pixels; default 10 (radii up to band − 4 pixels)
+---@field restitution? number 0…1; default 0
+---@field friction? number sets both frictions
+---@field friction_static? number default 0.6
+---@field friction_kinetic? number default 0.5
+---@field category? integer default 1
+---@field mask? integer default 0xFFFF
+
+---A terrain from mask m (copied): set pixels are solid; rows go down, the world's y up.
+---@param m tether.mask
+---@param opts? tether.terrain_options
+---@return tether.terrain
+function world:terrain(m, opts) end
+---@param t tether.terrain
+function world:remove_terrain(t) end
+---@param t tether.terrain
+---@return boolean
+function world:terrain_is_valid(t) end
+---@return integer
+function world:terrain_count() end
+---Erases the pixels whose centres lie in the circle (world m); wakes what rests nearby.
+---@param t tether.terrain
+function world:carve(t, x, y, r) end
+---Fills the pixels whose centres lie in the circle.
+---@param t tether.terrain
+function world:fill(t, x, y, r) end
+---Erases the pixels set in m, m's pixel (0, 0) on the terrain's pixel (dx, dy).
+---@param t tether.terrain
+---@param m tether.mask
+function world:carve_mask(t, m, dx, dy) end
+---Fills the pixels set in m, m's pixel (0, 0) on the terrain's pixel (dx, dy).
+---@param t tether.terrain
+---@param m tether.mask
+function world:fill_mask(t, m, dx, dy) end
+---A copy of the terrain's pixels (into: a mask of the same size, overwritten and returned).
+---@param t tether.terrain
+---@param into? tether.mask
+---@return tether.mask
+function world:terrain_mask(t, into) end
+---@param t tether.terrain
+---@return number x, number y, number pixel origin (m) and pixel size (m)
+function world:terrain_place(t) end
+---Signed distance to the surface (m, negative inside, clamped to the band) and the outward normal.
+---@param t tether.terrain
+---@return number d, number nx, number ny
+function world:terrain_distance(t, x, y) end
+---Whether the point lies in a solid pixel.
+---@param t tether.terrain
+---@return boolean
+function world:terrain_solid(t, x, y) end
+---@param t tether.terrain
+---@param friction_kinetic? number default friction_static
+function world:set_terrain_material(t, restitution, friction_static, friction_kinetic) end
 -- ---------------------------------------------------------------------------
 -- Drawing (runner only): tether.draw(g), tether.gfx, world:draw(), tether.runner.
 -- Reference: the section "Drawing, the window and PNG frames" of docs/lua-api.md.

@@ -65,7 +65,7 @@ typedef struct tt_vec2 {
 /// key a table by) a handle carries its kind and stays below 2^53, so it is
 /// exact as an IEEE double (LuaJIT, JSON):
 ///
-///     bits 52…50  kind          (tt_kind: 1…5; 0 is never a handle)
+///     bits 52…50  kind          (tt_kind: 1…6; 0 is never a handle)
 ///     bits 49…40  world tag     (TT_HANDLE_TAG_BITS)
 ///     bits 39…24  reuse counter (TT_HANDLE_GEN_BITS: a slot retires after
 ///                               65 535 removals)
@@ -87,7 +87,8 @@ typedef enum tt_kind {
     TT_KIND_SPRING,
     TT_KIND_CONSTRAINT,
     TT_KIND_SHAPE,
-    TT_KIND_COMPOSITE
+    TT_KIND_COMPOSITE,
+    TT_KIND_TERRAIN      ///< a pixel-mask terrain (see tether/terrain.h)
 } tt_kind;
 
 /// A particle (see tether/particle.h).
@@ -121,13 +122,19 @@ typedef struct tt_composite {
     uint32_t gen;
 } tt_composite;
 
+/// A carvable pixel-mask terrain (see tether/terrain.h).
+typedef struct tt_terrain {
+    uint32_t index;
+    uint32_t gen;
+} tt_terrain;
+
 #define TT__HANDLE_KIND_SHIFT (TT_HANDLE_INDEX_BITS + TT_HANDLE_GEN_BITS + TT_HANDLE_TAG_BITS)
 
 /// The kind of the handle written as u (TT_KIND_NONE if u is no handle).
 static inline tt_kind tt_handle_kind(uint64_t u)
 {
     uint64_t k = u >> TT__HANDLE_KIND_SHIFT; /* ≥ 8 from 2^53 up */
-    return k >= TT_KIND_PARTICLE && k <= TT_KIND_COMPOSITE ? (tt_kind)k : TT_KIND_NONE;
+    return k >= TT_KIND_PARTICLE && k <= TT_KIND_TERRAIN ? (tt_kind)k : TT_KIND_NONE;
 }
 
 /* Packing runs once per handle in every bulk read, so it is kept to a few
@@ -158,6 +165,7 @@ TT__HANDLE_U64(tt_spring, TT_KIND_SPRING)
 TT__HANDLE_U64(tt_constraint, TT_KIND_CONSTRAINT)
 TT__HANDLE_U64(tt_shape, TT_KIND_SHAPE)
 TT__HANDLE_U64(tt_composite, TT_KIND_COMPOSITE)
+TT__HANDLE_U64(tt_terrain, TT_KIND_TERRAIN)
 #undef TT__HANDLE_U64
 
 /// Time integrators. Chosen per world and switchable between steps; a

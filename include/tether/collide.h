@@ -95,6 +95,7 @@ typedef struct tt_contact_event {
     tt_vec2 point;      ///< m, contact point on a's surface (last substep it touched)
     tt_vec2 normal;     ///< unit, pointing from b (or the shape) towards a
     double impulse;     ///< N·s, estimate of the normal impulse of the step (0 for END and sensors)
+    tt_terrain terrain; ///< the terrain of a terrain contact (shape and b null), else null
 } tt_contact_event;
 
 /// First hit of a ray (tt_world_raycast).
@@ -105,6 +106,7 @@ typedef struct tt_ray_hit {
     tt_vec2 point;      ///< m, where the ray meets the surface
     tt_vec2 normal;     ///< unit surface normal there, facing the ray
     double fraction;    ///< 0…1 along from → to
+    tt_terrain terrain; ///< the terrain hit, or null
 } tt_ray_hit;
 
 /// Collision counters of the last step and memory of the collision feature.

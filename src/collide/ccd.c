@@ -6,6 +6,7 @@
  * the cut. Slow scenes mark no bullet and never come here. The same sweep
  * guards the solver's corrections (contact_response.c, sweeps_done). */
 #include "collide_internal.h"
+#include "terrain_internal.h"
 
 typedef struct sweep_ctx {
     tt_world *w;
@@ -58,8 +59,12 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
         if (!c->bullet[i] || w->inv_mass[i] == 0.0) continue;
         double x1 = w->px[i], y1 = w->py[i];
         double x0 = verlet ? w->qx[i] : x1 - w->qx[i] * h, y0 = verlet ? w->qy[i] : y1 - w->qy[i] * h;
-        double t, nx, ny;
-        const int32_t prim = tt__sweep_static(w, c, i, x0, y0, x1, y1, &t, &nx, &ny);
+        double t = 1.0, nx = 0.0, ny = 0.0;
+        int32_t prim = c->nprim ? tt__sweep_static(w, c, i, x0, y0, x1, y1, &t, &nx, &ny) : -1;
+        if (c->terr) { /* terrains, marched up to the shapes' hit */
+            const int32_t tp = tt__terrain_sweep(w, c, i, x0, y0, x1, y1, &t, &nx, &ny);
+            prim = tp >= 0 ? tp : prim;
+        }
         if (prim < 0) continue;
         w->px[i] = x0 + (x1 - x0) * t;
         w->py[i] = y0 + (y1 - y0) * t;
@@ -68,9 +73,10 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
             tt__step_oom(w, "a bullet's contact (it stops at the shape without its bounce)");
             continue;
         }
-        double cx, cy;
+        double cx = 0.0, cy = 0.0;
         const double r = w->radius[i];
-        tt__shape_carry(&c->shapes[c->prims[prim].shape], w->px[i] - nx * r, w->py[i] - ny * r, &cx, &cy);
+        if (!tt__prim_is_terrain((uint32_t)prim))
+            tt__shape_carry(&c->shapes[c->prims[prim].shape], w->px[i] - nx * r, w->py[i] - ny * r, &cx, &cy);
         c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)prim, nx, ny, 0.0, 0.0, 0.0, cx, cy, 1};
     }
 }

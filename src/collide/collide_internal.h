@@ -250,6 +250,7 @@ typedef struct tt__collide {
     uint32_t nevents, evcap;
     uint32_t rec_peak, ev_peak; /* the last step's records (before merging) and events: reserve makes room for more */
     uint32_t cells_used;
+    struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
 
 extern const tt__group_ops tt__contacts_ops;

@@ -3,6 +3,7 @@
  * particle grid and its pairs (planned into batches), and particles against
  * the static index. */
 #include "collide_internal.h"
+#include "terrain_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -94,7 +95,7 @@ bool tt__contacts_reserve(tt_world *w, void *self)
     tt__collide *c = self;
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) return false;
     const bool pairs = c->set.particles;
-    if (!pairs && c->nprim == 0) return true;
+    if (!pairs && c->nprim == 0 && !c->terr) return true;
     const uint32_t n = w->ppool.count;
     /* Contacts and events: room for half as many again as the most seen, so a step whose contacts grow
      * less than that allocates nothing for them (a step that outgrows it grows them inside, and reports
@@ -265,18 +266,20 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     tt__shapes_place_moved(w, c);
     bool pairs = c->set.particles;
-    if (!pairs && c->nprim == 0) return;
+    if (!pairs && c->nprim == 0 && !c->terr) return;
     const uint32_t n = w->ppool.count;
     /* Shapes alone, far from every particle: no contact, and no other group
      * to carry a particle into a shape during the sweeps (the guard's job),
      * so nothing to prepare. (Verlet: the others keep the substep's start
      * positions for the next, whether in contact or not.) */
-    if (!pairs && !c->nbullets && w->group_count == 1 && w->integrator == TT_VERLET && shapes_out_of_reach(w, c, n))
+    if (!pairs && !c->nbullets && !c->terr && w->group_count == 1 && w->integrator == TT_VERLET &&
+        shapes_out_of_reach(w, c, n))
         return;
     substep_start(w, c, h, n);
-    if (c->nbullets && c->nprim) tt__ccd(w, c, h);
+    if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
+    if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts (some were skipped)");
     if (c->npairs > c->pair_peak) c->pair_peak = c->npairs;
     if (c->nsc > c->sc_peak) c->sc_peak = c->nsc;
 }

@@ -2,6 +2,7 @@
  * solved, merged per pair after the step and compared with the previous
  * step's set, giving BEGIN, PERSIST and END events as arrays. */
 #include "collide_internal.h"
+#include "terrain_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +20,8 @@ void tt__record_contact(tt_world *w, tt__collide *c, uint64_t key, uint32_t a, u
     r->ev.sensor = sensor;
     r->ev.a = (tt_particle){a, w->ppool.gen[a]};
     if (b != UINT32_MAX) r->ev.b = (tt_particle){b, w->ppool.gen[b]};
-    if (shape != UINT32_MAX) r->ev.shape = (tt_shape){shape, c->spool.gen[shape]};
+    if (shape != UINT32_MAX && tt__prim_is_terrain(shape)) r->ev.terrain = tt__terrain_handle(c, shape);
+    else if (shape != UINT32_MAX) r->ev.shape = (tt_shape){shape, c->spool.gen[shape]};
     double ra = w->radius[a];
     r->ev.point = (tt_vec2){w->px[a] - nx * ra, w->py[a] - ny * ra};
     r->ev.normal = (tt_vec2){nx, ny};

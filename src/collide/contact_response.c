@@ -3,6 +3,7 @@
  * between particles, through tt__correct; then restitution and Coulomb
  * friction on velocities (Verlet: by moving x_old; others: v). */
 #include "collide_internal.h"
+#include "terrain_internal.h"
 
 /* --- friction ------------------------------------------------------------ */
 
@@ -81,6 +82,19 @@ static inline void unslide(tt_world *w, const tt__collide *c, uint32_t i, double
     w->py[i] -= (dy - dn * ny) * s;
     w->qx[i] -= vtx * s;
     w->qy[i] -= vty * s;
+}
+
+/* A static contact's material: its shape's, or its terrain's. */
+static inline void static_material(const tt__collide *c, const tt__scontact *s, double *e, double *fs, double *fk)
+{
+    if (tt__prim_is_terrain(s->prim)) {
+        tt__terrain_material(c, s->prim, e, fs, fk);
+        return;
+    }
+    const tt_shape_def *sd = &c->shapes[c->prims[s->prim].shape].def;
+    *e = sd->restitution;
+    *fs = sd->friction_static;
+    *fk = sd->friction_kinetic;
 }
 
 /* --- projection ----------------------------------------------------------- */
@@ -162,13 +176,21 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
         tt__scontact *s = &c->sc[k];
         const uint32_t a = s->a;
         tt__hit hit;
-        tt__circle_vs_prim(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], &hit);
-        if (hit.nx * s->nx + hit.ny * s->ny < 0.0) uncross(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], s, &hit);
+        if (tt__prim_is_terrain(s->prim)) {
+            tt__terrain_hit(c, s->prim, X[a * st], Y[a * st], w->radius[a], &hit);
+        } else {
+            tt__circle_vs_prim(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], &hit);
+            if (hit.nx * s->nx + hit.ny * s->ny < 0.0) uncross(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], s, &hit);
+        }
         if (hit.depth > 0.0) {
             move(w, X, Y, st, a, hit.nx * hit.depth, hit.ny * hit.depth);
             s->nx = hit.nx;
             s->ny = hit.ny;
-            if (s->lambda == 0.0) s->mu = sqrt(tt__mat(c, a, 1) * c->shapes[c->prims[s->prim].shape].def.friction_static);
+            if (s->lambda == 0.0) {
+                double se, sfs, sfk;
+                static_material(c, s, &se, &sfs, &sfk);
+                s->mu = sqrt(tt__mat(c, a, 1) * sfs);
+            }
             s->lambda += hit.depth;
             if (hit.depth > err) err = hit.depth;
         }
@@ -310,8 +332,9 @@ static void pair_one(void *ctx, uint32_t k)
 static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double h, double thr, bool events)
 {
     const uint32_t a = s->a;
-    const tt_shape_def *sd = &c->shapes[c->prims[s->prim].shape].def;
-    double mus = sqrt(tt__mat(c, a, 1) * sd->friction_static), muk = sqrt(tt__mat(c, a, 2) * sd->friction_kinetic);
+    double se, sfs, sfk;
+    static_material(c, s, &se, &sfs, &sfk);
+    double mus = sqrt(tt__mat(c, a, 1) * sfs), muk = sqrt(tt__mat(c, a, 2) * sfk);
     const double ux = s->cx / h, uy = s->cy / h; /* the shape's velocity at the contact */
     double vx, vy;
     if (s->ccd) { /* the sweep cut the substep's motion short: restart from the velocity before it */
@@ -335,7 +358,7 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
         vx = v.x;
         vy = v.y;
     }
-    double ea = tt__mat(c, a, 0), e = ea > sd->restitution ? ea : sd->restitution;
+    double ea = tt__mat(c, a, 0), e = ea > se ? ea : se;
     double dvx, dvy, sx, sy, dvn;
     respond(vx - ux, vy - uy, c->vx0[a] - ux, c->vy0[a] - uy, s->nx, s->ny, e, true, mus, muk, thr, &dvx, &dvy, &sx, &sy,
             &dvn);
@@ -347,9 +370,11 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     }
     tt__add_velocity(w, a, dvx, dvy);
     if (events) {
-        uint32_t shape = c->prims[s->prim].shape;
-        tt__record_contact(w, c, tt__shape_key(shape, a), a, UINT32_MAX, shape, false, s->nx, s->ny,
-                           dvn / w->inv_mass[a]);
+        /* a terrain's key: bits 63 and 62, its slot in 32..61 (shape slots never reach bit 62) */
+        const bool terr = tt__prim_is_terrain(s->prim);
+        uint32_t shape = terr ? s->prim : c->prims[s->prim].shape;
+        tt__record_contact(w, c, terr ? (3ull << 62) | ((uint64_t)(s->prim & ~TT__PRIM_TERRAIN) << 32) | a : tt__shape_key(shape, a),
+                           a, UINT32_MAX, shape, false, s->nx, s->ny, dvn / w->inv_mass[a]);
     }
 }
 

@@ -15,6 +15,7 @@
  * registration and bookkeeping; the public settings are in collide.c. */
 #include "collide_internal.h"
 #include "core/stream.h"
+#include "terrain_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -55,7 +56,7 @@ static bool idle(const tt_world *w, const void *self)
            s->restitution == d.restitution && s->friction_static == d.friction_static &&
            s->friction_kinetic == d.friction_kinetic && s->restitution_threshold == d.restitution_threshold &&
            s->events == d.events && c->spool.count == 0 && c->nexcl == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
-           c->nevents == 0;
+           c->nevents == 0 && !c->terr;
 }
 
 size_t tt__contacts_memory(const tt_world *w, const void *self)
@@ -70,7 +71,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
     b += (size_t)c->runs_cap * sizeof *c->runs + c->near_cap;
     b += ((size_t)c->reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
-    return b;
+    return b + tt__terrains_bytes(c->terr);
 }
 
 void tt__contacts_destroy(tt_world *w, void *self)
@@ -86,6 +87,7 @@ void tt__contacts_destroy(tt_world *w, void *self)
     free(c->pairs); free(c->sc); free(c->runs); free(c->near);
     tt__batches_free(&c->bat);
     free(c->rec); free(c->prev); free(c->events);
+    tt__terrains_free(c->terr);
     free(c);
 }
 
@@ -235,6 +237,7 @@ void tt__contacts_save(const tt_world *w, const void *self, tt__sink *s)
     }
     tt__put_u32(s, c->nevents);
     for (uint32_t k = 0; k < c->nevents; k++) put_event(s, &c->events[k]);
+    if (c->terr) tt__terrains_save(c, s); /* last, only when there are terrains: other worlds' streams are unchanged */
 }
 
 /* A record (record: its kind is not set yet, 0) or a published event. */
@@ -407,7 +410,9 @@ void *tt__contacts_load(tt_world *w, tt__source *s)
     if (!s->failed && ((unsigned)set->broadphase > TT_BROADPHASE_BRUTE || set->events > 7 ||
                        (set->restitution_threshold < 0 && set->restitution_threshold != -1.0)))
         tt__src_fail(s, "collision settings");
-    if (!s->failed && load_shapes(w, c, s) && load_particle_data(w, c, s) && load_records(w, c, s)) return c;
+    if (!s->failed && load_shapes(w, c, s) && load_particle_data(w, c, s) && load_records(w, c, s) &&
+        (s->at == s->len || tt__terrains_load(w, c, s)))
+        return c;
     tt__src_fail(s, "collisions");
     tt__contacts_destroy(w, c);
     return NULL;

@@ -3,6 +3,7 @@
  * box queries (the cells they cover). The particle grid is rebuilt on the
  * first query after particles moved (the world's epoch), never per query. */
 #include "collide_internal.h"
+#include "terrain_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -175,6 +176,7 @@ tt_result tt_world_raycast(tt_world *w, tt_vec2 from, tt_vec2 to, uint16_t mask,
         for (uint32_t k = 0; k < g->nout; k++) ray_particle(&r, g->out_list[k]);
         walk(g->ox, g->oy, g->cs, g->nx, g->ny, g->cs, r.ox, r.oy, r.dx, r.dy, ray_particle_cell, &r);
     }
+    if (c->terr) tt__terrain_raycast(w, c, from, to, mask, out);
     if (!out->hit) out->fraction = 1.0;
     else out->point = (tt_vec2){from.x + r.dx * out->fraction, from.y + r.dy * out->fraction};
     return TT_OK;

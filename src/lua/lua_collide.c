@@ -409,7 +409,7 @@ static int w_set_pair_collision(lua_State *L)
 
 /* --- queries ------------------------------------------------------------------- */
 
-/* w:raycast(x1, y1, x2, y2 [, mask]) → nil, or {particle | shape, x, y, nx, ny, fraction} */
+/* w:raycast(x1, y1, x2, y2 [, mask]) → nil, or {particle | shape | terrain, x, y, nx, ny, fraction} */
 static int w_raycast(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -426,6 +426,9 @@ static int w_raycast(lua_State *L)
     if (h.particle.gen) {
         tl_push_particle(L, h.particle);
         lua_setfield(L, -2, "particle");
+    } else if (h.terrain.gen) {
+        tl_push_terrain(L, h.terrain);
+        lua_setfield(L, -2, "terrain");
     } else {
         tl_push_shape(L, h.shape);
         lua_setfield(L, -2, "shape");
@@ -493,7 +496,7 @@ static int w_query_aabb(lua_State *L)
 
 /* --- events ---------------------------------------------------------------------- */
 
-/* w:contacts() → array of {kind, a, b | shape, x, y, nx, ny, impulse, sensor} of the last step */
+/* w:contacts() → array of {kind, a, b | shape | terrain, x, y, nx, ny, impulse, sensor} of the last step */
 static int w_contacts(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -513,6 +516,9 @@ static int w_contacts(lua_State *L)
         if (e->b.gen) {
             tl_push_particle(L, e->b);
             lua_setfield(L, -2, "b");
+        } else if (e->terrain.gen) {
+            tl_push_terrain(L, e->terrain);
+            lua_setfield(L, -2, "terrain");
         } else {
             tl_push_shape(L, e->shape);
             lua_setfield(L, -2, "shape");

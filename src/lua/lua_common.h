@@ -129,6 +129,7 @@ void tl_push_spring(lua_State *L, tt_spring s);
 void tl_push_constraint(lua_State *L, tt_constraint c);
 void tl_push_shape(lua_State *L, tt_shape s);
 void tl_push_composite(lua_State *L, tt_composite c);
+void tl_push_terrain(lua_State *L, tt_terrain t);
 /* What w:is_valid(h) and its kin answer: false for a stale handle and for
  * an integer that is no handle (0 included); raises for a non-integer or a
  * handle of another kind. */
@@ -211,6 +212,7 @@ void tl_bulk_register(lua_State *L);        /* lua_bulk.c */
 void tl_constraints_register(lua_State *L); /* lua_constraints.c */
 void tl_composites_register(lua_State *L);  /* lua_composites.c */
 void tl_collide_register(lua_State *L);     /* lua_collide.c */
+void tl_terrain_register(lua_State *L);     /* lua_terrain.c */
 void tl_snapshot_register(lua_State *L);    /* lua_snapshot.c */
 /* Registry key of the function (world userdata, snapshot or string) that
  * loads the saved world into the userdata, its user values the snapshot's;

@@ -3,7 +3,7 @@
  * checked on the way back in for type, kind and liveness. */
 #include "lua_common.h"
 
-static const char *const kind_names[] = {"handle", "particle", "spring", "constraint", "shape", "composite"};
+static const char *const kind_names[] = {"handle", "particle", "spring", "constraint", "shape", "composite", "terrain"};
 
 const char *tl_kind_name(tt_kind k)
 {
@@ -19,6 +19,7 @@ void tl_push_spring(lua_State *L, tt_spring s) { lua_pushinteger(L, PACK(TT_KIND
 void tl_push_constraint(lua_State *L, tt_constraint c) { lua_pushinteger(L, PACK(TT_KIND_CONSTRAINT, c)); }
 void tl_push_shape(lua_State *L, tt_shape s) { lua_pushinteger(L, PACK(TT_KIND_SHAPE, s)); }
 void tl_push_composite(lua_State *L, tt_composite c) { lua_pushinteger(L, PACK(TT_KIND_COMPOSITE, c)); }
+void tl_push_terrain(lua_State *L, tt_terrain t) { lua_pushinteger(L, PACK(TT_KIND_TERRAIN, t)); }
 
 static inline bool live(const tt_world *w, tt_kind k, uint64_t u)
 {
@@ -28,6 +29,7 @@ static inline bool live(const tt_world *w, tt_kind k, uint64_t u)
     case TT_KIND_CONSTRAINT: return tt_constraint_is_valid(w, tt_constraint_from_u64(u));
     case TT_KIND_SHAPE: return tt_shape_is_valid(w, tt_shape_from_u64(u));
     case TT_KIND_COMPOSITE: return tt_composite_is_valid(w, tt_composite_from_u64(u));
+    case TT_KIND_TERRAIN: return tt_terrain_is_valid(w, tt_terrain_from_u64(u));
     default: return false;
     }
 }

@@ -30,6 +30,7 @@ TT_API int luaopen_tether(lua_State *L)
     tl_constraints_register(L);
     tl_composites_register(L);
     tl_collide_register(L);
+    tl_terrain_register(L);
     tl_snapshot_register(L);
     lua_createtable(L, 0, 4);
     tl_setfuncs(L, tether_funcs, "tether.");

@@ -24,7 +24,7 @@ enum fz_api_id {
 };
 
 #define FZ_WORLDS 3        /* live worlds at once: enough for foreign handles */
-#define FZ_KINDS 6         /* tt_kind values, NONE included, indexed directly */
+#define FZ_KINDS 7         /* tt_kind values, NONE included, indexed directly */
 #define FZ_LIST_CAP 2048   /* handles remembered per world and kind */
 #define FZ_STALE_CAP 512   /* removed handles remembered per world and kind */
 #define FZ_FOREIGN_CAP 256 /* handles of destroyed worlds, per kind */
@@ -135,6 +135,7 @@ extern const fz_entry fz_composite_entries[];
 extern const fz_entry fz_collide_entries[];
 extern const fz_entry fz_scene_entries[];
 extern const fz_entry fz_stream_entries[]; /* fuzz_c_stream.c */
+extern const fz_entry fz_terrain_entries[]; /* fuzz_c_terrain.c */
 
 /* Handle conversions: all five structs share fz_h's layout. Functions, not
  * macros, so an argument with draws in it is evaluated once. */
@@ -143,14 +144,16 @@ static inline tt_spring FZ_S(fz_h h) { return (tt_spring){ h.index, h.gen }; }
 static inline tt_constraint FZ_C(fz_h h) { return (tt_constraint){ h.index, h.gen }; }
 static inline tt_shape FZ_SH(fz_h h) { return (tt_shape){ h.index, h.gen }; }
 static inline tt_composite FZ_CO(fz_h h) { return (tt_composite){ h.index, h.gen }; }
+static inline tt_terrain FZ_T(fz_h h) { return (tt_terrain){ h.index, h.gen }; }
 /* And back, once per argument: FZ_H(tt_particle_create(...)) makes one particle. */
 static inline fz_h fz_h_p(tt_particle x) { return (fz_h){ x.index, x.gen }; }
 static inline fz_h fz_h_s(tt_spring x) { return (fz_h){ x.index, x.gen }; }
 static inline fz_h fz_h_c(tt_constraint x) { return (fz_h){ x.index, x.gen }; }
 static inline fz_h fz_h_sh(tt_shape x) { return (fz_h){ x.index, x.gen }; }
 static inline fz_h fz_h_co(tt_composite x) { return (fz_h){ x.index, x.gen }; }
+static inline fz_h fz_h_t(tt_terrain x) { return (fz_h){ x.index, x.gen }; }
 #define FZ_H(x) _Generic((x), tt_particle: fz_h_p, tt_spring: fz_h_s, tt_constraint: fz_h_c, tt_shape: fz_h_sh, \
-                              tt_composite: fz_h_co)(x)
+                              tt_composite: fz_h_co, tt_terrain: fz_h_t)(x)
 
 /* Marks a call as made (for "N of M functions reached"). */
 #define FZ_HIT(f, name) fz_hit((f), FZ_##name)

@@ -216,6 +216,7 @@ static uint64_t to_u64(fz *f, tt_kind kind, fz_h h)
     case TT_KIND_SPRING: FZ_HIT(f, tt_spring_to_u64); return tt_spring_to_u64(FZ_S(h));
     case TT_KIND_CONSTRAINT: FZ_HIT(f, tt_constraint_to_u64); return tt_constraint_to_u64(FZ_C(h));
     case TT_KIND_SHAPE: FZ_HIT(f, tt_shape_to_u64); return tt_shape_to_u64(FZ_SH(h));
+    case TT_KIND_TERRAIN: FZ_HIT(f, tt_terrain_to_u64); return tt_terrain_to_u64(FZ_T(h));
     default: FZ_HIT(f, tt_composite_to_u64); return tt_composite_to_u64(FZ_CO(h));
     }
 }
@@ -227,6 +228,7 @@ static fz_h from_u64(fz *f, tt_kind kind, uint64_t u)
     case TT_KIND_SPRING: FZ_HIT(f, tt_spring_from_u64); return FZ_H(tt_spring_from_u64(u));
     case TT_KIND_CONSTRAINT: FZ_HIT(f, tt_constraint_from_u64); return FZ_H(tt_constraint_from_u64(u));
     case TT_KIND_SHAPE: FZ_HIT(f, tt_shape_from_u64); return FZ_H(tt_shape_from_u64(u));
+    case TT_KIND_TERRAIN: FZ_HIT(f, tt_terrain_from_u64); return FZ_H(tt_terrain_from_u64(u));
     default: FZ_HIT(f, tt_composite_from_u64); return FZ_H(tt_composite_from_u64(u));
     }
 }
@@ -245,7 +247,7 @@ static void must(fz *f, const char *why, tt_kind kind, fz_h h)
  * null handle, always refused. The same kind must come back unchanged. */
 static fz_h turned(fz *f, tt_kind kind)
 {
-    tt_kind other = (tt_kind)(1 + fz_below(f, 5));
+    tt_kind other = (tt_kind)(1 + fz_below(f, FZ_KINDS - 1));
     fz_h h = fz_live(f, other);
     uint64_t u = to_u64(f, other, h);
     FZ_HIT(f, tt_handle_kind);

@@ -128,9 +128,9 @@ const char *fz_wn(fz *f, const tt_world *w)
 
 const char *fz_hn(fz_h h, tt_kind kind)
 {
-    static const char *types[] = { "?", "tt_particle", "tt_spring", "tt_constraint", "tt_shape", "tt_composite" };
+    static const char *types[] = { "?", "tt_particle", "tt_spring", "tt_constraint", "tt_shape", "tt_composite", "tt_terrain" };
     char *s = scratch();
-    snprintf(s, 128, "(%s){%u, %#x}", types[kind <= TT_KIND_COMPOSITE ? kind : 0], h.index, h.gen);
+    snprintf(s, 128, "(%s){%u, %#x}", types[kind <= TT_KIND_TERRAIN ? kind : 0], h.index, h.gen);
     return s;
 }
 

@@ -102,7 +102,12 @@ local gone_h = W:rope { start = { 30, 30 }, finish = { 31, 30 }, segments = 1 }
 W:remove_composite(gone_h)
 local STALE_C = { gone_c, C1 + T.shl(1, 40), C1 + T.shl(1, 24) }
 local STALE_H = { gone_h, H1 + T.shl(1, 40), H1 + T.shl(1, 24) }
+local TER1 = W:terrain(tether.mask.rect(8, 8), { origin = { 40, 40 } }) -- terrains (lua_terrain.c)
+local gone_t = W:terrain(tether.mask.rect(4, 4), { origin = { 60, 60 } })
+W:remove_terrain(gone_t)
+local STALE_T = { gone_t, TER1 + T.shl(1, 40), TER1 + T.shl(1, 24) }
 HANDLES.particle, HANDLES.spring, HANDLES.constraint, HANDLES.shape, HANDLES.composite = P1, S1, C1, SH1, H1
+HANDLES.terrain = TER1
 local N_FIXTURES = W:count()
 W:step(1 / 60, 5)
 
@@ -182,6 +187,12 @@ K.mask = { good = function() return tether.mask.rect(4, 4) end, bad = {} }
 for _, t in ipairs(WRONG_TYPES) do K.mask.bad[#K.mask.bad + 1] = { t[1], "tether.mask expected, got " .. t[2] } end
 K.mopts = table_kind(true, "table or nil")
 -- w:restore: a snapshot or its bytes; a refused stream returns nil, msg (tests/lua/test_snapshot.lua)
+K.TER = { good = function() return TER1 end, bad = handle_bad("terrain", STALE_T) }
+K.TERq = { good = function() return TER1 end, bad = handle_bad("terrain") }
+K.topts = table_kind(true, "table or nil")
+K.offset = { good = function() return 1 end, bad = integer_bad("[-1000000000, 1000000000]", { -1000000001, 1e300 }) }
+K.optmask = { good = function() return nil end, optional = true, bad = {
+  { 42, "tether.mask expected, got number" }, { {}, "tether.mask expected, got table" } } }
 K.snap = { good = function() return tether.world():snapshot() end, bad = {
   { 42, "tether.snapshot or string expected, got number" }, { NIL, "tether.snapshot or string expected, got nil" },
   { {}, "tether.snapshot or string expected, got table" } } }
@@ -305,6 +316,20 @@ local METHODS = {
   { "contacts" },
   -- masks (lua_mask_ops.c)
   { "mask_chains", "mask", "mopts" },
+  -- terrains (lua_terrain.c)
+  { "terrain", "mask", "topts" },
+  { "remove_terrain", "TER" },
+  { "terrain_is_valid", "TERq" },
+  { "terrain_count" },
+  { "carve", "TER", "coord", "coord", "nonneg" },
+  { "fill", "TER", "coord", "coord", "nonneg" },
+  { "carve_mask", "TER", "mask", "offset", "offset" },
+  { "fill_mask", "TER", "mask", "offset", "offset" },
+  { "terrain_mask", "TER", "optmask" },
+  { "terrain_place", "TER" },
+  { "terrain_distance", "TER", "coord", "coord" },
+  { "terrain_solid", "TER", "coord", "coord" },
+  { "set_terrain_material", "TER", "unit", "nonneg", "optnonneg" },
 }
 
 -- Option tables: fields and their kinds.
@@ -315,6 +340,8 @@ local OPTIONS = {
   set_spring = { arg = 3, fields = { stiffness = "nonneg", damping = "nonneg", rest = "nonneg" } },
   circle = { arg = 5, fields = { restitution = "unit", friction = "nonneg", friction_static = "nonneg",
                                  friction_kinetic = "nonneg", category = "u16", mask = "u16", sensor = "bool" } },
+  terrain = { arg = 3, fields = { restitution = "unit", friction = "nonneg", friction_static = "nonneg",
+                                  friction_kinetic = "nonneg", category = "u16", mask = "u16" } },
   mask_chains = { arg = 3, fields = { restitution = "unit", friction = "nonneg",
                                       category = "u16", mask = "u16", sensor = "bool" } },
   set_collision = { arg = 2, fields = { particles = "bool", cell_size = "nonneg", restitution = "unit",
@@ -390,7 +417,7 @@ T.test("good arguments work (the baseline of every case)", function()
       local c3 = w:particle(2, 0)
       local sh = w:segment(-1, -3, 1, -3)
       local fix = { [P1] = a, [P2] = b, [P3] = c3, [S1] = s, [C1] = w:distance(a, b), [PIN1] = w:pin(c3),
-                    [H1] = w:lattice(), [SH1] = sh }
+                    [H1] = w:lattice(), [SH1] = sh, [TER1] = w:terrain(tether.mask.rect(8, 8)) }
       -- map the fixtures of W onto w
       for i = 1, n do
         if fix[args[i]] then args[i] = fix[args[i]] end

@@ -21,6 +21,7 @@ local golden = {
   soft_bodies = { "19d58e45566a5e66", "4b2e506a54a39d80" },
   spring_net = { "2a61a51d9d763317", "23f95701ff040468" },
   terrain = { "1db0fd03fee478a9", "4499408a99387c2e" },
+  worms = { "3c7ad4b55c067fbe", "68f267263bd76cae" },
 }
 
 local function digest(h, xy)
@@ -59,7 +60,7 @@ end
 
 local names = {}
 for _, n in ipairs { "cloth", "fountain", "galton", "hourglass", "integrators", "ragdoll", "rope_bridge",
-  "soft_bodies", "spring_net", "terrain" } do names[#names + 1] = n end
+  "soft_bodies", "spring_net", "terrain", "worms" } do names[#names + 1] = n end
 
 T.test("every demo keeps its positions and hashes", function()
   for _, n in ipairs(names) do

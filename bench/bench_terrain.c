@@ -1,0 +1,118 @@
+/* tether — terrain benchmark: the cost of a carve in a big terrain (issue
+ * 19: a radius-20-pixel crater in 2048 × 1024 pixels, target ≤ 50 µs), and
+ * a pour onto a mask floor against the same floor as a chain shape, the
+ * two worlds stepped in turn (A B A B) so the machine's load falls on both. */
+#include "bench.h"
+
+#include "tether.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static void carve(FILE *csv)
+{
+    tt_world_def wd = tt_world_def_default();
+    tt_world *w = tt_world_create(&wd);
+    tt_mask *m = tt_mask_create(2048, 1024, false);
+    tt_mask_fill_rect(m, 0, 300, 2048, 724, true);
+    tt_terrain_def td = tt_terrain_def_default();
+    td.solid = m;
+    double t0 = bench_now_ns();
+    tt_terrain t = tt_terrain_create(w, &td);
+    const double make_ms = (bench_now_ns() - t0) * 1e-6;
+    enum { N = 400 };
+    double us[N];
+    for (int k = 0; k < N; k++) { /* scattered craters, each filled back so the ground stays */
+        const tt_vec2 c = {(100 + (k * 97) % 1800) * td.pixel, -(320 + (k * 31) % 600) * td.pixel};
+        const double a = bench_now_ns();
+        tt_terrain_paint_circle(w, t, c, 20 * td.pixel, false);
+        us[k] = (bench_now_ns() - a) * 1e-3;
+        tt_terrain_paint_circle(w, t, c, 20 * td.pixel, true);
+    }
+    const double med = bench_median(us, N);
+    printf("  carve r = 20 px in 2048 x 1024: median %.1f us (min %.1f, max %.1f) over %d; making it %.0f ms"
+           " (target <= 50 us)\n", med, us[0], us[N - 1], N, make_ms);
+    fprintf(csv, "carve,%.3f,%.3f,%.3f,%.3f\n", med, us[0], us[N - 1], make_ms);
+    tt_mask_destroy(m);
+    tt_world_destroy(w);
+}
+
+/* A U: floor at y = 0 from x = 0 to 50, walls to y = 60. */
+static tt_world *pour_world(bool terrain, int n)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.gravity = (tt_vec2){0, -10};
+    tt_world *w = tt_world_create(&wd);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = cs.friction_kinetic = 0.3;
+    tt_world_set_collision(w, &cs);
+    if (terrain) {
+        tt_mask *m = tt_mask_create(540, 640, false); /* 0.1 m pixels, origin (−2, 62) */
+        tt_mask_fill_rect(m, 0, 620, 540, 20, true);
+        tt_mask_fill_rect(m, 0, 0, 20, 640, true);
+        tt_mask_fill_rect(m, 520, 0, 20, 640, true);
+        tt_terrain_def td = tt_terrain_def_default();
+        td.solid = m;
+        td.pixel = 0.1;
+        td.origin = (tt_vec2){-2, 62};
+        td.friction_static = td.friction_kinetic = 0.3;
+        tt_terrain_create(w, &td);
+        tt_mask_destroy(m);
+    } else {
+        const tt_vec2 pts[4] = {{0, 60}, {0, 0}, {50, 0}, {50, 60}};
+        tt_shape_def sd = tt_shape_def_default();
+        sd.type = TT_SHAPE_CHAIN;
+        sd.points = pts;
+        sd.count = 4;
+        sd.friction_static = sd.friction_kinetic = 0.3;
+        tt_shape_create(w, &sd);
+    }
+    for (int k = 0; k < n; k++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = 0.5;
+        pd.position = (tt_vec2){1.1 + (k % 44) * 1.1 + (k / 44 % 2) * 0.05, 0.55 + (k / 44) * 1.1};
+        tt_particle_create(w, &pd);
+    }
+    return w;
+}
+
+static void pour(FILE *csv)
+{
+    enum { N = 2000, STEPS = 1200, CHUNK = 30 };
+    tt_world *w[2] = {pour_world(false, N), pour_world(true, N)};
+    double ns[2] = {0, 0}, contacts[2] = {0, 0};
+    for (int s = 0; s < STEPS; s += CHUNK)
+        for (int k = 0; k < 2; k++)
+            for (int j = 0; j < CHUNK; j++) {
+                const double a = bench_now_ns();
+                tt_world_step(w[k], 1.0 / 60);
+                ns[k] += bench_now_ns() - a;
+                tt_collision_stats st;
+                tt_world_get_collision_stats(w[k], &st);
+                contacts[k] += st.shape_contacts;
+            }
+    static const char *name[2] = {"chain floor", "mask floor"};
+    for (int k = 0; k < 2; k++) {
+        tt_energy e;
+        tt_world_get_energy(w[k], &e);
+        double lowest = INFINITY, *xy = malloc(2 * N * sizeof *xy);
+        uint32_t n = tt_world_read_positions(w[k], xy, N);
+        for (uint32_t i = 0; i < n; i++) lowest = fmin(lowest, xy[2 * i + 1]);
+        free(xy);
+        printf("  pour %d circles, 20 s, %s: %.3f ms/step, %.0f static contacts/step, lowest centre %.4f m (r 0.5),"
+               " KE %.2e J/kg\n", N, name[k], ns[k] / STEPS * 1e-6, contacts[k] / STEPS, lowest, e.kinetic / N);
+        fprintf(csv, "%s,%.4f,%.1f,%.5f,%.3e\n", name[k], ns[k] / STEPS * 1e-6, contacts[k] / STEPS, lowest,
+                e.kinetic / N);
+        tt_world_destroy(w[k]);
+    }
+    printf("  mask / chain: %.2fx per step (target <= 1.1x per particle-contact)\n", ns[1] / ns[0]);
+}
+
+void bench_terrain(const char *dir)
+{
+    printf("\nterrain (carving; a pour onto a mask floor and onto a chain, in turn)\n");
+    FILE *csv = bench_csv(dir, "terrain.csv", "what,a,b,c,d");
+    carve(csv);
+    pour(csv);
+    fclose(csv);
+}
