@@ -37,7 +37,7 @@
  * speed vn0: a bounce after an impact, else no more than it had. */
 static inline double allowed(double vn0, double e, double thr) { return vn0 < -thr ? -e * vn0 : vn0 > 0.0 ? vn0 : 0.0; }
 
-static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, double thr, double gx, double gy)
+static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, double thr)
 {
     double nx = w->px[up] - w->px[lo], ny = w->py[up] - w->py[lo];
     const double d2 = nx * nx + ny * ny;
@@ -45,7 +45,6 @@ static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, doub
     const double id = 1.0 / sqrt(d2);
     nx *= id;
     ny *= id;
-    if (-(nx * gx + ny * gy) < LIFT_MIN_UP) return; /* side by side: the pair's own pass is the whole story */
     const tt_vec2 vu = tt__velocity(w, up), vl = tt__velocity(w, lo);
     const double un = vu.x * nx + vu.y * ny, ln = vl.x * nx + vl.y * ny;
     const double vn0 = (c->vx0[up] - c->vx0[lo]) * nx + (c->vy0[up] - c->vy0[lo]) * ny;
@@ -91,6 +90,8 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
             a = c->pairs[k].a, b = c->pairs[k].b, rs = c->pairs[k].rs;
         }
         const double ha = height(w, gx, gy, a), hb = height(w, gx, gy, b), hl = ha < hb ? ha : hb;
+        const double dx = w->px[a] - w->px[b], dy = w->py[a] - w->py[b], dh = ha - hb;
+        if (dh * dh < LIFT_MIN_UP * LIFT_MIN_UP * (dx * dx + dy * dy)) continue; /* side by side (lift_one) */
         c->lift[nt++] = (tt__lift){ha <= hb ? a : b, ha <= hb ? b : a, hl};
         hmin = hl < hmin ? hl : hmin;
         hmax = hl > hmax ? hl : hmax;
@@ -107,5 +108,5 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
     for (uint32_t k = 0; k < nt; k++) start[(uint32_t)((c->lift[k].h - hmin) * scale) + 1]++;
     for (uint32_t k = 0; k < nb; k++) start[k + 1] += start[k];
     for (uint32_t k = 0; k < nt; k++) order[start[(uint32_t)((c->lift[k].h - hmin) * scale)]++] = k;
-    for (uint32_t k = 0; k < nt; k++) lift_one(w, c, c->lift[order[k]].lo, c->lift[order[k]].up, thr, gx, gy);
+    for (uint32_t k = 0; k < nt; k++) lift_one(w, c, c->lift[order[k]].lo, c->lift[order[k]].up, thr);
 }
