@@ -13,7 +13,7 @@ CC     ?= cc
 CXX    ?= c++
 
 # Debian packages the project needs (see README "Set-up").
-DEB_PKGS := pkg-config lua5.4 liblua5.4-dev luajit libluajit-5.1-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth love gnuplot-nox valgrind
+DEB_PKGS := pkg-config lua5.4 liblua5.4-dev luajit libluajit-5.1-dev libbox2d-dev libsdl2-dev libosmesa6-dev libpng-dev xvfb xauth love gnuplot-nox valgrind clang
 PC_PKGS  := lua5.4 luajit box2d sdl2 osmesa libpng
 
 ifeq ($(SANITIZE),1)
@@ -82,7 +82,7 @@ RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
 # tests/fuzz/ holds fuzzers with their own main, built on their own; the
 # snapshot stream reader's fuzzer is a test of test_c (make test runs 300 streams).
 # tests/box2d/ links Box2D: a program of its own.
-TEST_SRC := $(filter-out tests/fuzz/% tests/box2d/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c
+TEST_SRC := $(filter-out tests/fuzz/% tests/box2d/% tests/crossbuild/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c
 FUZZ_C_SRC := $(wildcard tests/fuzz/fuzz_c*.c)
 FUZZ_C_OBJ := $(FUZZ_C_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)

@@ -181,6 +181,7 @@ static const struct {
     {"mask", bench_mask},
     {"snapshot", bench_snapshot},
     {"terrain", bench_terrain},
+    {"rewind", bench_rewind},
 };
 
 int main(int argc, char **argv)

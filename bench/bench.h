@@ -21,5 +21,6 @@ void bench_constraints(const char *dir);
 void bench_mask(const char *dir);
 void bench_snapshot(const char *dir);
 void bench_terrain(const char *dir);
+void bench_rewind(const char *dir);
 
 #endif

@@ -16,6 +16,7 @@
 #include "tether/composite.h"
 #include "tether/collide.h"
 #include "tether/clock.h"
+#include "tether/rewind.h"
 #include "tether/mask.h"
 #include "tether/terrain.h"
 

@@ -53,6 +53,7 @@ local tether = {}
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
+---@field file? string a snapshot file (w:save(path), tt_world_save_file): the new world is the saved one; a file that cannot be read or is damaged raises; no other option may be given
 
 ---A world's whole state at one moment (w:snapshot()): the engine's versioned,
 ---checksummed stream, and a copy of the particles' user values. `#s` is its size in bytes.
@@ -103,6 +104,55 @@ function clock:info() end
 ---@param opts? tether.clock_options
 ---@return tether.clock
 function tether.clock(opts) end
+
+---A rewind ring: the last seconds of a world's history as keyframes every `every`
+---steps, delta-coded (tether/rewind.h). A step between keyframes is rebuilt by
+---stepping again from the keyframe before it, with the same inputs: give seek a
+---driver that does what the script did (a function of w:stats().steps does).
+---User values are not in the ring.
+---@class tether.rewind
+local rewind = {}
+---Call after each step (and once before the first). A world at or before the
+---newest keyframe starts a new timeline: the keyframes after it go.
+---@param w tether.world
+function rewind:record(w) end
+---Makes w the keyframe at or before `step`; with drive, calls drive(w) (it must step
+---w once) until w is at `step`. Returns the step w is at. Raises for a step outside
+---the ring ("seek: step 100 is not in the ring (140 … 200)"), the world unchanged.
+---@param w tether.world
+---@param step integer
+---@param drive? fun(w: tether.world)
+---@return integer
+function rewind:seek(w, step, drive) end
+---The oldest keyframe's step and the newest step recorded; nil when empty.
+---@return integer|nil first
+---@return integer? last
+function rewind:range() end
+---Bytes held now.
+---@return integer
+function rewind:memory() end
+---Keyframes held now.
+---@return integer
+function rewind:count() end
+---Frees the ring now (the collector does it otherwise); safe to repeat.
+function rewind:destroy() end
+
+---@class tether.rewind_options
+---@field every? integer steps between keyframes, 1 … 1 000 000, default 10
+---@field seconds? number history kept, default 10
+---@field dt? number s per step (turns seconds into steps), default 1/60
+---@field max_bytes? number memory bound, >= 1024, default 256 MB: the oldest keyframes go first
+
+---Time reversal (position Verlet with forces only): swaps every particle's position
+---and previous position, so the next steps of the same dt run the motion backwards.
+---Raises naming what prevents it: another integrator, damping, constraints,
+---collisions, spring damping, a velocity set since the last step.
+function world:reverse() end
+
+---A new, empty rewind ring.
+---@param opts? tether.rewind_options
+---@return tether.rewind
+function tether.rewind(opts) end
 
 return tether.world
 function tether.world(opts) end
@@ -405,6 +455,25 @@ function world:snapshot() end
 ---@return true|nil ok
 ---@return string? reason
 function world:restore(s) end
+
+---Saves the world to a snapshot file: s:bytes(users) behind a header (signature,
+---file format version, engine version, length) and a checksum; written to path..".tmp"
+---and renamed over path, so a failed save leaves the old file whole. Returns nil and
+---the reason when the file cannot be written; raises on user values that are not
+---plain data (save(path, false) leaves them out).
+---@param path string
+---@param users? boolean default true
+---@return true|nil ok
+---@return string? reason
+function world:save(path, users) end
+
+---Makes this world the one saved in the file (as w:restore). A missing, truncated,
+---padded, corrupted, foreign or other-version file returns nil and the reason
+---("restore_file: 'path': checksum mismatch (corrupted); ..."), the world unchanged.
+---@param path string
+---@return true|nil ok
+---@return string? reason
+function world:restore_file(path) end
 
 ---Live particle handles in slot order. Reuses t if given (entries past n are cleared).
 ---@param t? tether.particle[]

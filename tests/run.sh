@@ -10,6 +10,7 @@
 #   1c. libtether.so and tether.so link neither Box2D nor libstdc++; `tether crosscheck` runs
 #   2. $BUILD/tether tests/lua/test_*.lua            the Lua binding tests
 #   3. fountain.lua run twice as two processes       must print the same hash
+#   3b. tests/crossbuild/run.sh                    gcc -O0 and clang -O2 give this build's scene hashes
 #   4. lua5.4 tests/lua/test_world.lua               stock Lua requires $BUILD/tether.so
 #   4b. luajit tests/lua/test_*.lua (not test_render) LuaJIT requires $BUILD/luajit/tether.so
 #   4c. tests/embed/install.sh, headers.sh            make install; the C game, C++ and the Lua
@@ -152,6 +153,9 @@ else
     echo "determinism: FAILED: first run '$h1', second run '$h2'"
     add 0 1
 fi
+
+# 3b. Determinism across builds: gcc -O0 and clang -O2 agree with this build.
+if SANITIZE=$SANITIZE sh tests/crossbuild/run.sh "$BUILD"; then add 1 0; else add 0 1; fi
 
 # 4. Stock lua5.4 loads the module.
 if ! command -v lua5.4 >/dev/null 2>&1; then

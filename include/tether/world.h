@@ -158,6 +158,29 @@ TT_API tt_result tt_world_restore(tt_world *w, const void *data, size_t size);
 /// saved with the game work in it, and if the saving world still lives,
 /// each accepts the other's handles.
 TT_API tt_world *tt_world_load(const void *data, size_t size);
+/// Snapshot files: the stream behind a file header (a signature, the file
+/// format version, the engine version that wrote it, the length) and a
+/// checksum of both. Written to path.tmp, then renamed over path, so a
+/// failed save leaves the old file whole. TT_EINVAL when the path cannot be
+/// written (tt_last_error says why).
+TT_API tt_result tt_world_save_file(const tt_world *w, const char *path);
+/// Makes w the world saved in the file, as tt_world_restore. A file that
+/// cannot be read, is not a tether file, of another format version,
+/// truncated, padded or corrupted is refused (TT_EINVAL, tt_last_error
+/// names the file and says why) and w is left unchanged.
+TT_API tt_result tt_world_restore_file(tt_world *w, const char *path);
+/// A new world from a file, as tt_world_load; NULL when refused
+/// (tt_last_error(NULL) says why).
+TT_API tt_world *tt_world_load_file(const char *path);
+
+/// Time reversal: swaps every particle's position and previous position,
+/// so that the next steps (of the same dt) run the motion backwards: N steps,
+/// reverse, N steps comes back to the start (to rounding: see the README).
+/// Only for position Verlet with forces alone (gravity, wind, undamped
+/// springs, applied forces); TT_ESTATE naming what prevents it otherwise
+/// (another integrator, damping, constraints, collisions, spring damping, a
+/// velocity set since the last step), the world unchanged.
+TT_API tt_result tt_world_reverse(tt_world *w);
 
 /// The last error raised by a call on this world, or by tt_world_create when
 /// w is NULL (per thread). "" when none.

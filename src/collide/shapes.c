@@ -66,6 +66,9 @@ tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const ch
     if (!tt__vec_ok(d->position)) return tt__fail(w, TT_EINVAL, "%s: position must be finite, |x| <= %g", fn, TT_MAX_VALUE);
     if (!tt__in_range(d->angle, -TT_MAX_VALUE, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: angle must be finite", fn);
     if (!tt__vec_ok(d->a) || !tt__vec_ok(d->b)) return tt__fail(w, TT_EINVAL, "%s: a and b must be finite, |x| <= %g", fn, TT_MAX_VALUE);
+    /* even where the type does not use them: they are kept, saved and loaded (the loader takes |x| <= 1e300) */
+    if (!(fabs(d->radius) <= 1e300 && fabs(d->half_extents.x) <= 1e300 && fabs(d->half_extents.y) <= 1e300))
+        return tt__fail(w, TT_EINVAL, "%s: radius and half_extents must be finite, even where the type does not use them", fn);
     tt_result r = material_check(w, d->restitution, d->friction_static, d->friction_kinetic, fn);
     if (r != TT_OK) return r;
     switch (d->type) {

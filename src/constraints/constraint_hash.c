@@ -139,10 +139,11 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
         tt__dist_x *x = &g->dx[i];
         d->a = tt__get_u32(s);
         d->b = tt__get_u32(s);
-        d->lo = tt__get_num(s, 0.0, TT_MAX_VALUE, "link length");
+        /* lengths taken from positions reach the world's diagonal, 2√2 × TT_MAX_VALUE */
+        d->lo = tt__get_num(s, 0.0, 3 * TT_MAX_VALUE, "link length");
         d->hi = tt__get_num(s, 0.0, INFINITY, "link length");
         d->k = get_soft(s, &d->alpha);
-        x->rest = tt__get_num(s, 0.0, TT_MAX_VALUE, "link rest length");
+        x->rest = tt__get_num(s, 0.0, 3 * TT_MAX_VALUE, "link rest length");
         x->break_strain = tt__get_num(s, 0.0, TT_MAX_VALUE, "break strain");
         x->slot = tt__get_u32(s);
         x->mode = tt__get_u8(s);
@@ -150,7 +151,7 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
         g->ndist = i + 1;
         if (s->failed) return;
         if (!alive(w, d->a) || !alive(w, d->b) || d->a == d->b) { tt__src_fail(s, "link %u joins %u and %u", i, d->a, d->b); return; }
-        if (x->mode > TT_DISTANCE_MIN || d->lo > d->hi || (x->mode != TT_DISTANCE_MIN && d->hi > TT_MAX_VALUE))
+        if (x->mode > TT_DISTANCE_MIN || d->lo > d->hi || (x->mode != TT_DISTANCE_MIN && d->hi > 3 * TT_MAX_VALUE))
             { tt__src_fail(s, "link %u: mode %u, length [%g, %g]", i, x->mode, d->lo, d->hi); return; }
         if (!slot_is(g, x->slot, i, true)) { tt__src_fail(s, "link %u: slot %u", i, x->slot); return; }
         g->refs[d->a]++;
@@ -167,8 +168,9 @@ static bool gen_valid(const tt_world *w, const tt__gcon *c)
     const uint32_t *p = c->list ? c->list : c->p;
     for (uint32_t k = 0; k < c->n; k++)
         if (!alive(w, p[k])) return false;
-    for (int k = 0; k < 4; k++)
-        if (!(fabs(c->v[k]) <= TT_MAX_VALUE)) return false;
+    for (int k = 0; k < 4; k++) /* an area's rest area: up to TT_MAX_VALUE² */
+        if (!(fabs(c->v[k]) <= (c->kind == TT_CONSTRAINT_AREA && k == 0 ? TT_MAX_VALUE * TT_MAX_VALUE : TT_MAX_VALUE)))
+            return false;
     switch (c->kind) {
     case TT_CONSTRAINT_PIN: return c->n == 1 && !c->list;
     case TT_CONSTRAINT_BOUNDS: return (c->n > 0) == (c->list != NULL) && c->v[0] < c->v[2] && c->v[1] < c->v[3];
@@ -203,7 +205,11 @@ static void load_gen(tt_world *w, tt__cgroup *g, tt__source *s)
             tt__get(s, c->p, sizeof c->p);
         }
         c->k = get_soft(s, &c->alpha);
-        for (int k = 0; k < 4; k++) c->v[k] = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "constraint value");
+        /* an area's rest area is a product of two coordinates */
+        for (int k = 0; k < 4; k++) {
+            const double lim = c->kind == TT_CONSTRAINT_AREA && k == 0 ? TT_MAX_VALUE * TT_MAX_VALUE : TT_MAX_VALUE;
+            c->v[k] = tt__get_num(s, -lim, lim, "constraint value");
+        }
         c->friction = tt__get_num(s, 0.0, 1.0, "bounds friction");
         if (s->failed) return;
         if (!gen_valid(w, c) || !slot_is(g, c->slot, i, false) || g->slots[c->slot].kind != c->kind)

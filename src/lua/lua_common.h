@@ -205,6 +205,7 @@ tt_world *tl_toworld(lua_State *L, int idx);
 /* --- method files and feature bindings: each adds its methods to the world class */
 void tl_particles_register(lua_State *L);   /* lua_particles.c */
 void tl_clock_register(lua_State *L);       /* lua_clock.c: tether.clock into the module table on top */
+void tl_rewind_register(lua_State *L);      /* lua_rewind.c: tether.rewind into the module table on top */
 void tl_springs_register(lua_State *L);     /* lua_springs.c */
 void tl_stepping_register(lua_State *L);    /* lua_stepping.c */
 void tl_stats_register(lua_State *L);       /* lua_stats.c */
@@ -214,9 +215,10 @@ void tl_composites_register(lua_State *L);  /* lua_composites.c */
 void tl_collide_register(lua_State *L);     /* lua_collide.c */
 void tl_terrain_register(lua_State *L);     /* lua_terrain.c */
 void tl_snapshot_register(lua_State *L);    /* lua_snapshot.c */
-/* Registry key of the function (world userdata, snapshot or string) that
- * loads the saved world into the userdata, its user values the snapshot's;
- * raises when the stream is refused. tether.world{snapshot = s} calls it. */
+/* Registry key of the function (world userdata, snapshot or string, is_file)
+ * that loads the saved world (from the file at that path when is_file) into
+ * the userdata, its user values the snapshot's; raises when the stream is
+ * refused. tether.world{snapshot = s} and tether.world{file = path} call it. */
 #define TL_SNAPSHOT_LOADER "tether.snapshot_loader"
 
 #endif

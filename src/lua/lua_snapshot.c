@@ -11,8 +11,13 @@
  * the engine stream, then the user values, which must be plain data (nil,
  * booleans, numbers, strings, and tables of them without metatables or
  * cycles); s:bytes(false) is the engine stream alone. A string is accepted
- * wherever a snapshot is; one without user values leaves none. */
+ * wherever a snapshot is; one without user values leaves none.
+ *
+ * Files (w:save(path), w:restore_file(path), tether.world{file = path})
+ * hold those bytes behind the engine's file header (src/core/snapfile.c):
+ * a file saved from Lua, with or without user values, restores from C too. */
 #include "lua_common.h"
+#include "core/snapfile.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -255,10 +260,44 @@ static int w_restore(lua_State *L)
     return 1;
 }
 
-/* registry[TL_SNAPSHOT_LOADER](ud, s): the world of tether.world{snapshot = s} */
+/* Replaces the path at arg by the file's payload (a string); NULL when
+ * it cannot be read, why set to the reason. */
+static const char *push_file(lua_State *L, int arg, char *why, size_t whylen)
+{
+    const char *path = lua_tostring(L, arg);
+    unsigned kind;
+    size_t n;
+    unsigned char *p = tt__file_read(path, &kind, &n, why, whylen);
+    if (!p) return NULL;
+    size_t size;
+    if (!tt__file_stream(p, kind, n, &size, why, whylen)) {
+        free(p);
+        return NULL;
+    }
+    /* a userdata owns the copy first, so no Lua error can leak it */
+    unsigned char *copy = lua_newuserdatauv(L, n ? n : 1, 0);
+    memcpy(copy, p, n);
+    free(p);
+    lua_pushlstring(L, (const char *)copy, n);
+    lua_remove(L, -2);
+    lua_replace(L, arg);
+    return path;
+}
+
+/* registry[TL_SNAPSHOT_LOADER](ud, s, is_file): the world of
+ * tether.world{snapshot = s} or tether.world{file = path} */
 static int load_into(lua_State *L)
 {
     tl_world_ud *u = luaL_checkudata(L, 1, TL_WORLD_CLASS);
+    lua_settop(L, 3);
+    if (lua_toboolean(L, 3)) {
+        if (lua_type(L, 2) != LUA_TSTRING)
+            tl_error(L, "bad option 'file' (string expected, got %s)", tl_pushtypename(L, 2));
+        char why[300];
+        lua_pushstring(L, lua_tostring(L, 2));
+        if (!push_file(L, 2, why, sizeof why)) tl_error(L, "'%s': %s", lua_tostring(L, 4), why);
+        lua_settop(L, 2);
+    }
     lua_settop(L, 2);
     if (!luaL_testudata(L, 2, TL_SNAPSHOT_CLASS) && lua_type(L, 2) != LUA_TSTRING)
         tl_error(L, "bad option 'snapshot' (tether.snapshot or string expected, got %s)", tl_pushtypename(L, 2));
@@ -303,6 +342,67 @@ static int s_bytes(lua_State *L)
     return 1;
 }
 
+/* w:save(path [, users]) → true, or nil and the reason. The file holds
+ * what s:bytes(users) would: raises as it does on user values that are
+ * not plain data. */
+static int w_save(lua_State *L)
+{
+    tl_check_world(L, 1);
+    const char *path = tl_checkstring(L, 2);
+    if (!lua_isnoneornil(L, 3)) tl_checkboolean(L, 3);
+    lua_settop(L, 3);
+    lua_pushcfunction(L, w_snapshot);
+    lua_pushvalue(L, 1);
+    lua_call(L, 1, 1);           /* 4: the snapshot */
+    lua_pushcfunction(L, s_bytes);
+    lua_pushvalue(L, 4);
+    lua_pushvalue(L, 3);
+    if (lua_pcall(L, 2, 1, 0) != LUA_OK) { /* raised as save's own error, not s:bytes' */
+        const char *m = lua_tostring(L, -1);
+        if (m && strncmp(m, "?: ", 3) == 0) m += 3;
+        m = luaL_gsub(L, m ? m : "the user values cannot be written", "s:bytes(false)", "w:save(path, false)");
+        return tl_error(L, "%s", m);
+    }                            /* 5: its bytes */
+    size_t n;
+    const char *b = lua_tolstring(L, 5, &n);
+    const unsigned kind = n >= 4 && memcmp(b, TL_USERS_MAGIC, 4) == 0 ? TT__FILE_LUA : TT__FILE_STREAM;
+    char why[300];
+    if (!tt__file_write(path, kind, b, n, why, sizeof why)) {
+        lua_pushnil(L);
+        lua_pushfstring(L, "save: %s", why);
+        return 2;
+    }
+    lua_pushboolean(L, 1);
+    return 1;
+}
+
+/* w:restore_file(path) → true, or nil and the reason (the world unchanged) */
+static int w_restore_file(lua_State *L)
+{
+    tl_check_world(L, 1);
+    tl_checkstring(L, 2);
+    lua_settop(L, 2);
+    lua_pushvalue(L, 2);         /* 3: the path, kept for the message */
+    char why[300];
+    if (!push_file(L, 2, why, sizeof why)) {
+        lua_pushnil(L);
+        lua_pushfstring(L, "restore_file: '%s': %s; the world is unchanged", lua_tostring(L, 3), why);
+        return 2;
+    }
+    lua_pushcfunction(L, w_restore);
+    lua_pushvalue(L, 1);
+    lua_pushvalue(L, 2);
+    lua_call(L, 2, 2);
+    if (lua_toboolean(L, 4)) {
+        lua_pushboolean(L, 1);
+        return 1;
+    }
+    lua_pushfstring(L, "restore_file: '%s': %s", lua_tostring(L, 3), lua_tostring(L, 5));
+    lua_pushnil(L);
+    lua_insert(L, -2);
+    return 2;
+}
+
 static int s_len(lua_State *L)
 {
     tl_snapshot *s = luaL_checkudata(L, 1, TL_SNAPSHOT_CLASS);
@@ -317,7 +417,8 @@ static int s_tostring(lua_State *L)
     return 1;
 }
 
-static const luaL_Reg snapshot_world_methods[] = { { "snapshot", w_snapshot }, { "restore", w_restore }, { NULL, NULL } };
+static const luaL_Reg snapshot_world_methods[] = { { "snapshot", w_snapshot }, { "restore", w_restore },
+                                                     { "save", w_save }, { "restore_file", w_restore_file }, { NULL, NULL } };
 static const luaL_Reg snapshot_methods[] = { { "bytes", s_bytes }, { NULL, NULL } };
 static const luaL_Reg snapshot_meta[] = { { "__len", s_len }, { "__tostring", s_tostring }, { NULL, NULL } };
 

@@ -39,6 +39,7 @@ TT_API int luaopen_tether(lua_State *L)
     tl_push_integrators(L);
     lua_setfield(L, -2, "integrators");
     tl_clock_register(L);
+    tl_rewind_register(L);
     tl_render_register(L);
     tl_mask_register(L);
     tl_mask_ops_register(L);

@@ -97,7 +97,7 @@ void *tl_scratch(lua_State *L, size_t bytes)
 /* --- construction and life cycle -------------------------------------------- */
 
 static const char *const world_opts[] = { "gravity", "integrator", "damping", "wind", "dt_hint", "capacity",
-                                          "substeps", "iterations", "tolerance", "solver", "snapshot", NULL };
+                                          "substeps", "iterations", "tolerance", "solver", "snapshot", "file", NULL };
 /* Same order as tt_solver_order. */
 const char *const tl_solver_names[] = { "gauss_seidel", "jacobi", NULL };
 
@@ -127,15 +127,18 @@ int tl_world_new(lua_State *L)
     lua_newtable(L);
     lua_setiuservalue(L, -2, 1);
 
-    if (tl_getopt(L, 1, "snapshot")) { /* a saved world: it brings its own settings */
+    const bool file = tl_getopt(L, 1, "file");
+    if (file || tl_getopt(L, 1, "snapshot")) { /* a saved world: it brings its own settings */
+        const char *opt = file ? "file" : "snapshot";
         int keys = 0;
         for (lua_pushnil(L); lua_next(L, 1); lua_pop(L, 1)) keys++;
-        if (keys > 1) tl_error(L, "option 'snapshot' takes no other option: the snapshot holds the settings");
+        if (keys > 1) tl_error(L, "option '%s' takes no other option: the %s holds the settings", opt, opt);
         /* through the registry: the snapshot binding (lua_snapshot.c) uses this file, not the reverse */
         lua_getfield(L, LUA_REGISTRYINDEX, TL_SNAPSHOT_LOADER);
         lua_pushvalue(L, 2);
         lua_pushvalue(L, 3);
-        lua_call(L, 2, 0);
+        lua_pushboolean(L, file);
+        lua_call(L, 3, 0);
         lua_settop(L, 2);
         return 1;
     }

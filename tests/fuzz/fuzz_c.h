@@ -136,6 +136,7 @@ extern const fz_entry fz_collide_entries[];
 extern const fz_entry fz_scene_entries[];
 extern const fz_entry fz_stream_entries[]; /* fuzz_c_stream.c */
 extern const fz_entry fz_terrain_entries[]; /* fuzz_c_terrain.c */
+extern const fz_entry fz_rewind_entries[]; /* fuzz_c_rewind.c */
 
 /* Handle conversions: all five structs share fz_h's layout. Functions, not
  * macros, so an argument with draws in it is evaluated once. */

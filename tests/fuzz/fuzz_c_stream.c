@@ -5,8 +5,10 @@
  * load that succeeds gives a world whose hash is the saved one's. */
 #include "fuzz_c.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* A stream of world w (NULL on no memory), *n its size. */
 static unsigned char *stream_of(tt_world *w, size_t *n)
@@ -86,7 +88,79 @@ static void c_world_load(fz *f)
     free(b);
 }
 
+/* ---- files: a world's own file, whole or damaged after writing ---------- */
+
+static char file_path[128];
+static void remove_file(void) { remove(file_path); }
+
+static const char *fz_file_path(void)
+{
+    if (!file_path[0]) {
+        snprintf(file_path, sizeof file_path, "/tmp/tether_fuzz_c_%ld.tts", (long)getpid());
+        atexit(remove_file);
+    }
+    return file_path;
+}
+
+/* Saves w's file (NULL w: no file), then damages it now and then. */
+static void file_of(fz *f, tt_world *w)
+{
+    const char *path = fz_file_path();
+    if (!w || tt_world_save_file(w, path) != TT_OK) {
+        remove(path);
+        return;
+    }
+    FILE *fp = fopen(path, "rb");
+    if (!fp) return;
+    unsigned char b[1 << 16];
+    size_t n = fread(b, 1, sizeof b, fp);
+    fclose(fp);
+    if (n == sizeof b || !fz_chance(f, 50)) return; /* a big file stays whole */
+    damage(f, b, &n);
+    fp = fopen(path, "wb");
+    if (!fp) return;
+    fwrite(b, 1, n, fp);
+    fclose(fp);
+}
+
+static void c_world_save_file(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    f->readonly = true;
+    const bool bad = fz_chance(f, 10);
+    const char *path = bad ? (fz_chance(f, 50) ? "" : "/nonexistent-dir/x.tts") : fz_file_path();
+    fz_log(f, "tt_world_save_file(%s, \"%s\")", fz_wn(f, w), path);
+    FZ_HIT(f, tt_world_save_file);
+    fz_res(f, tt_world_save_file(w, path));
+}
+
+static void c_world_restore_file(fz *f)
+{
+    tt_world *w = fz_world_pick(f); /* its own file: see c_world_restore */
+    file_of(f, w);
+    const char *path = fz_chance(f, 5) ? NULL : fz_file_path();
+    fz_log(f, "tt_world_restore_file(%s, %s)", fz_wn(f, w), path ? "file" : "NULL");
+    FZ_HIT(f, tt_world_restore_file);
+    fz_res(f, tt_world_restore_file(w, path));
+}
+
+static void c_world_load_file(fz *f)
+{
+    tt_world *from = fz_world_pick(f);
+    file_of(f, from);
+    f->readonly = true;
+    fz_log(f, "tt_world_load_file(file)");
+    FZ_HIT(f, tt_world_load_file);
+    tt_world *w = tt_world_load_file(fz_file_path());
+    fz_log_more(f, " -> %s", w ? "world" : "NULL");
+    f->failed = w == NULL;
+    tt_world_destroy(w);
+}
+
 const fz_entry fz_stream_entries[] = {
+    { "tt_world_save_file", c_world_save_file, 1 },
+    { "tt_world_restore_file", c_world_restore_file, 1 },
+    { "tt_world_load_file", c_world_load_file, 1 },
     { "tt_world_save", c_world_save, 2 },
     { "tt_world_restore", c_world_restore, 2 },
     { "tt_world_load", c_world_load, 1 },

@@ -50,7 +50,7 @@ target_lua_api() {
 # is checked against the headers first (the static inline handle helpers
 # included), so a new function without one fails here.
 c_api_names() {
-    for h in base world particle spring constraint composite collide terrain; do
+    for h in base world particle spring constraint composite collide terrain rewind; do
         sed -n 's/^TT_API[^(]*[ *]\(tt_[a-z0-9_]*\)(.*/\1/p' "include/tether/$h.h"
     done
     grep -q 'static inline tt_kind tt_handle_kind' include/tether/base.h && echo tt_handle_kind

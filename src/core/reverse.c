@@ -1,0 +1,45 @@
+/* tether — time reversal. Position Verlet, x⁺ = 2x − x⁻ + a(x)·h², is
+ * symmetric in time: swap x and x⁻ and the same steps run the motion
+ * backwards. That holds while nothing depends on velocity or takes energy
+ * out (damping, spring damping, constraints' velocity fix-ups, contacts,
+ * friction), so the call refuses any world that has such a thing, naming
+ * it. In floating point each step rounds, and backwards steps round
+ * differently: the round trip comes back close, not bit for bit (the test
+ * measures how close). */
+#include "core/internal.h"
+#include "tether/collide.h"
+#include "tether/constraint.h"
+
+/* What of w stops its motion from running backwards, or NULL. */
+static const char *irreversible(const tt_world *w)
+{
+    if (w->integrator != TT_VERLET) return "the integrator (only 'verlet' keeps the previous position; this world uses another)";
+    if (w->damping != 0.0) return "velocity damping (damping > 0)";
+    if (tt_world_constraint_count(w) > 0) return "constraints (position corrections are not symmetric in time)";
+    tt_collision_settings cs;
+    if (tt_world_shape_count(w) > 0 || (tt_world_get_collision(w, &cs) == TT_OK && cs.particles))
+        return "collisions (shapes or particle contacts)";
+    for (uint32_t i = 0; i < w->spool.count; i++)
+        if (w->springs[i].alive && w->springs[i].c != 0.0) return "spring damping (a spring with damping > 0)";
+    for (uint32_t k = 0; k < w->fresh_count; k++)
+        if (w->flags[w->fresh[k]] & TT_PF_FRESH) return "a velocity set since the last step (step once first)";
+    return NULL;
+}
+
+tt_result tt_world_reverse(tt_world *w)
+{
+    TT_CHECK_WORLD(w, "tt_world_reverse");
+    const char *why = irreversible(w);
+    if (why) return tt__fail(w, TT_ESTATE, "tt_world_reverse: cannot run backwards: %s", why);
+    const uint32_t n = w->ppool.count;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        double x = w->px[i], y = w->py[i];
+        w->px[i] = w->qx[i];
+        w->py[i] = w->qy[i];
+        w->qx[i] = x;
+        w->qy[i] = y;
+    }
+    w->epoch++;
+    return TT_OK;
+}
