@@ -107,7 +107,7 @@ B2_LUAJIT_MOD := $(BUILD)/luajit/tether_box2d.so
 TEST_B2  := $(BUILD)/test_box2d
 BENCH   := $(BUILD)/bench
 
-.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-love crosscheck install uninstall clean
+.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-love crosscheck atlas install uninstall clean
 all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD) $(B2_LUAJIT_MOD)
 luajit: deps $(LUAJIT_MOD) $(B2_LUAJIT_MOD)
 
@@ -230,9 +230,9 @@ FUZZ_PNG := $(BUILD)/fuzz_png
 $(FUZZ_PNG): tests/fuzz/fuzz_png.c $(LIB_A) | deps
 	$(CC) $(CFLAGS_ALL) $(PNG_CFLAGS) -o $@ $< $(LIB_A) $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
-# The C API fuzzer (tests/fuzz/fuzz_c*.c): the engine only, no allocation wrapping.
+# The C API fuzzer (tests/fuzz/fuzz_c*.c): the engine and its masks (libpng), no allocation wrapping.
 $(FUZZ_C): $(FUZZ_C_OBJ) $(LIB_A)
-	$(CC) -o $@ $^ $(LDFLAGS_ALL) -lm
+	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(PNG_LIBS) -lm
 
 $(TEST_B2): $(TEST_B2_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
 	$(CC) -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm
@@ -249,6 +249,14 @@ $(BENCH): $(BENCH_SRC) $(RENDER_A) $(B2_A) $(SCENES_A) $(LIB_A) | deps
 # one table on the terminal, CSV and Markdown in $(BUILD)/crosscheck/.
 crosscheck: all
 	$(RUNNER) crosscheck $(if $(QUICK),--quick) --out $(BUILD)/crosscheck
+
+# `make atlas [QUICK=1]`: the speed/accuracy atlas (lua/tether_atlas.lua):
+# ten reference scenes with known answers swept over integrator, dt,
+# substeps, iterations and solver order; CSV and log-log PNG plots of error
+# against cost, the Pareto front drawn thick, in $(BUILD)/atlas/. QUICK=1 is
+# the small sweep (6 CPU-seconds); the full one about 10 CPU-minutes.
+atlas: deps $(RUNNER)
+	$(RUNNER) atlas $(if $(QUICK),--quick) --out $(BUILD)/atlas
 
 # --- run --------------------------------------------------------------------
 # `make demo` renders DEMO headless to PNG frames in $(BUILD)/demo/ (100 frames,
@@ -344,6 +352,7 @@ install: all
 	install -m 755 $(B2_LUAJIT_MOD) $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether_box2d.so
 	install -m 755 $(RUNNER) $(DESTDIR)$(PREFIX)/bin/tether
 	install -m 644 lua/tether.d.lua lua/tether_box2d.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/
+	install -m 644 lua/tether_atlas.lua lua/tether_atlas_scenes.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/
 	$(PC_SUBST) pkgconfig/tether.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc
 	$(PC_SUBST) pkgconfig/tether-render.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc
 	@# The loader's cache must learn the new library, or programs fail with
@@ -361,7 +370,8 @@ uninstall:
 	  $(DESTDIR)$(LUA_CMOD_DIR)/tether.so $(DESTDIR)$(LUA_CMOD_DIR)/tether_box2d.so $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether.so \
 	  $(DESTDIR)$(LUAJIT_CMOD_DIR)/tether_box2d.so $(DESTDIR)$(PREFIX)/bin/tether \
 	  $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/tether-render.pc \
-	  $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether_box2d.d.lua
+	  $(DESTDIR)$(PREFIX)/share/lua/5.4/tether.d.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether_box2d.d.lua \
+	  $(DESTDIR)$(PREFIX)/share/lua/5.4/tether_atlas.lua $(DESTDIR)$(PREFIX)/share/lua/5.4/tether_atlas_scenes.lua
 	@if [ -z "$(DESTDIR)" ] && [ "$(PREFIX)" = /usr/local ] && command -v ldconfig >/dev/null 2>&1; then ldconfig; fi
 
 clean:

@@ -2,6 +2,7 @@
  * repeated runs taken side by side in this one process, and each table says
  * its target. CSV files land in the output folder for the gnuplot scripts. */
 #include "bench.h"
+#include "bench_accuracy.h"
 #include "tether.h"
 
 #include <math.h>
@@ -60,7 +61,8 @@ void bench_integrate(const char *dir)
     printf("\n== Verlet integrate stage, gravity only: engine vs a bare struct-of-arrays loop ==\n");
     printf("target: engine within 2x of the bare loop at 100k and 1M particles; <= 64 bytes/particle\n");
     printf("%10s %14s %14s %14s %8s %12s\n", "particles", "bare ns/p", "stage ns/p", "step ns/p", "ratio", "bytes/p");
-    FILE *csv = bench_csv(dir, "integrate.csv", "particles,bare_ns,stage_ns,step_ns,ratio,bytes_per_particle");
+    bench_acc_head();
+    FILE *csv = bench_csv(dir, "integrate.csv", "particles,bare_ns,stage_ns,step_ns,ratio,bytes_per_particle,steps," BENCH_ACC_CSV);
     const size_t sizes[] = {1000, 10000, 100000, 1000000};
     for (int s = 0; s < 4; s++) {
         size_t n = sizes[s];
@@ -76,7 +78,10 @@ void bench_integrate(const char *dir)
             pd.position = (tt_vec2){x[i], y[i]};
             tt_particle_create(w, &pd);
         }
-        tt_world_step(w, dt); /* warm up; clears the Verlet start-up */
+        bench_acc acc;
+        bench_acc_init(&acc, w, ACC_ENERGY, NULL, 0);
+        tt_world_step(w, dt); /* the first step, timed with the rest below only in the accuracy */
+        bench_acc_step(&acc, w);
         bare_verlet(x, y, ox, oy, n, gdx, gdy);
         int reps = n >= 1000000 ? 31 : n >= 100000 ? 101 : 301;
         double *tb = malloc(reps * sizeof *tb), *ts = malloc(reps * sizeof *ts), *tw = malloc(reps * sizeof *tw);
@@ -91,12 +96,17 @@ void bench_integrate(const char *dir)
             tb[r] = (t1 - t0) / (double)n;
             tw[r] = (t2 - t1) / (double)n;
             ts[r] = st.stage_ms[TT_STAGE_INTEGRATE] * 1e6 / (double)n;
+            bench_acc_step(&acc, w);
         }
         tt_memory m;
         tt_world_get_memory(w, &m);
         double b = bench_median(tb, reps), st = bench_median(ts, reps), sp = bench_median(tw, reps);
         printf("%10zu %14.3f %14.3f %14.3f %8.2f %12.1f\n", n, b, st, sp, st / b, m.bytes_per_particle);
-        fprintf(csv, "%zu,%.4f,%.4f,%.4f,%.3f,%.1f\n", n, b, st, sp, st / b, m.bytes_per_particle);
+        bench_acc_print(&acc);
+        fprintf(csv, "%zu,%.4f,%.4f,%.4f,%.3f,%.1f,%d,", n, b, st, sp, st / b, m.bytes_per_particle, acc.steps);
+        bench_acc_csv(csv, &acc);
+        fputc('\n', csv);
+        bench_acc_free(&acc);
         free(tb); free(ts); free(tw);
         free(x); free(y); free(ox); free(oy);
         tt_world_destroy(w);
@@ -110,8 +120,9 @@ void bench_tradeoff(const char *dir)
 {
     printf("\n== Speed/accuracy trade: 1000 oscillators (spring to a pin), t = 10 s ==\n");
     printf("position error vs exact solution and cost per particle-step, per integrator and dt\n");
-    printf("%18s %10s %14s %14s %16s\n", "integrator", "dt", "max error", "ns/particle", "energy drift");
-    FILE *csv = bench_csv(dir, "tradeoff.csv", "integrator,dt,error,ns_per_particle_step,ns_per_particle_to_t,energy_drift");
+    printf("%18s %10s %14s %14s %16s %12s %8s\n", "integrator", "dt", "max error", "ns/particle", "energy drift", "worst rise", "flags");
+    printf("(worst rise: the largest energy gain over one step, of the energy scale; flagged above %.0f %%)\n", 100 * ACC_ENERGY_RISE);
+    FILE *csv = bench_csv(dir, "tradeoff.csv", "integrator,dt,error,ns_per_particle_step,ns_per_particle_to_t,energy_drift,worst_energy_rise,flags");
     const int n = 1000;
     const double t_end = 10.0;
     const double dts[] = {0.1, 0.05, 0.02, 0.01, 0.005, 0.002};
@@ -141,12 +152,15 @@ void bench_tradeoff(const char *dir)
             }
             tt_energy e0, e1;
             tt_world_get_energy(w, &e0);
+            bench_acc acc;
+            bench_acc_init(&acc, w, ACC_ENERGY, NULL, 0);
             int steps = (int)lround(t_end / dt);
             double *t = malloc(steps * sizeof *t);
             for (int s = 0; s < steps; s++) {
                 double t0 = bench_now_ns();
                 tt_world_step(w, dt);
                 t[s] = (bench_now_ns() - t0) / n;
+                bench_acc_step(&acc, w);
             }
             tt_world_get_energy(w, &e1);
             double err = 0;
@@ -157,8 +171,13 @@ void bench_tradeoff(const char *dir)
             }
             double ns = bench_median(t, steps);
             double drift = e1.total / e0.total - 1;
-            printf("%18s %10.3f %14.3e %14.2f %+16.3e\n", tt_integrator_name((tt_integrator)integ), dt, err, ns, drift);
-            fprintf(csv, "%s,%g,%.6e,%.4f,%.4f,%.6e\n", tt_integrator_name((tt_integrator)integ), dt, err, ns, ns * steps, drift);
+            char fl[64];
+            bench_acc_flags(&acc, fl, sizeof fl);
+            printf("%18s %10.3f %14.3e %14.2f %+16.3e %+11.2f%% %8s\n", tt_integrator_name((tt_integrator)integ), dt, err, ns, drift,
+                   100 * acc.worst_rise, fl);
+            fprintf(csv, "%s,%g,%.6e,%.4f,%.4f,%.6e,%.6e,%s\n", tt_integrator_name((tt_integrator)integ), dt, err, ns, ns * steps, drift,
+                    acc.worst_rise, fl);
+            bench_acc_free(&acc);
             free(t);
             free(ps);
             tt_world_destroy(w);

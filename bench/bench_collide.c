@@ -3,11 +3,13 @@
  * broadphase memory per particle, and the reference pour (src/scenes/)
  * against Box2D 2.4.1 doing the same (through src/box2d/). */
 #include "bench.h"
+#include "bench_accuracy.h"
 #include "tether.h"
 #include "box2d/box2d_scene.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Walls of a box `width` wide (inner faces at ±width/2, floor top at 0). */
 static void box(tt_world *w, double width)
@@ -59,34 +61,31 @@ static void timed_step(tt_world *w, double *step, double *detect, double *bp)
     *bp = cst.broadphase_ms;
 }
 
-/* Medians over the four sizes of one radii mix, measured in turns: each
- * round steps every size untimed, so its data is back in cache, then
- * timed. A shared machine's load drifts over seconds; in turns it falls on
- * every size alike instead of tilting the slope. The 100k world takes
- * steps 10 to 55: with one sweep a column of 316 rows cannot hold its own
- * weight; it compresses, a step costs more as it does (about 5.5 ms by
- * step 150), and from there its pairs grow from 200 k to 900 k by step 300. */
-#define ROUNDS 15
+/* Medians over the four sizes of one radii mix, each a whole run of
+ * RUN_STEPS steps from the packed start, every step timed and measured (the
+ * accuracy outside the timing), the sizes in turns: a step of each, then
+ * the next round. A shared machine's load drifts over seconds; in turns it
+ * falls on every size alike instead of tilting the slope. */
+#define RUN_STEPS 60
 static void sizes_in_turns(const uint32_t sizes[4], bool mix, double grid[4], double detect[4], double bp[4],
-                           tt_collision_stats cst[4])
+                           tt_collision_stats cst[4], bench_acc acc[4])
 {
-    static const int per_round[4] = {5, 3, 2, 1};
     tt_world *w[4];
     double *t[4][3];
     for (int k = 0; k < 4; k++) {
         w[k] = packed(sizes[k], mix, TT_BROADPHASE_GRID, 1);
-        for (int s = 0; s < 10; s++) tt_world_step(w[k], 1.0 / 60);
-        for (int j = 0; j < 3; j++) t[k][j] = malloc(ROUNDS * (size_t)per_round[k] * sizeof(double));
+        bench_acc_init(&acc[k], w[k], ACC_OVERLAP | ACC_ENERGY, NULL, 0);
+        for (int j = 0; j < 3; j++) t[k][j] = malloc(RUN_STEPS * sizeof(double));
     }
-    for (int r = 0; r < ROUNDS; r++)
+    for (int r = 0; r < RUN_STEPS; r++)
         for (int k = 0; k < 4; k++) {
-            tt_world_step(w[k], 1.0 / 60);
-            for (int i = r * per_round[k]; i < (r + 1) * per_round[k]; i++) timed_step(w[k], &t[k][0][i], &t[k][1][i], &t[k][2][i]);
+            timed_step(w[k], &t[k][0][r], &t[k][1][r], &t[k][2][r]);
+            bench_acc_step(&acc[k], w[k]);
         }
     for (int k = 0; k < 4; k++) {
-        grid[k] = bench_median(t[k][0], ROUNDS * per_round[k]);
-        detect[k] = bench_median(t[k][1], ROUNDS * per_round[k]);
-        bp[k] = bench_median(t[k][2], ROUNDS * per_round[k]);
+        grid[k] = bench_median(t[k][0], RUN_STEPS);
+        detect[k] = bench_median(t[k][1], RUN_STEPS);
+        bp[k] = bench_median(t[k][2], RUN_STEPS);
         tt_world_get_collision_stats(w[k], &cst[k]);
         tt_world_destroy(w[k]);
         for (int j = 0; j < 3; j++) free(t[k][j]);
@@ -115,9 +114,48 @@ static double slope(const uint32_t *sizes, const double *ms)
     return (4 * sxy - sx * sy) / (4 * sxx - sx * sx);
 }
 
+/* The 100 k target as a whole run long enough to see whether the pile
+ * holds, at the target's settings and at settings that hold it. */
+static void bench_100k(const char *dir)
+{
+    enum { STEPS = 300 };
+    static const uint32_t set[][2] = {{1, 1}, {2, 2}, {4, 2}};
+    printf("\n== 100k colliding particles packed in a box, whole runs of %d steps (%.0f s) from the start ==\n", STEPS, STEPS / 60.0);
+    printf("target: <= 5 ms/step at 1 substep x 1 iteration, and it must not be flagged\n");
+    printf("%9s %11s %12s %12s %12s %8s\n", "substeps", "iterations", "median ms", "mean ms", "worst ms", "target");
+    bench_acc_head();
+    FILE *csv = bench_csv(dir, "collide_100k.csv", "substeps,iterations,steps,median_ms,mean_ms,worst_ms," BENCH_ACC_CSV);
+    for (int k = 0; k < 3; k++) {
+        tt_world *w = packed(100000, false, TT_BROADPHASE_GRID, set[k][1]);
+        tt_world_set_substeps(w, set[k][0]);
+        bench_acc acc;
+        bench_acc_init(&acc, w, ACC_OVERLAP | ACC_ENERGY, NULL, 0);
+        double t[STEPS], d, b, mean = 0, worst = 0;
+        for (int s = 0; s < STEPS; s++) {
+            timed_step(w, &t[s], &d, &b);
+            mean += t[s] / STEPS;
+            worst = fmax(worst, t[s]);
+            bench_acc_step(&acc, w);
+        }
+        const double med = bench_median(t, STEPS);
+        char fl[64];
+        const bool target = k == 0;
+        const bool met = med <= 5 && strcmp(bench_acc_flags(&acc, fl, sizeof fl), "ok") == 0;
+        printf("%9u %11u %12.3f %12.3f %12.3f %8s\n", set[k][0], set[k][1], med, mean, worst, target ? (met ? "met" : "NOT met") : "");
+        bench_acc_print(&acc);
+        fprintf(csv, "%u,%u,%d,%.4f,%.4f,%.4f,", set[k][0], set[k][1], STEPS, med, mean, worst);
+        bench_acc_csv(csv, &acc);
+        fputc('\n', csv);
+        bench_acc_free(&acc);
+        tt_world_destroy(w);
+        fflush(stdout);
+    }
+    fclose(csv);
+}
+
 void bench_collide(const char *dir)
 {
-    printf("\n== Collisions: colliding particles packed in a box under gravity (1 substep, 1 iteration) ==\n");
+    printf("\n== Collisions: colliding particles packed in a box under gravity (1 substep, 1 iteration), %d steps from the start ==\n", RUN_STEPS);
     printf("target: 100k particles <= 5 ms/step (grid); grid cost linear in N, log-log slope 1 +- 0.1 from 1k to 1M\n");
     printf("(grid ms: whole steps; bp ms: the grid itself, its build and pair search, whose growth with N is\n"
            " the slope; detect ms: the detection stage, which adds the shape tests at the box's walls, fewer per\n"
@@ -125,12 +163,14 @@ void bench_collide(const char *dir)
     printf("%9s %6s %10s %10s %10s %12s %12s %10s %12s\n", "particles", "radii", "grid ms", "bp ms", "detect ms", "brute ms",
            "ns/particle", "grid B/p", "collide B/p");
     FILE *csv = bench_csv(dir, "collide.csv",
-                          "particles,radii,grid_ms,brute_ms,grid_bytes_per_particle,collide_bytes_per_particle,detect_ms,bp_ms");
+                          "particles,radii,grid_ms,brute_ms,grid_bytes_per_particle,collide_bytes_per_particle,detect_ms,bp_ms,steps," BENCH_ACC_CSV);
+    bench_acc_head();
     const uint32_t sizes[] = {1000, 10000, 100000, 1000000};
     double grid_ms[2][4], detect_ms[2][4], bp_ms[2][4];
     for (int mix = 0; mix < 2; mix++) {
         tt_collision_stats cst[4];
-        sizes_in_turns(sizes, mix, grid_ms[mix], detect_ms[mix], bp_ms[mix], cst);
+        bench_acc acc[4];
+        sizes_in_turns(sizes, mix, grid_ms[mix], detect_ms[mix], bp_ms[mix], cst, acc);
         bool brute_on = true;
         for (int k = 0; k < 4; k++) {
             const uint32_t n = sizes[k];
@@ -144,8 +184,12 @@ void bench_collide(const char *dir)
             }
             printf("%9u %6s %10.3f %10.3f %10.3f %12.3f %12.1f %10.1f %12.1f\n", n, mix ? "1:4" : "equal", g, bp_ms[mix][k],
                    detect_ms[mix][k], b, g * 1e6 / n, cst[k].broadphase_bytes_per_particle, total_bp);
-            fprintf(csv, "%u,%s,%.4f,%.4f,%.1f,%.1f,%.4f,%.4f\n", n, mix ? "mix" : "equal", g, b,
-                    cst[k].broadphase_bytes_per_particle, total_bp, detect_ms[mix][k], bp_ms[mix][k]);
+            bench_acc_print(&acc[k]);
+            fprintf(csv, "%u,%s,%.4f,%.4f,%.1f,%.1f,%.4f,%.4f,%d,", n, mix ? "mix" : "equal", g, b,
+                    cst[k].broadphase_bytes_per_particle, total_bp, detect_ms[mix][k], bp_ms[mix][k], acc[k].steps);
+            bench_acc_csv(csv, &acc[k]);
+            fputc('\n', csv);
+            bench_acc_free(&acc[k]);
             fflush(stdout);
         }
     }
@@ -155,19 +199,35 @@ void bench_collide(const char *dir)
         printf("grid log-log slope 1k..1M (%s radii): %.3f   target 1 +- 0.1: %s   (detection stage: %.3f)\n",
                mix ? "1:4" : "equal", g, fabs(g - 1) <= 0.1 ? "met" : "NOT met", d);
     }
-    printf("100k equal radii: %.3f ms/step   target <= 5 ms: %s\n", grid_ms[0][2], grid_ms[0][2] <= 5 ? "met" : "NOT met");
+    bench_100k(dir);
 
 }
 
+/* The deepest and mean overlap of a pile now, into the run's worst and sum. */
+typedef struct pour_acc { double max_overlap, mean_sum; int steps; double *xy; } pour_acc;
+
+static void pour_measure(pour_acc *a, const double *xy_in, uint32_t n)
+{
+    memcpy(a->xy, xy_in, 2 * (size_t)n * sizeof *a->xy);
+    ts_pile pile;
+    ts_pile_measure(a->xy, n, 0.5, &pile);
+    a->max_overlap = fmax(a->max_overlap, pile.max_overlap);
+    a->mean_sum += pile.mean_overlap;
+    a->steps++;
+}
+
 /* The reference pour (src/scenes/, the scene `make crosscheck` uses) in
- * both engines for its first 5 s, sleeping off in both. */
+ * both engines for its first 5 s, sleeping off in both, taking turns 30
+ * steps at a time; every step timed, and both piles measured after every
+ * step (untimed) with the same measure, ts_pile_measure. */
 void bench_pour(const char *dir)
 {
     printf("\n== The reference pour (10 000 circles r = 0.5 into a 100-wide box), 300 steps of 1/60 s: tether vs Box2D 2.4.1 ==\n");
     printf("Box2D: 8 velocity / 3 position iterations, continuous off, sleeping off. tether: Verlet, 1 substep, 8 iterations\n");
-    printf("(the two take turns, 30 steps each, timing only the step; means over the run; `make crosscheck` for 20 s)\n");
-    printf("target: tether >= 20x faster than Box2D\n");
-    const int steps = 300;
+    printf("(the two take turns, 30 steps each, timing only the step; means over the whole run; `make crosscheck` for 20 s)\n");
+    printf("target: tether >= 20x faster than Box2D at the same accuracy (overlap flagged above %.0f %% of a radius at any step)\n",
+           100 * ACC_MAX_OVERLAP);
+    const int steps = 300, block = 30;
     ts_scene sc;
     ts_scene_pour(&sc, 10000, 100);
     ts_tether_settings set = ts_tether_settings_default();
@@ -177,33 +237,61 @@ void bench_pour(const char *dir)
     const char *why = "";
     const bool opened = cc_pair_open(&p, &sc, &set, &bd, &why);
     ts_scene_free(&sc);
-    if (!opened || !cc_pair_step(&p, steps, 30, &why)) {
+    if (!opened) {
         printf("pour: %s\n", why);
-        if (opened) cc_pair_close(&p);
         return;
     }
+    const uint32_t n = p.tt.circle_count;
+    double *xy = malloc(2 * (size_t)n * sizeof *xy), *t_b2 = malloc(steps * sizeof *t_b2), *t_tt = malloc(steps * sizeof *t_tt);
+    pour_acc ab = {0, 0, 0, malloc(2 * (size_t)n * sizeof(double))}, at = {0, 0, 0, malloc(2 * (size_t)n * sizeof(double))};
+    const double dt = p.scene.dt;
+    bool good = true;
+    for (int s0 = 0; s0 < steps && good; s0 += block) {
+        for (int s = s0; s < s0 + block && good; s++) {
+            const double t0 = bench_now_ns();
+            good = tb_world_step(p.b2, dt);
+            t_b2[s] = (bench_now_ns() - t0) * 1e-6;
+            tb_positions(p.b2, 3, (int)n, xy); /* bodies 0–2 are the floor and the walls */
+            pour_measure(&ab, xy, n);
+        }
+        for (int s = s0; s < s0 + block && good; s++) {
+            const double t0 = bench_now_ns();
+            good = tt_world_step(p.tt.world, dt) == TT_OK;
+            t_tt[s] = (bench_now_ns() - t0) * 1e-6;
+            tt_particles_get_positions(p.tt.world, p.tt.circles, n, xy);
+            pour_measure(&at, xy, n);
+        }
+    }
+    if (!good) printf("pour: a step failed\n");
     double b2 = 0, tt = 0, b2max = 0, worst = 0;
     for (int s = 0; s < steps; s++) {
-        b2 += p.t_b2[s] / steps;
-        tt += p.t_tt[s] / steps;
-        b2max = fmax(b2max, p.t_b2[s]);
-        worst = fmax(worst, p.t_tt[s]);
+        b2 += t_b2[s] / steps;
+        tt += t_tt[s] / steps;
+        b2max = fmax(b2max, t_b2[s]);
+        worst = fmax(worst, t_tt[s]);
     }
-    const uint32_t n = p.tt.circle_count;
-    double *xy = malloc(2 * (size_t)n * sizeof *xy);
     ts_pile pb, pt;
-    tb_positions(p.b2, 3, (int)n, xy); /* bodies 0–2 are the floor and the walls */
+    tb_positions(p.b2, 3, (int)n, xy);
     ts_pile_measure(xy, n, 0.5, &pb);
     tt_particles_get_positions(p.tt.world, p.tt.circles, n, xy);
     ts_pile_measure(xy, n, 0.5, &pt);
-    free(xy);
+    const double ke_b2 = tb_scene_kinetic_per_kg(p.b2), ke_tt = ts_tether_kinetic_per_kg(&p.tt);
+    free(xy); free(t_b2); free(t_tt);
     cc_pair_close(&p);
-    printf("%10s %14s %14s %14s %16s %14s\n", "engine", "mean ms/step", "worst ms", "pile height m", "max overlap", "mean overlap");
-    printf("%10s %14.3f %14.3f %14.2f %14.1f %%r %12.2f %%r\n", "Box2D", b2, b2max, pb.height, 100 * pb.max_overlap, 100 * pb.mean_overlap);
-    printf("%10s %14.3f %14.3f %14.2f %14.1f %%r %12.2f %%r\n", "tether", tt, worst, pt.height, 100 * pt.max_overlap, 100 * pt.mean_overlap);
-    printf("speed-up %.1fx   target >= 20x: %s\n", b2 / tt, b2 / tt >= 20 ? "met" : "NOT met");
-    FILE *c2 = bench_csv(dir, "collide_box2d.csv", "engine,mean_ms,worst_ms,height,max_overlap,mean_overlap");
-    fprintf(c2, "box2d,%.4f,%.4f,%.3f,%.4f,%.4f\ntether,%.4f,%.4f,%.3f,%.4f,%.4f\n", b2, b2max, pb.height, pb.max_overlap,
-            pb.mean_overlap, tt, worst, pt.height, pt.max_overlap, pt.mean_overlap);
+    const double mb = ab.mean_sum / ab.steps, mt = at.mean_sum / at.steps;
+    printf("%10s %12s %10s %10s %16s %16s %12s %10s\n", "engine", "mean ms", "worst ms", "height m", "max overlap (run)",
+           "mean overlap", "KE J/kg", "flags");
+    printf("%10s %12.3f %10.3f %10.2f %14.1f %%r %14.2f %%r %12.2e %10s\n", "Box2D", b2, b2max, pb.height, 100 * ab.max_overlap,
+           100 * mb, ke_b2, ab.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
+    printf("%10s %12.3f %10.3f %10.2f %14.1f %%r %14.2f %%r %12.2e %10s\n", "tether", tt, worst, pt.height, 100 * at.max_overlap,
+           100 * mt, ke_tt, at.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
+    printf("speed-up %.1fx   target >= 20x: %s%s\n", b2 / tt, b2 / tt >= 20 ? "met" : "NOT met",
+           at.max_overlap > ab.max_overlap ? " (and tether's overlap is deeper than Box2D's: not at equal accuracy)" : "");
+    FILE *c2 = bench_csv(dir, "collide_box2d.csv", "engine,steps,mean_ms,worst_ms,height,max_overlap_run,mean_overlap_run,ke_per_kg,flags");
+    fprintf(c2, "box2d,%d,%.4f,%.4f,%.3f,%.4f,%.4f,%.4g,%s\ntether,%d,%.4f,%.4f,%.3f,%.4f,%.4f,%.4g,%s\n", steps, b2, b2max,
+            pb.height, ab.max_overlap, mb, ke_b2, ab.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok", steps, tt, worst, pt.height,
+            at.max_overlap, mt, ke_tt, at.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
     fclose(c2);
+    free(ab.xy);
+    free(at.xy);
 }

@@ -212,7 +212,8 @@ function tether.quit() end
 ---@field gravity number Σ −m g·x
 ---@field spring number Σ ½ k (length − rest)²
 ---@field constraint number Σ ½ C²/α over compliant (XPBD) constraints
----@field total number the sum of the four
+---@field attractor number Σ −m·strength/√(r² + softening²) over point attractors
+---@field total number the sum of the five
 
 ---What `w:memory` returns.
 ---@class tether.memory
@@ -376,6 +377,23 @@ function world:gravity() end
 ---@param gx number m/s², in [-1e12, 1e12]
 ---@param gy number m/s², in [-1e12, 1e12]
 function world:set_gravity(gx, gy) end
+
+---A point attractor (planet, magnet): every movable particle accelerates
+---towards (x, y) by strength·r/(r² + softening²)^(3/2) m/s², whatever its
+---mass; a negative strength repels; strength 0 clears the slot.
+---@param slot integer 1 … 8
+---@param x number m
+---@param y number m
+---@param strength number G·M, m³/s², in [-1e12, 1e12]
+---@param softening? number m, in [0, 1e12], default 0 (exact 1/r²)
+function world:set_attractor(slot, x, y, strength, softening) end
+
+---@param slot integer 1 … 8
+---@return number x
+---@return number y
+---@return number strength 0 when the slot is unused
+---@return number softening
+function world:attractor(slot) end
 
 ---@return number fx N
 ---@return number fy N

@@ -130,6 +130,17 @@ crosscheck_ok() {
     [ $? -eq 1 ]
 }
 run_check "runner: tether crosscheck --quick fall prints its table; an unknown scene exits 1" crosscheck_ok
+atlas_ok() {
+    d=$(mktemp -d)
+    "$RUNNER" atlas --quick --out "$d" docs/atlas_example.lua >"$tmp2" 2>&1 || { cat "$tmp2"; rm -rf "$d"; return 1; }
+    cat "$tmp2"
+    n=$(grep -c '^grapple,' "$d/grapple.csv")
+    rm -rf "$d"
+    [ "$n" -eq 4 ] || { echo "grapple.csv has $n rows, not 4"; return 1; }
+    "$RUNNER" atlas --out "$d" /nonexistent.lua >/dev/null 2>&1
+    [ $? -eq 1 ]
+}
+run_check "runner: tether atlas --quick SCRIPT sweeps a user's scene into CSV; a missing script exits 1" atlas_ok
 
 # 1b. The layout rules (file and function sizes, no dependency circles).
 run_check "layout: tests/layout.sh" sh tests/layout.sh "$BUILD"
@@ -194,6 +205,8 @@ else
         case "$t" in
         # the runner's frames
         tests/lua/test_render.lua) continue ;;
+        # the atlas is a Lua 5.4 tool of the runner (integer division)
+        tests/lua/test_atlas.lua) continue ;;
         esac
         # shellcheck disable=SC2086
         run_counted "luajit$lj_note: $t" env $lj_env LUA_CPATH="$BUILD/luajit/?.so" luajit "$t"

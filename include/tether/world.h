@@ -66,7 +66,8 @@ typedef struct tt_energy {
     double gravity;   ///< Σ −m g·x (zero at the origin)
     double spring;    ///< Σ ½ k (|xa − xb| − rest)²
     double constraint;///< Σ ½ C²/α over compliant (XPBD) constraints: what they store as springs of stiffness 1/α
-    double total;     ///< the sum of the four
+    double attractor; ///< Σ −m·strength/√(r² + softening²) over point attractors (tt_world_set_attractor)
+    double total;     ///< the sum of the five
 } tt_energy;
 
 /// Memory held by a world, bytes.
@@ -119,6 +120,24 @@ TT_API tt_result tt_world_set_tolerance(tt_world *w, double tolerance);
 TT_API double tt_world_get_tolerance(const tt_world *w);
 TT_API tt_result tt_world_set_solver_order(tt_world *w, tt_solver_order order);
 TT_API tt_solver_order tt_world_get_solver_order(const tt_world *w);
+
+/// Point attractors a world holds (slots 0 … TT_MAX_ATTRACTORS − 1).
+#define TT_MAX_ATTRACTORS 8
+/// A point attractor (a planet, a magnet): every movable particle at distance
+/// r from `center` accelerates towards it by strength·r/(r² + softening²)^(3/2)
+/// m/s², whatever its mass (a negative strength repels). Softening keeps the
+/// pull finite near the centre (Plummer softening; 0: the exact 1/r² law,
+/// with no pull at the centre itself). Potential per kg: −strength/√(r² + softening²).
+typedef struct tt_attractor {
+    tt_vec2 center;   ///< m, finite
+    double strength;  ///< G·M, m³/s², |strength| ≤ TT_MAX_VALUE; 0 switches the slot off
+    double softening; ///< m, finite, ≥ 0
+} tt_attractor;
+/// Sets slot `slot` (0 … TT_MAX_ATTRACTORS − 1); strength 0 clears it. The
+/// pull is a force like any other: every integrator sees it at its own stages.
+TT_API tt_result tt_world_set_attractor(tt_world *w, uint32_t slot, tt_attractor a);
+/// The attractor in `slot` (strength 0 when unused).
+TT_API tt_result tt_world_get_attractor(const tt_world *w, uint32_t slot, tt_attractor *out);
 
 /// Radial explosion: every movable particle within `radius` of `center` gets
 /// an impulse of `impulse`·(1 − d/radius) N·s pointing away from the centre.

@@ -239,6 +239,10 @@ static void load_movers(tt__cgroup *g, tt__source *s)
         uint8_t kind = m->slot < g->pool.count ? g->slots[m->slot].kind : 0;
         if ((kind != TT_CONSTRAINT_DISTANCE && kind != TT_CONSTRAINT_PIN) || g->slots[m->slot].mover != k + 1)
             { tt__src_fail(s, "moving target %u: slot %u", k, m->slot); return; }
+        /* a distance's target is a length (tt_distance_set_length's range), stepped into the link */
+        if (kind == TT_CONSTRAINT_DISTANCE && !(m->at[0] >= 0 && m->to[0] >= 0 && m->end[0] >= 0 && m->at[1] == 0 &&
+                                                m->to[1] == 0 && m->end[1] == 0))
+            { tt__src_fail(s, "moving target %u: length %g -> %g not in [0, %g]", k, m->at[0], m->to[0], TT_MAX_VALUE); return; }
     }
     for (uint32_t i = 0; i < g->pool.count && !s->failed; i++)
         if (g->slots[i].mover > n || (g->slots[i].mover && g->moving[g->slots[i].mover - 1].slot != i))

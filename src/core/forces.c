@@ -3,7 +3,7 @@
 
 bool tt__has_forces(const tt_world *w)
 {
-    return w->springs_alive > 0 || w->forces_pending || w->wind.x != 0.0 || w->wind.y != 0.0;
+    return w->springs_alive > 0 || w->attractors_used > 0 || w->forces_pending || w->wind.x != 0.0 || w->wind.y != 0.0;
 }
 
 /* Accelerations at state (x, v) into (ax, ay). vx == NULL means Verlet:
@@ -30,6 +30,7 @@ void tt__eval_accel(tt_world *w, const double *x, const double *y, const double 
         ax[i] = gx + inv[i] * fx;
         ay[i] = gy + inv[i] * fy;
     }
+    if (w->attractors_used) tt__attractors_accel(w, x, y, ax, ay);
     const double inv_dt = 1.0 / w->dt_prev;
     for (uint32_t s = 0; s < w->spool.count; s++) {
         const tt__spring *sp = &w->springs[s];

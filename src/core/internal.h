@@ -147,6 +147,10 @@ struct tt_world {
      * tt_world_create), so particles.c does not depend on springs.c. */
     void (*springs_detach)(tt_world *w, uint32_t particle);
 
+    /* point attractors (attractor.c): a slot is in use while its strength is not 0 */
+    tt_attractor attractors[TT_MAX_ATTRACTORS];
+    uint32_t attractors_used; /* slots in use: the force loop skips them all at 0 */
+
     tt_stats stats;
     uint64_t epoch;       /* bumped when particles appear, move or change radius outside a step, and by each step (query caches) */
     char error[256];
@@ -267,6 +271,9 @@ bool tt__has_forces(const tt_world *w);
 void tt__eval_accel(tt_world *w, const double *x, const double *y, const double *vx, const double *vy,
                     double *ax, double *ay);
 void tt__integrate(tt_world *w, double dt);
+/* Point attractors (attractor.c): add their pull at (x, y) to (ax, ay); their potential, J. */
+void tt__attractors_accel(const tt_world *w, const double *x, const double *y, double *ax, double *ay);
+double tt__attractors_energy(const tt_world *w);
 void tt__convert_state(tt_world *w, tt_integrator from, tt_integrator to);
 
 #endif

@@ -121,6 +121,21 @@ static void save_springs(const tt_world *w, tt__sink *s)
     }
 }
 
+/* Written only when some slot is in use, so that a world without
+ * attractors saves (and hashes) exactly as before they existed. */
+static void save_attractors(const tt_world *w, tt__sink *s)
+{
+    if (!w->attractors_used) return;
+    tt__put_u32(s, TT_MAX_ATTRACTORS);
+    for (int k = 0; k < TT_MAX_ATTRACTORS; k++) {
+        const tt_attractor *a = &w->attractors[k];
+        tt__put_f64(s, a->center.x);
+        tt__put_f64(s, a->center.y);
+        tt__put_f64(s, a->strength);
+        tt__put_f64(s, a->softening);
+    }
+}
+
 /* The body; false when a group cannot be saved (hashing skips it). */
 static bool save_body(const tt_world *w, tt__sink *s, const char **unsaveable)
 {
@@ -128,6 +143,7 @@ static bool save_body(const tt_world *w, tt__sink *s, const char **unsaveable)
     save_settings(w, s);
     save_particles(w, s);
     save_springs(w, s);
+    save_attractors(w, s);
     tt__section_close(s, at);
     for (int g = 0; g < w->group_count; g++) {
         const tt__group_ops *ops = w->groups[g].ops;
@@ -306,6 +322,23 @@ static void load_springs(tt_world *w, tt__source *s)
         if (w->springs[w->spool.free_list[k]].alive) tt__src_fail(s, "spring %u is alive and free", w->spool.free_list[k]);
 }
 
+static void load_attractors(tt_world *w, tt__source *s, const tt__section *sec)
+{
+    if (s->failed || s->at >= sec->end) return; /* none saved */
+    if (tt__get_u32(s) != TT_MAX_ATTRACTORS) { tt__src_fail(s, "attractor slots: not %d", TT_MAX_ATTRACTORS); return; }
+    for (int k = 0; k < TT_MAX_ATTRACTORS && !s->failed; k++) {
+        tt_attractor *a = &w->attractors[k];
+        a->center.x = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "attractor centre");
+        a->center.y = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "attractor centre");
+        a->strength = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "attractor strength");
+        a->softening = tt__get_num(s, 0.0, TT_MAX_VALUE, "attractor softening");
+        if (a->strength == 0.0 && (a->center.x != 0.0 || a->center.y != 0.0 || a->softening != 0.0))
+            tt__src_fail(s, "attractor %d is unused but not cleared", k);
+        w->attractors_used += a->strength != 0.0;
+    }
+    if (!s->failed && !w->attractors_used) tt__src_fail(s, "attractors saved but none in use");
+}
+
 static void load_sections(tt_world *w, tt__source *s)
 {
     tt__section sec;
@@ -314,6 +347,7 @@ static void load_sections(tt_world *w, tt__source *s)
     load_settings(w, s);
     load_particles(w, s);
     load_springs(w, s);
+    load_attractors(w, s, &sec);
     if (!tt__section_end(s, &sec)) return;
     while (s->at < s->len && !s->failed) {
         if (!tt__section_begin(s, &sec)) return;

@@ -276,7 +276,8 @@ tt_result tt_world_get_energy(const tt_world *w, tt_energy *out)
     out->gravity = pe;
     out->spring = tt__springs_energy(w);
     out->constraint = tt__constraints_energy(w);
-    out->total = ke + pe + out->spring + out->constraint;
+    out->attractor = tt__attractors_energy(w);
+    out->total = ke + pe + out->spring + out->constraint + out->attractor;
     return TT_OK;
 }
 

@@ -56,18 +56,19 @@ static int w_stats(lua_State *L)
     return 1;
 }
 
-/* w:energy() → {kinetic, gravity, spring, constraint, total} */
+/* w:energy() → {kinetic, gravity, spring, constraint, attractor, total} */
 static int w_energy(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     tt_energy e;
     memset(&e, 0, sizeof e);
     tl_check_result(L, w, tt_world_get_energy(w, &e));
-    lua_createtable(L, 0, 5);
+    lua_createtable(L, 0, 6);
     setnum(L, "kinetic", e.kinetic);
     setnum(L, "gravity", e.gravity);
     setnum(L, "spring", e.spring);
     setnum(L, "constraint", e.constraint);
+    setnum(L, "attractor", e.attractor);
     setnum(L, "total", e.total);
     return 1;
 }

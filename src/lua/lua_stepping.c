@@ -1,6 +1,6 @@
 /* tether — Lua world methods that step the world and read or change how it
  * steps: w:step, gravity, wind, damping, integrator, substeps, iterations,
- * tolerance and solver (each a getter and a set_ setter). */
+ * tolerance, solver and point attractors (each a getter and a set_ setter). */
 #include "lua_common.h"
 
 /* w:step(dt [, n]) */
@@ -133,6 +133,34 @@ static int w_set_solver(lua_State *L)
     return 0;
 }
 
+/* w:set_attractor(slot, x, y, strength [, softening]): slot 1 … 8; strength 0 clears it */
+static int w_set_attractor(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_Integer slot = tl_checkinteger(L, 2, 1, TT_MAX_ATTRACTORS);
+    tt_attractor a;
+    a.center.x = tl_checknumber(L, 3, &TL_R_COORD);
+    a.center.y = tl_checknumber(L, 4, &TL_R_COORD);
+    a.strength = tl_checknumber(L, 5, &TL_R_COORD);
+    a.softening = tl_optnumber(L, 6, &TL_R_NONNEG, 0.0);
+    tl_check_result(L, w, tt_world_set_attractor(w, (uint32_t)(slot - 1), a));
+    return 0;
+}
+
+/* w:attractor(slot) → x, y, strength, softening (strength 0: unused) */
+static int w_attractor(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    lua_Integer slot = tl_checkinteger(L, 2, 1, TT_MAX_ATTRACTORS);
+    tt_attractor a;
+    tl_check_result(L, w, tt_world_get_attractor(w, (uint32_t)(slot - 1), &a));
+    lua_pushnumber(L, a.center.x);
+    lua_pushnumber(L, a.center.y);
+    lua_pushnumber(L, a.strength);
+    lua_pushnumber(L, a.softening);
+    return 4;
+}
+
 /* --- registration ----------------------------------------------------------- */
 
 static const luaL_Reg stepping_methods[] = {
@@ -153,6 +181,8 @@ static const luaL_Reg stepping_methods[] = {
     { "set_tolerance", w_set_tolerance },
     { "solver", w_solver },
     { "set_solver", w_set_solver },
+    { "attractor", w_attractor },
+    { "set_attractor", w_set_attractor },
     { NULL, NULL }
 };
 

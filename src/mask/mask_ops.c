@@ -61,8 +61,9 @@ static void fill_span(tt_mask *m, int y, int x0, int x1, bool value)
 tt_result tt_mask_fill_rect(tt_mask *m, int x, int y, int w, int h, bool value)
 {
     if (!m) return tt__mask_fail(TT_EINVAL, "tt_mask_fill_rect: mask is NULL");
-    if (w < 0 || h < 0 || abs(x) > TT_MASK_MAX_OFFSET || abs(y) > TT_MASK_MAX_OFFSET || w > TT_MASK_MAX_OFFSET ||
-        h > TT_MASK_MAX_OFFSET)
+    /* no abs(): abs(INT_MIN) is INT_MIN, which passed */
+    if (w < 0 || h < 0 || w > TT_MASK_MAX_OFFSET || h > TT_MASK_MAX_OFFSET || x < -TT_MASK_MAX_OFFSET ||
+        x > TT_MASK_MAX_OFFSET || y < -TT_MASK_MAX_OFFSET || y > TT_MASK_MAX_OFFSET)
         return tt__mask_fail(TT_EINVAL, "tt_mask_fill_rect: rect (%d, %d, %d, %d) has a negative size or lies beyond ±%d",
                              x, y, w, h, TT_MASK_MAX_OFFSET);
     int x0 = x < 0 ? 0 : x, y0 = y < 0 ? 0 : y, x1 = x + w > m->w ? m->w : x + w, y1 = y + h > m->h ? m->h : y + h;

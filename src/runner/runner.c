@@ -3,6 +3,7 @@
  *   tether [--headless] [--steps N] [--dt DT] [--frames N] [--every K] [--out DIR]
  *          [--size WxH] [--screenshot FILE] [--events FILE] [--help] [--version] script.lua [args…]
  *   tether crosscheck [--quick] [--out DIR] [SCENE]     (runner_crosscheck.c)
+ *   tether atlas [--quick] [--out DIR] [SCRIPT]          (runner_atlas.c)
  *
  * Opens the standard libraries, preloads the module (package.preload.tether)
  * and sets the global `tether` to it, sets `arg` as lua5.4 does, and runs the
@@ -547,6 +548,8 @@ int main(int argc, char **argv)
 
     if (argc > 1 && strcmp(argv[1], "crosscheck") == 0)
         return tr_crosscheck(argc, argv);
+    if (argc > 1 && strcmp(argv[1], "atlas") == 0)
+        return tr_atlas(argc, argv);
     status = parse_args(argc, argv, &o);
     if (status >= 0)
         return status;

@@ -57,5 +57,7 @@ int tr_run_frames(session *s, const options *o);
 int tr_run_window(session *s, const options *o);
 /* `tether crosscheck …` (argv[1] is "crosscheck"): an exit status. */
 int tr_crosscheck(int argc, char **argv);
+/* `tether atlas …` (argv[1] is "atlas"): an exit status (runner_atlas.c). */
+int tr_atlas(int argc, char **argv);
 
 #endif

@@ -293,6 +293,49 @@ TEST(snapshot_loaded_world_removes_a_particles_springs_with_it)
     tt_world_destroy(w);
 }
 
+/* Found by the stream reader's fuzzer (make fuzz, seed 1796181652): a
+ * distance's moving target (a reeled length) was read as any number in
+ * ±TT_MAX_VALUE, so a negative one was accepted, stepped into a negative
+ * link length, and the world's own stream was then refused. */
+TEST(snapshot_refuses_a_negative_moving_length)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle a = tt_particle_create(w, &pd);
+    pd.position.x = 1.0;
+    tt_particle b = tt_particle_create(w, &pd);
+    tt_distance_def dd = tt_distance_def_default();
+    dd.a = a;
+    dd.b = b;
+    tt_constraint c = tt_distance_create(w, &dd);
+    ENSURE(c.gen);
+    ENSURE_OK(tt_distance_set_length(w, c, 3.25)); /* a target that moves over the next step */
+    size_t n;
+    unsigned char *s = save(w, &n);
+    ENSURE(s);
+    const double want = 3.25, bad = -3.25;
+    unsigned char *to = NULL; /* the mover's target follows the link's rest length: the last 3.25 */
+    for (size_t i = 32; i + 8 <= n; i++)
+        if (memcmp(s + i, &want, 8) == 0) to = s + i;
+    ENSURE(to);
+    memcpy(to, &bad, 8);
+    reseal(s, n);
+    const uint64_t h = tt_world_hash(w);
+    if (tt_world_restore(w, s, n) == TT_OK) { /* accepted: then it must step into a world that saves and loads */
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        size_t m;
+        unsigned char *again = save(w, &m);
+        tt_world *back = again ? tt_world_load(again, m) : NULL;
+        ENSURE(back != NULL);
+        tt_world_destroy(back);
+        free(again);
+    } else {
+        ENSURE(tt_world_hash(w) == h);
+    }
+    free(s);
+    tt_world_destroy(w);
+}
+
 TEST(hash_covers_collision_filters_shape_points_and_free_lists)
 {
     /* before the hash was the stream's, each of these pairs hashed alike */

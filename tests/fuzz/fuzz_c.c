@@ -5,7 +5,12 @@
  * FUZZ_CALLS (stop right after this call: replay), FUZZ_TRACE=1 (print every
  * call as a C-like line as it is made), FUZZ_KEEP_GOING=1 (a survey: each
  * kind of failure once, then on), FUZZ_COUNTS=1 (calls and seconds per
- * wrapper at the end).
+ * wrapper at the end), FUZZ_SKIP (calls to draw and not make: "12,40-97" or
+ * "@FILE" holding such a list; tests/fuzz/minimise_c.lua uses it), FUZZ_ONLY
+ * (comma-separated name prefixes, "tt_mask_,tt_clock_": only those wrappers,
+ * and only those functions must be reached; for a campaign on one part).
+ * Each call draws from its own stream, seeded by the seed and the call
+ * number, so a skipped call leaves every later call's draws as they were.
  * After every call: a call that failed, or only read, left its world's hash
  * and counts as they were; a call that had to fail (NULL world, stale,
  * foreign, null or kind-turned handle) failed; after every step every
@@ -162,13 +167,28 @@ static unsigned entry_count, total_weight;
 static uint64_t entry_calls[512];
 static double entry_seconds[512];
 
+/* Whether a name is one of FUZZ_ONLY's prefixes (every name without it). */
+static bool selected(const char *name)
+{
+    const char *only = getenv("FUZZ_ONLY");
+    if (!only || !*only) return true;
+    for (const char *p = only; *p;) {
+        size_t n = strcspn(p, ",");
+        if (n && strncmp(name, p, n) == 0) return true;
+        p += n + (p[n] == ',');
+    }
+    return false;
+}
+
 static void gather(void)
 {
     const fz_entry *tables[] = { fz_world_entries, fz_particle_entries, fz_constraint_entries,
                                  fz_composite_entries, fz_collide_entries, fz_scene_entries, fz_stream_entries,
-                                 fz_terrain_entries, fz_rewind_entries };
+                                 fz_terrain_entries, fz_rewind_entries, fz_mask_entries, fz_mask2_entries,
+                                 fz_mask3_entries, fz_clock_entries };
     for (unsigned t = 0; t < sizeof tables / sizeof tables[0]; t++)
         for (const fz_entry *e = tables[t]; e->name; e++) {
+            if (!selected(e->name)) continue;
             if (entry_count == 512) abort();
             entries[entry_count++] = e;
             total_weight += e->weight;
@@ -229,6 +249,63 @@ static void ensure_world(fz *f)
 }
 
 
+/* FUZZ_SKIP: sorted, merged ranges of call numbers. */
+static struct { unsigned long long lo, hi; } *skips;
+static size_t nskips;
+
+static void parse_skips(void)
+{
+    const char *s = getenv("FUZZ_SKIP");
+    char *text = NULL;
+    if (s && s[0] == '@') {
+        FILE *fp = fopen(s + 1, "r");
+        if (!fp) {
+            fprintf(stderr, "fuzz_c: FUZZ_SKIP: cannot read %s\n", s + 1);
+            exit(2);
+        }
+        size_t cap = 4096, n = 0;
+        text = malloc(cap);
+        for (int c; text && (c = fgetc(fp)) != EOF;) {
+            if (n + 1 == cap) text = realloc(text, cap *= 2);
+            if (text) text[n++] = (char)c;
+        }
+        fclose(fp);
+        if (!text) exit(2);
+        text[n] = 0;
+        s = text;
+    }
+    for (const char *p = s; p && *p;) {
+        if (!isdigit((unsigned char)*p)) { p++; continue; }
+        char *end;
+        unsigned long long lo = strtoull(p, &end, 10), hi = lo;
+        if (*end == '-') hi = strtoull(end + 1, &end, 10);
+        p = end;
+        void *grown = realloc(skips, (nskips + 1) * sizeof *skips);
+        if (!grown) exit(2);
+        skips = grown;
+        skips[nskips].lo = lo;
+        skips[nskips++].hi = hi;
+    }
+    free(text);
+}
+
+static bool skipped(unsigned long long call)
+{
+    for (size_t i = 0; i < nskips; i++)
+        if (call >= skips[i].lo && call <= skips[i].hi) return true;
+    return false;
+}
+
+/* The stream of one call (splitmix64 of seed and call number). */
+static uint64_t call_stream(uint64_t seed, uint64_t call)
+{
+    uint64_t z = seed ^ 0x9E3779B97F4A7C15ull ^ (call * 0xBF58476D1CE4E5B9ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return z ? z : 1;
+}
+
 static unsigned long long env_u64(const char *name, unsigned long long dflt)
 {
     const char *s = getenv(name);
@@ -245,20 +322,24 @@ static void cleanup(fz *f)
         }
     }
     for (int k = 0; k < FZ_KINDS; k++) fz_list_free(&f->foreign[k]);
+    fz_mask_free_all(f);
 }
 
 static int report(fz *f, double seconds, bool replay)
 {
-    unsigned reached = 0;
-    for (unsigned i = 0; i < FZ_API_COUNT; i++) reached += f->hits[i] > 0;
+    unsigned reached = 0, wanted = 0;
+    for (unsigned i = 0; i < FZ_API_COUNT; i++) {
+        wanted += selected(api_names[i]);
+        reached += f->hits[i] > 0 && selected(api_names[i]);
+    }
     printf("fuzz_c: %llu calls in %.0f s, seed %llu, %u of %u functions reached\n", (unsigned long long)f->call,
-           seconds, (unsigned long long)f->seed, reached, (unsigned)FZ_API_COUNT);
+           seconds, (unsigned long long)f->seed, reached, wanted);
     if (getenv("FUZZ_COUNTS"))
         for (unsigned i = 0; i < entry_count; i++)
             printf("    %10llu %8.2f s %s\n", (unsigned long long)entry_calls[i], entry_seconds[i], entries[i]->name);
-    if (reached < FZ_API_COUNT && !replay) {
+    if (reached < wanted && !replay) {
         for (unsigned i = 0; i < FZ_API_COUNT; i++)
-            if (!f->hits[i]) printf("fuzz_c: never reached: %s\n", api_names[i]);
+            if (!f->hits[i] && selected(api_names[i])) printf("fuzz_c: never reached: %s\n", api_names[i]);
         printf("0 passed, 1 failed\n");
         return 1;
     }
@@ -275,8 +356,7 @@ int main(int argc, char **argv)
     static fz state;
     fz *f = &state;
     f->seed = env_u64("FUZZ_SEED", (unsigned long long)time(NULL));
-    f->rng = f->seed ^ 0x9E3779B97F4A7C15ull;
-    if (!f->rng) f->rng = 1;
+    parse_skips();
     f->trace = getenv("FUZZ_TRACE") && strcmp(getenv("FUZZ_TRACE"), "1") == 0;
     keep_going = getenv("FUZZ_KEEP_GOING") && strcmp(getenv("FUZZ_KEEP_GOING"), "1") == 0;
     const double seconds = (double)env_u64("FUZZ_SECONDS", 10);
@@ -290,18 +370,21 @@ int main(int argc, char **argv)
     setjmp(next_call); /* FUZZ_KEEP_GOING: a failed call's run goes on from here */
     while (max_calls ? f->call < max_calls : elapsed < seconds) {
         f->call++;
+        f->rng = call_stream(f->seed, f->call);
         ensure_world(f);
         f->cur = -1;
         f->failed = f->must_fail = f->readonly = f->stepped = false;
+        if ((f->call & 63) == 0) elapsed = now_s() - start;
         unsigned e = pick_entry(f);
+        if (nskips && skipped(f->call)) continue;
         entry_calls[e]++;
         double t0 = now_s();
         entries[e]->fn(f);
         after_call(f);
         entry_seconds[e] += now_s() - t0;
-        if ((f->call & 63) == 0) elapsed = now_s() - start;
     }
     cleanup(f);
+    free(skips);
     if (failures) {
         printf("fuzz_c: %u failed calls (FUZZ_KEEP_GOING)\n0 passed, 1 failed\n", failures);
         return 1;

@@ -28,6 +28,9 @@ enum fz_api_id {
 #define FZ_LIST_CAP 2048   /* handles remembered per world and kind */
 #define FZ_STALE_CAP 512   /* removed handles remembered per world and kind */
 #define FZ_FOREIGN_CAP 256 /* handles of destroyed worlds, per kind */
+#define FZ_MASKS 5         /* live masks at once */
+#define FZ_MASK_AREA (1 << 17) /* larger masks are checked and freed, not kept */
+#define FZ_CLOCKS 2
 
 /* A handle of any kind: every tt_<kind> struct has this layout. */
 typedef struct fz_h {
@@ -57,6 +60,9 @@ typedef struct fz {
     int names;               /* worlds created so far (names and tags) */
     fz_hlist foreign[FZ_KINDS];
     uint64_t hits[FZ_API_COUNT];
+    tt_mask *masks[FZ_MASKS]; /* fuzz_c_mask.c: the pool, NULL where empty */
+    void *mask_mem[FZ_MASKS]; /* the memory of a tt_mask_init mask, else NULL */
+    tt_clock clocks[FZ_CLOCKS]; /* fuzz_c_clock.c; all zero (no clock yet) at first */
     bool trace;
     /* the current call, filled in by the wrapper */
     int cur;                 /* slot used, −1 none (NULL world or no world) */
@@ -137,6 +143,22 @@ extern const fz_entry fz_scene_entries[];
 extern const fz_entry fz_stream_entries[]; /* fuzz_c_stream.c */
 extern const fz_entry fz_terrain_entries[]; /* fuzz_c_terrain.c */
 extern const fz_entry fz_rewind_entries[]; /* fuzz_c_rewind.c */
+extern const fz_entry fz_mask_entries[];   /* fuzz_c_mask.c */
+extern const fz_entry fz_mask2_entries[];  /* fuzz_c_mask_px.c */
+extern const fz_entry fz_mask3_entries[];  /* fuzz_c_mask_shape.c */
+extern const fz_entry fz_clock_entries[];  /* fuzz_c_clock.c */
+
+/* fuzz_c_mask.c: the mask pool */
+tt_mask *fz_mask_pick(fz *f, int *slot);
+void fz_mask_put(fz *f, tt_mask *m, const char *what);
+void fz_mask_free_all(fz *f);
+uint64_t fz_mask_sig(const tt_mask *m);
+void fz_mres(fz *f, tt_result r);
+const char *fz_mn(int slot);
+int fz_mask_coord(fz *f, int side);
+int fz_mask_offset(fz *f, int side_a, int side_b);
+int fz_mask_w(const tt_mask *m);
+int fz_mask_h(const tt_mask *m);
 
 /* Handle conversions: all five structs share fz_h's layout. Functions, not
  * macros, so an argument with draws in it is evaluated once. */

@@ -166,8 +166,10 @@ static void c_world_destroy(fz *f)
 void fz_world_too_big(fz *f)
 {
     for (int i = 0; i < FZ_WORLDS; i++) {
-        if (!f->slots[i].w || tt_world_particle_count(f->slots[i].w) <= 2500) continue;
-        fz_log(f, "tt_world_destroy(w%d) /* over 2500 particles: a fresh start */", f->slots[i].name);
+        /* shapes too: masks turned into chains pile them up, and every call hashes them */
+        if (!f->slots[i].w || (tt_world_particle_count(f->slots[i].w) <= 2500 && tt_world_shape_count(f->slots[i].w) <= 1000))
+            continue;
+        fz_log(f, "tt_world_destroy(w%d) /* over 2500 particles or 1000 shapes: a fresh start */", f->slots[i].name);
         FZ_HIT(f, tt_world_destroy);
         retire(f, i);
     }
@@ -255,6 +257,35 @@ static void c_world_set_damping(fz *f)
     fz_log(f, "tt_world_set_damping(%s, %s)", fz_wn(f, w), fz_d(v));
     FZ_HIT(f, tt_world_set_damping);
     fz_res(f, tt_world_set_damping(w, v));
+}
+
+static void c_world_set_attractor(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    uint32_t slot = fz_chance(f, 5) ? fz_count(f, TT_MAX_ATTRACTORS, 100) : fz_below(f, TT_MAX_ATTRACTORS);
+    tt_attractor a = {fz_vec(f, -20, 20), fz_chance(f, 30) ? 0.0 : fz_real(f, -50, 50),
+                      fz_chance(f, 20) ? 0.0 : fz_real(f, 0, 2)};
+    if (fz_chance(f, 5)) a.strength = fz_nasty(f);
+    if (fz_chance(f, 5)) a.softening = fz_nasty(f);
+    fz_log(f, "tt_world_set_attractor(%s, %u, {%s, %s, %s})", fz_wn(f, w), slot, fz_v(a.center), fz_d(a.strength), fz_d(a.softening));
+    FZ_HIT(f, tt_world_set_attractor);
+    fz_res(f, tt_world_set_attractor(w, slot, a));
+}
+
+static void c_world_get_attractor(fz *f)
+{
+    tt_world *w = fz_world_any(f);
+    uint32_t slot = fz_below(f, TT_MAX_ATTRACTORS + 1);
+    tt_attractor a;
+    fz_log(f, "tt_world_get_attractor(%s, %u)", fz_wn(f, w), slot);
+    FZ_HIT(f, tt_world_get_attractor);
+    tt_result r = tt_world_get_attractor(w, slot, &a);
+    fz_res(f, r);
+    if (r == TT_OK) {
+        fz_finite_vec(f, a.center, "attractor centre");
+        fz_finite(f, a.strength, "attractor strength");
+        if (!(a.softening >= 0.0)) fz_fail(f, "attractor softening %g", a.softening);
+    }
 }
 
 static void c_world_set_tolerance(fz *f)
@@ -348,6 +379,8 @@ const fz_entry fz_world_entries[] = {
     { "tt_world_set_solver_order", c_tt_world_set_solver_order, 3 },
     { "tt_world_get_solver_order", c_tt_world_get_solver_order, 1 },
     { "tt_world_explode", c_world_explode, 3 },
+    { "tt_world_set_attractor", c_world_set_attractor, 2 },
+    { "tt_world_get_attractor", c_world_get_attractor, 1 },
     { "tt_world_get_stats", c_world_get_stats, 2 },
     { "tt_world_get_energy", c_world_get_energy, 2 },
     { "tt_world_get_memory", c_world_get_memory, 1 },

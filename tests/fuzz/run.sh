@@ -6,8 +6,18 @@
 # to replay it.
 # Environment: BUILD (build or build-san), SANITIZE (1: ASan preloaded into
 # luajit), FUZZ_TARGETS (names to run,
-# default all), FUZZ_MIN_SECONDS (the Lua minimiser's budget, default 120;
-# 0 skips it), FUZZ_CALLS (replay: stop after this call; with one target).
+# default all), FUZZ_MIN_SECONDS (each minimiser's budget, default 120;
+# 0 skips it; tests/fuzz/minimise.lua and minimise_c.lua), FUZZ_CALLS (replay: stop after this call; with one target).
+#
+# Proof that the C fuzzer finds things, finding 5 of issue 14 (a step of dt
+# 1e-320 put NaN into positions and velocities; fixed by refusing dt below
+# TT_MIN_DT = 1e-9, test tests/core/test_guard.c
+# step_refuses_dt_below_the_minimum_and_leaves_the_world_as_it_was): with
+# world.c's check reverted to dt > 0 in a scratch copy, build-san/fuzz_c at
+# commit 0153582 found it with seeds 1-6 at calls 3223, 1324, 410, 101, 47,
+# 1191 (0.09 to 3.6 s; NaN positions, velocities and contact events), and
+# minimise_c.lua cut seed 4's 101 calls to 4 in 3 s: a bounds constraint,
+# tt_world_set_integrator(w, 0), one particle, tt_world_step(w, 1e-320).
 #
 # Adding a target: a function target_NAME taking (SECONDS SEED DIR) that
 # prints one line and returns 0 when it passed, and NAME:WEIGHT in TARGETS.
@@ -50,7 +60,7 @@ target_lua_api() {
 # is checked against the headers first (the static inline handle helpers
 # included), so a new function without one fails here.
 c_api_names() {
-    for h in base world particle spring constraint composite collide terrain rewind; do
+    for h in base world particle spring constraint composite collide terrain rewind clock mask; do
         sed -n 's/^TT_API[^(]*[ *]\(tt_[a-z0-9_]*\)(.*/\1/p' "include/tether/$h.h"
     done
     grep -q 'static inline tt_kind tt_handle_kind' include/tether/base.h && echo tt_handle_kind
@@ -76,6 +86,10 @@ target_c_api() {
     grep 'FUZZ FAILURE\|FUZZ CRASH\|ERROR: \|runtime error\|never reached' "$dir/log.txt" | head -5 | sed 's/^/    | /'
     grep 'replay: ' "$dir/log.txt" | head -n 1 | sed 's/^fuzz_c: /    /'
     tail -n 50 "$dir/log.txt" | cut -c1-300 | sed 's/^/    | /'
+    calls=$(grep -o 'FUZZ \(FAILURE\|CRASH\) at call [0-9]*' "$dir/log.txt" | head -n 1 | tr -dc 0-9)
+    if [ "${FUZZ_MIN_SECONDS:-120}" != 0 ] && [ -n "$calls" ] && command -v lua5.4 >/dev/null 2>&1; then
+        lua5.4 tests/fuzz/minimise_c.lua "$bin" "$seed" "$calls" "$dir" | sed 's/^/    /'
+    fi
     return 1
 }
 

@@ -121,6 +121,8 @@ K.dt = { good = function() return 1 / 60 end, bad = number_bad("[1e-09, 10]", { 
 K.u16 = { good = function() return 3 end, bad = integer_bad("[0, 65535]", { -1, 65536, 1e300, math.maxinteger }) }
 K.nsteps = { good = function() return 2 end, optional = true,
              bad = integer_bad("[1, 10000000]", { 0, -5, 10000001, 1e300 }) }
+K.slot = { good = function() return 2 end, bad = integer_bad("[1, 8]", { 0, -1, 9, 1e300 }) }
+K.optnonneg = { good = function() return 0.5 end, optional = true, bad = K.nonneg.bad }
 K.substeps = { good = function() return 2 end, bad = integer_bad("[1, 1000]", { 0, -1, 1001, 1e300 }) }
 K.iterations = { good = function() return 5 end, bad = integer_bad("[1, 10000]", { 0, -1, 10001, 1e300 }) }
 K.solver = { good = function() return "jacobi" end, bad = {
@@ -231,6 +233,8 @@ local METHODS = {
   { "set_wind", "coord", "coord" },
   { "damping" },
   { "set_damping", "nonneg" },
+  { "attractor", "slot" },
+  { "set_attractor", "slot", "coord", "coord", "coord", "optnonneg" },
   { "integrator" },
   { "set_integrator", "integrator" },
   { "substeps" },

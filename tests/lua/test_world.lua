@@ -477,4 +477,29 @@ T.test("handles carry their world: the next 1022 worlds refuse a world's handles
   end
 end)
 
+T.test("point attractor: a Kepler orbit closes, bad input changes nothing", function()
+  local w = tether.world { gravity = { 0, 0 }, integrator = "rk4" }
+  local p = w:particle(0.5, 0, { vx = 0, vy = math.sqrt(3) })  -- e = 0.5, a = 1, GM = 1: period 2π
+  local h0 = w:hash()
+  T.checkerror("bad argument #2 to 'set_attractor'", w.set_attractor, w, 0, 0, 0, 1)
+  T.checkerror("bad argument #2 to 'set_attractor'", w.set_attractor, w, 9, 0, 0, 1)
+  T.checkerror("bad argument #3 to 'set_attractor'", w.set_attractor, w, 1, 0 / 0, 0, 1)
+  T.checkerror("bad argument #5 to 'set_attractor'", w.set_attractor, w, 1, 0, 0, math.huge)
+  T.checkerror("bad argument #6 to 'set_attractor'", w.set_attractor, w, 1, 0, 0, 1, -1)
+  T.checkerror("bad argument #2 to 'attractor'", w.attractor, w, "x")
+  T.eq(w:hash(), h0, "failed calls leave the world as it was")
+  w:set_attractor(1, 0, 0, 1)
+  local x, y, s, e = w:attractor(1)
+  T.eq(x, 0, "x"); T.eq(y, 0, "y"); T.eq(s, 1, "strength"); T.eq(e, 0, "softening")
+  T.near(w:energy().attractor, -2, 1e-12, "potential at perihelion")
+  T.near(w:energy().total, -0.5, 1e-12, "orbit energy -GM/2a")
+  w:step(2 * math.pi / 4000, 4000)
+  local px, py = w:position(p)
+  T.near(px, 0.5, 1e-6, "back at perihelion x")
+  T.near(py, 0, 1e-6, "back at perihelion y")
+  w:set_attractor(1, 3, 3, 0, 1)
+  T.eq(select(3, w:attractor(1)), 0, "strength 0 clears")
+  w:destroy()
+end)
+
 T.done()

@@ -3,6 +3,7 @@
 #include "test.h"
 #include "tether.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,6 +21,19 @@ TEST(mask_create_refuses_bad_sizes)
     ENSURE(tt_mask_copy(NULL) == NULL);
     ENSURE(tt_mask_size(NULL, NULL, NULL) == TT_EINVAL);
     ENSURE(tt_mask_count(NULL) == 0);
+}
+
+/* Found by the C API fuzzer: abs(INT_MIN) is INT_MIN, so a rect at x = INT_MIN
+ * passed the ±TT_MASK_MAX_OFFSET check (and UBSan reported the negation). */
+TEST(mask_fill_rect_refuses_the_most_negative_int)
+{
+    tt_mask *m = tt_mask_create(8, 8, false);
+    ENSURE(tt_mask_fill_rect(m, INT_MIN, 0, 4, 4, true) == TT_EINVAL);
+    ENSURE(tt_mask_fill_rect(m, 0, INT_MIN, 4, 4, true) == TT_EINVAL);
+    ENSURE(tt_mask_fill_rect(m, -TT_MASK_MAX_OFFSET - 1, 0, 4, 4, true) == TT_EINVAL);
+    ENSURE_OK(tt_mask_fill_rect(m, -TT_MASK_MAX_OFFSET, 0, 4, 4, true)); /* the limit itself: nothing inside */
+    ENSURE(tt_mask_count(m) == 0);
+    tt_mask_destroy(m);
 }
 
 TEST(mask_pixels_and_whole_mask_operations)
