@@ -15,23 +15,20 @@
  *
  * So after the pass, touched pairs go in order of height along gravity
  * (a counting sort into bands), and in each the upper particle's speed
- * away from the lower one, along their normal, is cut to what the pair
- * allows: its separation before the sweeps, or its bounce. Only the upper
- * particle changes (the lower one is final by then: "shock propagation"
- * in Guendelman et al. 2003, here for velocities alone), and only ever
- * toward rest: its speed along the normal drops, never below 0 nor below
- * the lower one's, so the pass removes energy and never adds it. Sideways
- * collisions in flight are untouched: there the pair's own pass already
- * left no more separation than it allows. */
+ * along their normal is brought within what the pair allows: away from the
+ * lower one no faster than before the sweeps (or its bounce), towards it
+ * not at all. Only the upper particle changes (the lower one is final by
+ * then: "shock propagation", Guendelman et al. 2003, here for velocities
+ * alone), and only ever toward rest: its speed along the normal moves
+ * toward 0 and never past it, so the pass removes energy and never adds
+ * it. A pair side by side is ordered like the rest (a tie keeps the list's
+ * order); its own pass has already left it within what it allows, so there
+ * this changes little. Measured on the reference pour at 1 × 8 (20 s):
+ * leaving out pairs whose normal is more than 60° from "up" left the pile
+ * rattling (KE 3.5e-2 J/kg at the end, against 3.9e-5 with every pair). */
 #include "collide_internal.h"
 
 #include <stdlib.h>
-
-/* Only pairs one on top of the other: their normal at most 60° from "up"
- * (in a hexagonal pile, the two contacts under each ball are at 30°). A
- * pair side by side shares no column, and cutting one of its two speeds
- * would break the symmetry of a sideways push. */
-#define LIFT_MIN_UP 0.5
 
 /* The separation speed the pair allows, from its pre-solve relative normal
  * speed vn0: a bounce after an impact, else no more than it had. */
@@ -90,8 +87,6 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
             a = c->pairs[k].a, b = c->pairs[k].b, rs = c->pairs[k].rs;
         }
         const double ha = height(w, gx, gy, a), hb = height(w, gx, gy, b), hl = ha < hb ? ha : hb;
-        const double dx = w->px[a] - w->px[b], dy = w->py[a] - w->py[b], dh = ha - hb;
-        if (dh * dh < LIFT_MIN_UP * LIFT_MIN_UP * (dx * dx + dy * dy)) continue; /* side by side (lift_one) */
         c->lift[nt++] = (tt__lift){ha <= hb ? a : b, ha <= hb ? b : a, hl};
         hmin = hl < hmin ? hl : hmin;
         hmax = hl > hmax ? hl : hmax;
