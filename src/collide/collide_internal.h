@@ -180,6 +180,11 @@ typedef struct tt__scontact {
     uint32_t ccd;         /* found by the swept test: velocity restarts from the pre-solve one */
 } tt__scontact;
 
+typedef struct tt__lift {   /* a touched pair for the bottom-up pass (contact_lift.c) */
+    uint32_t lo, up;      /* its lower and upper particle along gravity */
+    double h;             /* the lower one's height */
+} tt__lift;
+
 typedef struct tt__record {  /* one contact of the step, for events */
     uint64_t key;
     tt_contact_event ev;
@@ -214,6 +219,9 @@ typedef struct tt__collide {
     double *sx0, *sy0;    /* velocity integrators: position at the start of the substep (Verlet has x_old) */
     double *gx0, *gy0;    /* positions before the sweeps (shapes present): the guard against pushes through walls */
     uint32_t gcap;
+    tt__lift *lift;       /* the bottom-up velocity pass's scratch: touched pairs, band starts, their order */
+    uint32_t *lift_start, *lift_order;
+    uint32_t lift_cap;    /* of all three */
     bool guard;           /* gx0, gy0 hold this substep's */
     uint32_t scap, s_count;
     uint64_t s_epoch;     /* the world epoch at which sx0/sy0 hold the last substep's end positions */
@@ -235,11 +243,13 @@ typedef struct tt__collide {
     bool batched;         /* this substep's pairs are solved from bat */
     tt__scontact *sc;
     uint32_t nsc, sccap;
+    uint32_t pair_peak, sc_peak; /* the most pairs and shape contacts a substep has had: reserve makes room for more */
     /* events */
     tt__record *rec, *prev;
     uint32_t nrec, reccap, nprev, prevcap;
     tt_contact_event *events;
     uint32_t nevents, evcap;
+    uint32_t rec_peak, ev_peak; /* the last step's records (before merging) and events: reserve makes room for more */
     uint32_t cells_used;
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
@@ -247,6 +257,9 @@ typedef struct tt__collide {
 extern const tt__group_ops tt__contacts_ops;
 /* The collision state of w, made and registered on first use when create is true. */
 tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
+/* The velocity pass's last part: touched pairs bottom-up along gravity, the
+ * upper particle's speed away cut to what the pair allows (contact_lift.c). */
+void tt__contacts_lift(tt_world *w, tt__collide *c, double thr);
 static inline tt__collide *tt__collide_peek(const tt_world *w)
 {
     return (tt__collide *)tt__group_find(w, &tt__contacts_ops);

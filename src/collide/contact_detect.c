@@ -97,6 +97,17 @@ bool tt__contacts_reserve(tt_world *w, void *self)
     const bool pairs = c->set.particles;
     if (!pairs && c->nprim == 0 && !c->terr) return true;
     const uint32_t n = w->ppool.count;
+    /* Contacts and events: room for half as many again as the most seen, so a step whose contacts grow
+     * less than that allocates nothing for them (a step that outgrows it grows them inside, and reports
+     * it if it cannot) */
+#define ROOM(k) ((k) + (k) / 2 + 16)
+    if (!tt__grow((void **)&c->sc, &c->sccap, ROOM(c->sc_peak), sizeof *c->sc) ||
+        (pairs && !tt__grow((void **)&c->pairs, &c->paircap, ROOM(c->pair_peak), sizeof *c->pairs)))
+        return false;
+    if (c->set.events && (!tt__grow((void **)&c->rec, &c->reccap, ROOM(c->rec_peak), sizeof *c->rec) ||
+                          !tt__grow((void **)&c->events, &c->evcap, ROOM(c->ev_peak), sizeof *c->events)))
+        return false;
+#undef ROOM
     if (!grow_xy(w, &c->vx0, &c->vy0, &c->vcap, n)) return false;
     if (w->integrator != TT_VERLET && !grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return false;
     if (c->nprim && !grow_xy(w, &c->gx0, &c->gy0, &c->gcap, n)) return false;
@@ -280,4 +291,6 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts (some were skipped)");
+    if (c->npairs > c->pair_peak) c->pair_peak = c->npairs;
+    if (c->nsc > c->sc_peak) c->sc_peak = c->nsc;
 }

@@ -62,6 +62,7 @@ void tt__contacts_after_step(tt_world *w, void *self)
         c->nprev = 0;
         return;
     }
+    c->rec_peak = c->nrec;
     /* one record per contact: sorted by key; substeps merged (impulses add up, the last geometry stays) */
     if (c->nrec > 1) qsort(c->rec, c->nrec, sizeof *c->rec, cmp_record);
     uint32_t m = 0;
@@ -95,6 +96,7 @@ void tt__contacts_after_step(tt_world *w, void *self)
     c->rec = t;
     c->reccap = tc;
     c->nrec = 0;
+    c->ev_peak = c->nevents;
 }
 
 const tt_contact_event *tt_world_get_contact_events(const tt_world *w, uint32_t *count)

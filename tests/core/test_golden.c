@@ -7,7 +7,10 @@
  * with it: that change of definition moved no particle. The cloth and zoo
  * scenes, whose script moves a kinematic shape, moved when main's kinematic
  * shapes began to travel across the substeps (second foundation, point 2):
- * pinned again at the merge, main's own build giving the same positions. */
+ * pinned again at the merge, main's own build giving the same positions.
+ * The pour and zoo scenes moved when the velocity pass began to end with
+ * the bottom-up pass (contact_lift.c, issue 21): a pile no longer throws
+ * its own layers up. */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -19,9 +22,9 @@ static const struct {
     uint64_t positions;
     uint64_t hash;
 } golden[SCENE_COUNT] = {
-    [SCENE_POUR] = {0x49313d37792194fdull, 0xc0765fe268f570a8ull},
+    [SCENE_POUR] = {0x08800d73f2055afdull, 0x922a38fcf324fa1eull},
     [SCENE_CLOTH] = {0xb5c92190124ff72cull, 0x2df33b8cb8f8c25bull},
-    [SCENE_ZOO] = {0xda1bb7093eff55caull, 0x662aba1fdbc427c4ull},
+    [SCENE_ZOO] = {0x0ce3f3430199d480ull, 0x200158abee166f85ull},
     [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0xf37b3f16a0d686ceull},
 };
 

@@ -13,15 +13,15 @@ local STEPS = 120
 local golden = {
   cloth = { "bf95991b563e9272", "6525abdc094c4633" },
   fountain = { "6f5670ad6bc772f6", "8e2eb4be3075c5e7" },
-  galton = { "cef42891f80af0e6", "1fb7c6dd5bb42c67" },
-  hourglass = { "91992223c1eeadff", "35b3ba854e353f86" },
+  galton = { "691d5abbecf7c831", "9233a36173c72b3d" },
+  hourglass = { "c09cda5bf493f092", "0770fe70fadb78da" },
   integrators = { "72823523ba511575", "3621fcd6145aab93,26f29bf1c1082c37,95cb19c7b2324695,8ccc75868e811135,ea6678e9ca425f4c" },
-  ragdoll = { "74016491e8b45d88", "b967998d6d910302" },
+  ragdoll = { "218a40738c049b9c", "44a768ea8a87c004" },
   rope_bridge = { "73fa3817e5c476a7", "1695e8d069c351f6" },
-  soft_bodies = { "19d58e45566a5e66", "4b2e506a54a39d80" },
+  soft_bodies = { "53b95d0bf05b10d2", "7be9a3697b1b1bbf" },
   spring_net = { "2a61a51d9d763317", "23f95701ff040468" },
-  terrain = { "1db0fd03fee478a9", "4499408a99387c2e" },
-  worms = { "3c7ad4b55c067fbe", "68f267263bd76cae" },
+  terrain = { "3e396ac7473475ca", "9633655d12604942" },
+  worms = { "c7e2fd1582a805ae", "74159825ce26ce67" },
 }
 
 local function digest(h, xy)

@@ -33,6 +33,8 @@ local function scene()
   w:spring(ps[5], ps[6], { stiffness = 80, damping = 0.2 })
   local d = w:distance(ps[7], ps[8], { mode = "max" })
   local pin = w:pin(ps[9])
+  local hem = w:composite_particles(cloth)
+  local grab = w:pin(hem[#hem]) -- a hand on the hem's corner that tears the cloth (drive)
   w:angle(ps[10], ps[11], ps[12])
   w:area { ps[13], ps[14], ps[15] }
   w:collinear(ps[16], ps[17], ps[18])
@@ -45,6 +47,7 @@ local function scene()
     if step % 50 == 0 then w:set_constraint(d, { length = 0.2 + (step % 100) / 200 }) end
     if step % 70 == 0 then w:set_constraint(pin, { anchor = { -4.4 + math.sin(step) * 0.3, 4 } }) end
     if step % 90 == 0 then w:explode(0, 0, 3, 1) end
+    if step == 200 then w:set_constraint(grab, { anchor = { -6, 14 } }) end
     w:step(1 / 60)
   end
   return w, ps, drive, cloth

@@ -1,0 +1,107 @@
+/* tether — the last part of the velocity pass: no contact throws what rests
+ * on it upward faster than the contact itself allows, bottom to top.
+ *
+ * Velocity here comes from positions (Verlet's x − x_old; the other
+ * integrators add what the sweeps moved), so when the sweeps push apart
+ * particles that overlapped, the push becomes velocity. Each pair's own
+ * velocity pass clamps the pair's relative speed to what the pair allows
+ * (no more separation than before the sweeps, or its bounce), but a push
+ * travels up a column or a pile from what holds it up, and the speed the
+ * whole column then shares is relative to no pair: one velocity pass only
+ * clamps it where the column meets the floor. Ten balls spawned 20 % into
+ * each other in a column left the floor at 27 m/s, and a pile that one
+ * substep's sweeps cannot hold boiled, layers thrown up by the overlap of
+ * the layers under them, creating energy.
+ *
+ * So after the pass, touched pairs go in order of height along gravity
+ * (a counting sort into bands), and in each the upper particle's speed
+ * along their normal is brought within what the pair allows: away from the
+ * lower one no faster than before the sweeps (or its bounce), towards it
+ * not at all. Only the upper particle changes (the lower one is final by
+ * then: "shock propagation", Guendelman et al. 2003, here for velocities
+ * alone), and only ever toward rest: its speed along the normal moves
+ * toward 0 and never past it, so the pass removes energy and never adds
+ * it. A pair side by side is ordered like the rest (a tie keeps the list's
+ * order); its own pass has already left it within what it allows, so there
+ * this changes little. Measured on the reference pour at 1 × 8 (20 s):
+ * leaving out pairs whose normal is more than 60° from "up" left the pile
+ * rattling (KE 3.5e-2 J/kg at the end, against 3.9e-5 with every pair). */
+#include "collide_internal.h"
+
+#include <stdlib.h>
+
+/* The separation speed the pair allows, from its pre-solve relative normal
+ * speed vn0: a bounce after an impact, else no more than it had. */
+static inline double allowed(double vn0, double e, double thr) { return vn0 < -thr ? -e * vn0 : vn0 > 0.0 ? vn0 : 0.0; }
+
+static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, double thr)
+{
+    double nx = w->px[up] - w->px[lo], ny = w->py[up] - w->py[lo];
+    const double d2 = nx * nx + ny * ny;
+    if (!(d2 > 0.0) || w->inv_mass[up] == 0.0) return;
+    const double id = 1.0 / sqrt(d2);
+    nx *= id;
+    ny *= id;
+    const tt_vec2 vu = tt__velocity(w, up), vl = tt__velocity(w, lo);
+    const double un = vu.x * nx + vu.y * ny, ln = vl.x * nx + vl.y * ny;
+    const double vn0 = (c->vx0[up] - c->vx0[lo]) * nx + (c->vy0[up] - c->vy0[lo]) * ny;
+    const double ea = tt__mat(c, up, 0), eb = tt__mat(c, lo, 0);
+    double cap = ln + allowed(vn0, ea > eb ? ea : eb, thr);
+    if (cap < 0.0) cap = 0.0;                   /* a lower one falling away does not pull the upper one down */
+    const double floor = ln < 0.0 ? ln : 0.0;   /* nor does one rising push it up: it only stops its approach */
+    const double to = un > cap ? cap : un < floor ? floor : un;
+    if (to != un) tt__add_velocity(w, up, (to - un) * nx, (to - un) * ny);
+}
+
+/* Height along −gravity of particle i. */
+static inline double height(const tt_world *w, double gx, double gy, uint32_t i) { return -(w->px[i] * gx + w->py[i] * gy); }
+
+void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
+{
+    const double gl = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
+    if (!(gl > 0.0)) return; /* no up */
+    const double gx = w->gravity.x / gl, gy = w->gravity.y / gl;
+    const bool bat = c->batched;
+    const uint32_t m = bat ? c->bat.n : c->npairs;
+    /* the touched pairs, lower particle first, and the bands' extent */
+    uint32_t nt = 0;
+    double hmin = INFINITY, hmax = -INFINITY, rsum = 0.0;
+    /* one size for the three (bands ≤ pairs): the pair list's room, so they grow when it grows and a
+     * world at steady state allocates nothing */
+    const uint32_t want = (bat ? c->bat.cap : c->paircap) + 1;
+    uint32_t cap2 = c->lift_cap, cap3 = c->lift_cap;
+    if (!tt__grow((void **)&c->lift_start, &cap2, want, sizeof *c->lift_start) ||
+        !tt__grow((void **)&c->lift_order, &cap3, want, sizeof *c->lift_order) ||
+        !tt__grow((void **)&c->lift, &c->lift_cap, want, sizeof *c->lift)) {
+        tt__step_oom(w, "the bottom-up velocity pass (a pile may gain energy this step)");
+        return;
+    }
+    for (uint32_t k = 0; k < m; k++) {
+        uint32_t a, b;
+        double rs;
+        if (bat) {
+            if (!(c->bat.lam[k] > 0.0)) continue;
+            a = c->bat.a[k], b = c->bat.b[k], rs = c->bat.rs[k];
+        } else {
+            if (!(c->pairs[k].lambda > 0.0f)) continue;
+            a = c->pairs[k].a, b = c->pairs[k].b, rs = c->pairs[k].rs;
+        }
+        const double ha = height(w, gx, gy, a), hb = height(w, gx, gy, b), hl = ha < hb ? ha : hb;
+        c->lift[nt++] = (tt__lift){ha <= hb ? a : b, ha <= hb ? b : a, hl};
+        hmin = hl < hmin ? hl : hmin;
+        hmax = hl > hmax ? hl : hmax;
+        rsum += rs;
+    }
+    if (nt == 0) return;
+    /* bands half a typical contact tall: a pair's lower particle sits in a band below its upper one's pairs */
+    const double band = 0.5 * rsum / nt;
+    uint64_t nb64 = band > 0.0 && hmax > hmin ? (uint64_t)((hmax - hmin) / band) + 1 : 1;
+    const uint32_t nb = nb64 > nt ? nt : (uint32_t)nb64;
+    const double scale = hmax > hmin ? (nb - 1) / (hmax - hmin) * (1.0 - 1e-12) : 0.0;
+    uint32_t *start = c->lift_start, *order = c->lift_order;
+    for (uint32_t k = 0; k <= nb; k++) start[k] = 0;
+    for (uint32_t k = 0; k < nt; k++) start[(uint32_t)((c->lift[k].h - hmin) * scale) + 1]++;
+    for (uint32_t k = 0; k < nb; k++) start[k + 1] += start[k];
+    for (uint32_t k = 0; k < nt; k++) order[start[(uint32_t)((c->lift[k].h - hmin) * scale)]++] = k;
+    for (uint32_t k = 0; k < nt; k++) lift_one(w, c, c->lift[order[k]].lo, c->lift[order[k]].up, thr);
+}

@@ -1,0 +1,113 @@
+/* tether — contacts never create energy (issue 21): overlap is undone
+ * without throwing what it pushes apart, a pour never gains total energy
+ * in a step, and nothing in it moves faster than a fall from the top. */
+#include "test.h"
+
+#include "scenes/scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Kinetic plus potential energy (g along −y, y = 0 the floor), J. */
+static double total_energy(const tt_world *w, const tt_particle *p, uint32_t n, double g)
+{
+    double e = 0.0;
+    for (uint32_t i = 0; i < n; i++) {
+        tt_vec2 x, v;
+        double m = 0.0;
+        tt_particle_get_mass(w, p[i], &m);
+        tt_particle_get_position(w, p[i], &x);
+        tt_particle_get_velocity(w, p[i], &v);
+        e += m * (0.5 * (v.x * v.x + v.y * v.y) + g * x.y);
+    }
+    return e;
+}
+
+/* Ten balls spawned 20 % of a diameter into each other in a column on the
+ * floor: the sweeps take a few steps to undo that, and the balls must come
+ * apart without speed (they left the floor at 27 m/s before the bottom-up
+ * velocity pass, contact_lift.c). At every setting and integrator. */
+TEST(energy_overlap_is_undone_without_throwing_anything)
+{
+    const tt_integrator ins[] = {TT_VERLET, TT_SYMPLECTIC_EULER, TT_LEAPFROG, TT_RK4};
+    const uint32_t sub[] = {1, 1, 4}, it[] = {8, 32, 4};
+    for (int in = 0; in < 4; in++)
+        for (int k = 0; k < 3; k++) {
+            tt_world_def wd = tt_world_def_default();
+            wd.gravity = (tt_vec2){0, -10};
+            wd.integrator = ins[in];
+            wd.substeps = sub[k];
+            wd.iterations = it[k];
+            tt_world *w = tt_world_create(&wd);
+            tt_collision_settings cs = tt_collision_settings_default();
+            tt_world_set_collision(w, &cs);
+            tt_shape_def sd = tt_shape_def_default();
+            sd.type = TT_SHAPE_SEGMENT;
+            sd.a = (tt_vec2){-10, 0};
+            sd.b = (tt_vec2){10, 0};
+            sd.radius = 0;
+            tt_shape_create(w, &sd);
+            tt_particle p[10];
+            for (int i = 0; i < 10; i++) {
+                tt_particle_def pd = tt_particle_def_default();
+                pd.position = (tt_vec2){0, 0.5 + 0.8 * i};
+                pd.radius = 0.5;
+                p[i] = tt_particle_create(w, &pd);
+            }
+            double fastest = 0.0;
+            for (int s = 0; s < 180; s++) {
+                ENSURE_OK(tt_world_step(w, 1.0 / 60));
+                for (int i = 0; i < 10; i++) {
+                    tt_vec2 v;
+                    tt_particle_get_velocity(w, p[i], &v);
+                    fastest = fmax(fastest, hypot(v.x, v.y));
+                }
+            }
+            tt_vec2 top;
+            tt_particle_get_position(w, p[9], &top);
+            if (fastest > 0.05 || top.y < 9.3)
+                printf("    %s %u x %u: fastest %.3f m/s, top at %.3f m\n", tt_integrator_name(ins[in]), sub[k], it[k],
+                       fastest, top.y);
+            ENSURE(fastest <= 0.05); /* was 27 m/s */
+            ENSURE(top.y > 9.3);      /* and the overlap is undone: 9.5 when the balls just touch */
+            tt_world_destroy(w);
+        }
+}
+
+/* A pour of 600 circles by the reference pour's rules into a box 30 wide,
+ * 1 substep × 8 sweeps (the setting that boiled): over every one of its
+ * 900 steps the total energy never rises by more than 1e-6 of itself, and
+ * no circle ever moves faster than a fall from the highest start allows. */
+TEST(energy_a_pour_never_gains_energy_in_a_step)
+{
+    ts_scene s;
+    ts_scene_pour(&s, 600, 30);
+    ts_tether_settings set = ts_tether_settings_default();
+    set.substeps = 1;
+    set.iterations = 8;
+    ts_tether t;
+    const char *why = NULL;
+    ENSURE(ts_tether_build(&s, &set, &t, &why) == TT_OK);
+    double top = 0.0;
+    for (uint32_t i = 0; i < s.body_count; i++)
+        if (s.bodies[i].dynamic) top = fmax(top, s.bodies[i].position.y);
+    const double g = -s.gravity.y, bound = sqrt(2.0 * g * top);
+    double e = total_energy(t.world, t.circles, t.circle_count, g), worst_rise = 0.0, fastest = 0.0;
+    for (int k = 0; k < 900; k++) {
+        ENSURE_OK(tt_world_step(t.world, s.dt));
+        const double e1 = total_energy(t.world, t.circles, t.circle_count, g);
+        worst_rise = fmax(worst_rise, (e1 - e) / e);
+        e = e1;
+        for (uint32_t i = 0; i < t.circle_count; i++) {
+            tt_vec2 v;
+            tt_particle_get_velocity(t.world, t.circles[i], &v);
+            fastest = fmax(fastest, hypot(v.x, v.y));
+        }
+    }
+    printf("    600-circle pour, 1 x 8: largest rise of total energy in a step %.2e of it; fastest %.1f m/s of %.1f\n",
+           worst_rise, fastest, bound);
+    ENSURE(worst_rise <= 1e-6);
+    ENSURE(fastest <= bound);
+    ts_tether_free(&t);
+    ts_scene_free(&s);
+}
