@@ -7,7 +7,8 @@
 
 #define R 0.1
 
-/* A small pile: rows of particles dropped into a box of three walls. */
+/* A small pile: rows of touching particles (so one island, whatever gaps the
+ * settling leaves) dropped into a box of three walls. */
 static tt_world *pile(bool sleep, tt_particle *ids, uint32_t n)
 {
     tt_world_def d = tt_world_def_default();
@@ -26,7 +27,7 @@ static tt_world *pile(bool sleep, tt_particle *ids, uint32_t n)
     tt_shape_create(w, &g);
     for (uint32_t k = 0; k < n; k++) {
         tt_particle_def p = tt_particle_def_default();
-        p.position = (tt_vec2){-0.85 + (k % 8) * 2.2 * R + (k / 8 % 2) * 0.05, R + 0.02 + (k / 8) * 2.2 * R};
+        p.position = (tt_vec2){-0.85 + (k % 8) * 2.0 * R + (k / 8 % 2) * 0.05, R + 0.02 + (k / 8) * 2.2 * R};
         p.radius = R;
         ids[k] = tt_particle_create(w, &p);
     }
