@@ -363,10 +363,24 @@ tt_result tt_particle_apply_force(tt_world *w, tt_particle p, tt_vec2 f)
     return TT_OK;
 }
 
+/* Whether a kick of (dvx, dvy) on particle i is one to make: no larger than
+ * a velocity tt_particle_set_velocity accepts, and not leaving the particle
+ * past TT_DIVERGED between steps (an impulse on a very light particle did;
+ * the step's guard would only stop it then). A particle that integration
+ * made faster than TT_MAX_VALUE, as Euler can, still takes small kicks. */
+static bool kick_ok(const tt_world *w, uint32_t i, double dvx, double dvy)
+{
+    const tt_vec2 v = tt__velocity(w, i);
+    return tt__vec_ok((tt_vec2){dvx, dvy}) && fabs(v.x + dvx) <= TT_DIVERGED && fabs(v.y + dvy) <= TT_DIVERGED;
+}
+
 tt_result tt_particle_apply_impulse(tt_world *w, tt_particle p, tt_vec2 j)
 {
     CHECK("tt_particle_apply_impulse");
     if (!tt__vec_ok(j)) return tt__fail(w, TT_EINVAL, "tt_particle_apply_impulse: impulse must be finite, |j| <= %g", TT_MAX_VALUE);
+    if (!kick_ok(w, i, j.x * w->inv_mass[i], j.y * w->inv_mass[i]))
+        return tt__fail(w, TT_EINVAL, "tt_particle_apply_impulse: the velocity change j/m must be <= %g m/s and leave |v| <= %g (mass %g kg)",
+                        TT_MAX_VALUE, TT_DIVERGED, w->inv_mass[i] > 0.0 ? 1.0 / w->inv_mass[i] : 0.0);
     tt__sleep_touch(w, i);
     tt__add_velocity(w, i, j.x * w->inv_mass[i], j.y * w->inv_mass[i]);
     return TT_OK;
@@ -378,14 +392,18 @@ tt_result tt_world_explode(tt_world *w, tt_vec2 c, double radius, double impulse
     if (!tt__vec_ok(c)) return tt__fail(w, TT_EINVAL, "tt_world_explode: centre must be finite, |c| <= %g", TT_MAX_VALUE);
     if (!tt__in_range(radius, 0.0, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "tt_world_explode: radius must be in [0, %g], got %g", TT_MAX_VALUE, radius);
     if (!tt__in_range(impulse, -TT_MAX_VALUE, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "tt_world_explode: impulse must be finite, |j| <= %g", TT_MAX_VALUE);
-    tt__sleep_wake_aabb(w, c.x - radius, c.y - radius, c.x + radius, c.y + radius);
-    for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if (w->inv_mass[i] == 0.0) continue;
-        double dx = w->px[i] - c.x, dy = w->py[i] - c.y;
-        double d = sqrt(dx * dx + dy * dy);
-        if (!(d > 0.0 && d < radius)) continue;
-        double s = impulse * (1.0 - d / radius) * w->inv_mass[i] / d;
-        tt__add_velocity(w, i, s * dx, s * dy);
+    for (int pass = 0; pass < 2; pass++) { /* check every kick first: a refused explosion changes nothing */
+        if (pass) tt__sleep_wake_aabb(w, c.x - radius, c.y - radius, c.x + radius, c.y + radius);
+        for (uint32_t i = 0; i < w->ppool.count; i++) {
+            if (w->inv_mass[i] == 0.0) continue;
+            double dx = w->px[i] - c.x, dy = w->py[i] - c.y;
+            double d = sqrt(dx * dx + dy * dy);
+            if (!(d > 0.0 && d < radius)) continue;
+            double s = impulse * (1.0 - d / radius) * w->inv_mass[i] / d;
+            if (pass) tt__add_velocity(w, i, s * dx, s * dy);
+            else if (!kick_ok(w, i, s * dx, s * dy))
+                return tt__fail(w, TT_EINVAL, "tt_world_explode: the velocity change of particle %u must be <= %g m/s and leave |v| <= %g", i, TT_MAX_VALUE, TT_DIVERGED);
+        }
     }
     return TT_OK;
 }

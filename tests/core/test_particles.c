@@ -286,3 +286,30 @@ TEST(a_refused_create_with_user_data_leaves_the_hash)
     ENSURE(tt_world_hash(w) == h0);
     tt_world_destroy(w);
 }
+
+/* Found by the C fuzzer (seed 1796183327, call 38006): an impulse of 1e9 N·s
+ * on a particle of 1e-9 kg left it at 1e18 m/s, past TT_DIVERGED, until the
+ * next step stopped it. An impulse (or an explosion) is refused when its
+ * change of velocity is one tt_particle_set_velocity would refuse, or when
+ * it leaves the particle past TT_DIVERGED; the world is left as it was. */
+TEST(an_impulse_past_the_velocity_limit_is_refused)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.mass = 1e-9;
+    tt_particle light = tt_particle_create(w, &pd);
+    pd.mass = 1;
+    pd.position = (tt_vec2){0.5, 0};
+    tt_particle heavy = tt_particle_create(w, &pd);
+    ENSURE(light.gen && heavy.gen);
+    const uint64_t h = tt_world_hash(w);
+    ENSURE(tt_particle_apply_impulse(w, light, (tt_vec2){1e9, 0}) == TT_EINVAL);
+    ENSURE(strstr(tt_last_error(w), "velocity") != NULL);
+    ENSURE(tt_world_explode(w, (tt_vec2){-0.1, 0}, 2.0, 1e9) == TT_EINVAL);
+    ENSURE(tt_world_hash(w) == h);
+    ENSURE_OK(tt_particle_apply_impulse(w, heavy, (tt_vec2){1e9, 0})); /* 1e9 m/s: within the limit */
+    tt_vec2 v;
+    ENSURE_OK(tt_particle_get_velocity(w, heavy, &v));
+    ENSURE(v.x == 1e9);
+    tt_world_destroy(w);
+}
