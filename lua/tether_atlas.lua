@@ -42,7 +42,8 @@ local function median(v)
   table.sort(s)
   local n = #s
   if n == 0 then return 0 / 0 end
-  return n % 2 == 1 and s[(n + 1) // 2] or 0.5 * (s[n // 2] + s[n // 2 + 1])
+  local h = math.floor(n / 2) -- (no // : the atlas runs under LuaJIT too)
+  return n % 2 == 1 and s[h + 1] or 0.5 * (s[h] + s[h + 1])
 end
 atlas.median = median
 
@@ -184,9 +185,9 @@ local function plot_script(scene, dir, labels)
     q(dir .. "/" .. scene.name .. ".front")) }
   for i, l in ipairs(labels) do
     -- gnuplot cycles 8 colours: past them, another point shape and dashes tell lines apart
-    local shape = ({ 7, 5, 9, 11, 13 })[((i - 1) // 8) % 5 + 1]
+    local shape = ({ 7, 5, 9, 11, 13 })[math.floor((i - 1) / 8) % 5 + 1]
     parts[#parts + 1] = ("%s index %d using 1:2 with linespoints lw 1.5 dt %d pt %d ps 0.7 title %s"):format(q(data), i - 1,
-      ((i - 1) // 8) % 5 + 1, shape, q(l))
+      math.floor((i - 1) / 8) % 5 + 1, shape, q(l))
   end
   out[#out + 1] = "plot " .. table.concat(parts, ", \\\n  ")
   return table.concat(out, "\n") .. "\n"

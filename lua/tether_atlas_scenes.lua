@@ -341,7 +341,7 @@ function S.pour(q)
         w:set_shape_material(s, 0, 0.3)
       end
       for i = 0, n - 1 do
-        local row, col = i // 89, i % 89
+        local row, col = math.floor(i / 89), i % 89
         local x = -48.4 + 1.1 * col + (row % 2 == 1 and 0.05 or 0)
         w:particle(x, 0.55 + 1.1 * row, { radius = 0.5 })
       end

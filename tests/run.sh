@@ -205,8 +205,6 @@ else
         case "$t" in
         # the runner's frames
         tests/lua/test_render.lua) continue ;;
-        # the atlas is a Lua 5.4 tool of the runner (integer division)
-        tests/lua/test_atlas.lua) continue ;;
         esac
         # shellcheck disable=SC2086
         run_counted "luajit$lj_note: $t" env $lj_env LUA_CPATH="$BUILD/luajit/?.so" luajit "$t"

@@ -2,7 +2,7 @@
 -- point of every reference scene is in the CSV with finite numbers, the
 -- Pareto front is marked, and the known answers hold where the method is
 -- exact (Verlet's projectile) or accurate (RK4's orbit).
--- Runs under the runner and stock Lua 5.4, from the repository root.
+-- Runs under the runner, stock Lua 5.4 and LuaJIT, from the repository root.
 package.path = "tests/lua/?.lua;lua/?.lua;" .. package.path
 local T = require "harness"
 local atlas = require "tether_atlas"
