@@ -16,11 +16,17 @@ static inline double at(const tt__terrain *T, int x, int y)
     return T->sdf[(size_t)y * (size_t)m->w + (size_t)x];
 }
 
+/* A pixel index from a floored coordinate f of a side of n pixels: clamped
+ * to just outside it first, where every index reads the band the same, so a
+ * coordinate billions of pixels away (a big particle beside tiny pixels) is
+ * never cast to an int it does not fit. */
+static inline int pix(double f, int n) { return f < -2.0 ? -2 : f > n + 1.0 ? n + 1 : (int)f; }
+
 /* Bilinear in pixel-centre coordinates (u, v). */
 static double bilinear(const tt__terrain *T, double u, double v)
 {
     const double fu = floor(u), fv = floor(v), a = u - fu, b = v - fv;
-    const int x = (int)fu, y = (int)fv;
+    const int x = pix(fu, T->m->w), y = pix(fv, T->m->h);
     const double s00 = at(T, x, y), s10 = at(T, x + 1, y), s01 = at(T, x, y + 1), s11 = at(T, x + 1, y + 1);
     return (s00 * (1.0 - a) + s10 * a) * (1.0 - b) + (s01 * (1.0 - a) + s11 * a) * b;
 }
@@ -63,7 +69,7 @@ static void search_out(const tt__terrain *T, double x, double y, double r, tt__h
 {
     const double s = T->def.pixel, B = T->def.band;
     const double cu = (x - T->def.origin.x) * T->inv, cv = (T->def.origin.y - y) * T->inv;
-    const int px = (int)floor(cu), py = (int)floor(cv);
+    const int px = pix(floor(cu), T->m->w), py = pix(floor(cv), T->m->h);
     for (int k = 1; k <= 2 * (int)B; k++) {
         double best = INFINITY, bx = 0.0, by = 0.0;
         for (int j = -k; j <= k; j++)
@@ -150,7 +156,7 @@ bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
                 continue;
             /* the band at the nearest pixel centre: within a pixel of the sample, whose slope is at most 1 */
             const double u = (x - T->def.origin.x) * T->inv, v = (T->def.origin.y - y) * T->inv;
-            if ((at(T, (int)floor(u), (int)floor(v)) - 1.0) * T->def.pixel > reach) continue;
+            if ((at(T, pix(floor(u), T->m->w), pix(floor(v), T->m->h)) - 1.0) * T->def.pixel > reach) continue;
             const uint32_t code = TT__PRIM_TERRAIN | k;
             if (c->ccd_prim && i < c->bulletcap && c->ccd_prim[i] == (int32_t)code) continue; /* the sweep has it */
             tt__hit hit;

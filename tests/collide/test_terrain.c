@@ -135,6 +135,29 @@ TEST(terrain_carve_wakes_a_ball_asleep_on_it)
     tt_world_destroy(w);
 }
 
+/* Found by the C fuzzer (make fuzz SANITIZE=1, seed 1796184749): a big
+ * particle beside a terrain of tiny pixels is within reach of it while its
+ * centre is billions of pixels away, and the pixel index was cast to int
+ * unclamped (UBSan float-cast-overflow: the SANITIZE=1 build is the check). */
+TEST(terrain_far_big_particle_beside_tiny_pixels)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_mask *m = floor_mask();
+    tt_terrain_def td = tt_terrain_def_default();
+    td.solid = m;
+    td.pixel = 1e-6;
+    tt_terrain t = tt_terrain_create(w, &td);
+    tt_mask_destroy(m);
+    ENSURE(tt_terrain_is_valid(w, t));
+    tt_particle p = ball(w, -5000.0, 0.0, 1e4, 0.0);
+    ENSURE(p.gen != 0);
+    for (int k = 0; k < 3; k++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    ENSURE(isfinite(x.x) && isfinite(x.y));
+    tt_world_destroy(w);
+}
+
 TEST(terrain_snapshot_carve_restore_is_bit_exact)
 {
     tt_world_def wd = tt_world_def_default();

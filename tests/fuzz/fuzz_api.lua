@@ -302,7 +302,9 @@ function tether.update()
   for _ = 1, 20 do
     if over() then done = true; break end
     local w, ws = world_src()
-    if F.alive(w) and w:count() > 600 then -- big worlds only slow the calls down
+    -- pcall: a finalizer run by the string alive() makes may destroy the world before count
+    local big = F.alive(w) and select(2, pcall(w.count, w))
+    if type(big) == "number" and big > 600 then -- big worlds only slow the calls down
       emit("world.destroy", 1, { w }, { ws })
     elseif rand(10) == 1 then
       one_call("tether", nil, nil)
