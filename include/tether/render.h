@@ -115,6 +115,9 @@ TT_API tt_result tt_canvas_draw_world(tt_canvas *c, const tt_world *w, const tt_
 TT_API tt_image *tt_image_create(int width, int height);
 /// Reads a PNG file (any colour type, converted to RGBA); NULL with a message in err on failure.
 TT_API tt_image *tt_image_load_png(const char *path, char *err, size_t err_size);
+/// Frees an image; one a canvas recorded since its last clear stays until
+/// that canvas (the last that holds it) is cleared or destroyed, so the frame
+/// being recorded still draws it.
 TT_API void tt_image_destroy(tt_image *img);
 TT_API void tt_image_size(const tt_image *img, int *width, int *height);
 /// The pixels, RGBA, rows top to bottom, width·4 bytes per row. Call tt_image_touch after changing them.

@@ -61,9 +61,12 @@ tt_canvas *tt_canvas_create(int width, int height)
     return c;
 }
 
+static void release_images(tt_canvas *c);
+
 void tt_canvas_destroy(tt_canvas *c)
 {
     if (!c) return;
+    release_images(c);
     for (int l = 0; l < 2; l++) {
         free(c->layers[l].tris.v);
         free(c->layers[l].circles.v);
@@ -93,16 +96,36 @@ void tt_canvas_size(const tt_canvas *c, int *width, int *height)
     if (height) *height = c ? c->height : 0;
 }
 
+static void image_free(tt_image *img)
+{
+    free(img->rgba);
+    free(img);
+}
+
+/* The canvas lets go of the images it recorded: one destroyed meanwhile is
+ * freed by the last canvas that held it. */
+static void release_images(tt_canvas *c)
+{
+    for (int l = 0; l < 2; l++) {
+        tt__layer *L = &c->layers[l];
+        for (size_t i = 0; i < L->images.n; i++) {
+            tt_image *img = L->images.v[i].img;
+            if (--img->held == 0 && img->doomed) image_free(img);
+        }
+        L->images.n = 0;
+    }
+}
+
 void tt_canvas_clear(tt_canvas *c, tt_color background)
 {
     if (!c) return;
     c->background = background;
+    release_images(c);
     for (int l = 0; l < 2; l++) {
         c->layers[l].tris.n = 0;
         c->layers[l].circles.n = 0;
         c->layers[l].points.n = 0;
         c->layers[l].text.n = 0;
-        c->layers[l].images.n = 0;
     }
     c->oom = false;
 }
@@ -420,6 +443,7 @@ tt_result tt_canvas_image(tt_canvas *c, tt_image *img, tt_vec2 lo, tt_vec2 hi)
     if (!RESERVE(L->images, 1)) return oom(c, "tt_canvas_image");
     tt__imgdraw *d = &L->images.v[L->images.n++];
     d->img = img;
+    img->held++; /* until the next clear: a destroy meanwhile waits for it (release_images) */
     /* image row 0 is its top: in the world layer (y up) the top is at hi.y, on the screen at lo.y */
     double top = c->layer == TT_LAYER_WORLD ? hi.y : lo.y, bottom = c->layer == TT_LAYER_WORLD ? lo.y : hi.y;
     tt_vec2 corner[4] = {{lo.x, top}, {hi.x, top}, {hi.x, bottom}, {lo.x, bottom}};
@@ -462,8 +486,8 @@ tt_image *tt_image_create(int width, int height)
 void tt_image_destroy(tt_image *img)
 {
     if (!img) return;
-    free(img->rgba);
-    free(img);
+    if (img->held) img->doomed = true; /* a canvas still draws it this frame: freed when it lets go */
+    else image_free(img);
 }
 
 void tt_image_size(const tt_image *img, int *width, int *height)

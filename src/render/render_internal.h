@@ -71,6 +71,8 @@ struct tt_image {
     uint8_t *rgba;
     uint64_t id;              /* unique per image, for the back ends' texture caches */
     uint32_t version;         /* bumped by tt_image_touch */
+    uint32_t held;            /* records of it in canvases since their last clear */
+    bool doomed;              /* destroyed while held: the last canvas to let go frees it */
 };
 
 /* The built-in font: 9 rows per glyph (7 above the baseline, 2 of descenders),

@@ -371,3 +371,43 @@ TEST(headless_frame_batches_one_draw_call_per_kind)
     tt_canvas_destroy(c);
     tt_headless_destroy(hl);
 }
+
+/* Found by the Lua fuzzer (seed 1796185241, and once before unreproduced,
+ * seed 1796171466): an image destroyed after a canvas recorded it for the
+ * frame (a script's finalizer, or img:__gc() called by hand) was read by the
+ * frame's draw after it was freed. The canvas now holds what it records:
+ * the image is freed when the last canvas holding it is cleared or
+ * destroyed, and the frame shows it as it was. (ASan, in the SANITIZE=1
+ * build, is what sees a read after free.) */
+TEST(an_image_destroyed_while_a_canvas_holds_it_is_drawn_then_freed)
+{
+    tt_headless *hl = tt_headless_create(8, 8, NULL, 0);
+    ENSURE(hl != NULL);
+    tt_canvas *c = tt_canvas_create(8, 8);
+    tt_canvas_clear(c, (tt_color){0, 0, 0, 255});
+    ENSURE_OK(tt_canvas_set_layer(c, TT_LAYER_SCREEN));
+    tt_image *img = tt_image_create(2, 2);
+    ENSURE(img != NULL);
+    uint8_t *px = tt_image_pixels(img);
+    for (int i = 0; i < 4; i++) px[4 * i] = 255, px[4 * i + 3] = 255; /* red */
+    tt_canvas_set_color(c, (tt_color){255, 255, 255, 255});
+    ENSURE_OK(tt_canvas_image(c, img, (tt_vec2){0, 0}, (tt_vec2){8, 8}));
+    tt_image_destroy(img); /* held by the canvas: freed at its clear */
+    ENSURE_OK(tt_headless_render(hl, c));
+    int pw, ph;
+    const uint8_t *out = tt_headless_pixels(hl, &pw, &ph);
+    ENSURE(out[0] == 255 && out[1] == 0); /* drawn as it was */
+    tt_canvas_clear(c, (tt_color){0, 0, 0, 255}); /* frees it */
+    ENSURE_OK(tt_headless_render(hl, c));
+    /* and held by two canvases, one destroyed: freed with the other */
+    tt_canvas *d = tt_canvas_create(8, 8);
+    img = tt_image_create(2, 2);
+    ENSURE(img != NULL);
+    ENSURE_OK(tt_canvas_image(c, img, (tt_vec2){0, 0}, (tt_vec2){8, 8}));
+    ENSURE_OK(tt_canvas_image(d, img, (tt_vec2){0, 0}, (tt_vec2){8, 8}));
+    tt_image_destroy(img);
+    tt_canvas_destroy(d);
+    ENSURE_OK(tt_headless_render(hl, c));
+    tt_canvas_destroy(c);
+    tt_headless_destroy(hl);
+}
