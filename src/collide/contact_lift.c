@@ -28,8 +28,6 @@
  * rattling (KE 3.5e-2 J/kg at the end, against 3.9e-5 with every pair). */
 #include "collide_internal.h"
 
-#include <stdlib.h>
-
 /* The separation speed the pair allows, from its pre-solve relative normal
  * speed vn0: a bounce after an impact, else no more than it had. */
 static inline double allowed(double vn0, double e, double thr) { return vn0 < -thr ? -e * vn0 : vn0 > 0.0 ? vn0 : 0.0; }
@@ -94,9 +92,8 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
     }
     if (nt == 0) return;
     /* bands half a typical contact tall: a pair's lower particle sits in a band below its upper one's pairs */
-    const double band = 0.5 * rsum / nt;
-    uint64_t nb64 = band > 0.0 && hmax > hmin ? (uint64_t)((hmax - hmin) / band) + 1 : 1;
-    const uint32_t nb = nb64 > nt ? nt : (uint32_t)nb64;
+    const double band = 0.5 * rsum / nt, spread = band > 0.0 ? (hmax - hmin) / band : 0.0;
+    const uint32_t nb = !(spread < nt) ? nt : (uint32_t)spread + 1; /* compared first: a far pile's spread fits no integer */
     const double scale = hmax > hmin ? (nb - 1) / (hmax - hmin) * (1.0 - 1e-12) : 0.0;
     uint32_t *start = c->lift_start, *order = c->lift_order;
     for (uint32_t k = 0; k <= nb; k++) start[k] = 0;
