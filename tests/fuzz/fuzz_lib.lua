@@ -27,9 +27,10 @@ function F.fail(fmt, ...)
   error("FUZZ FAILURE: " .. string.format(fmt, ...), 0)
 end
 
--- m:save writes a file wherever its path says, and the fuzzer's paths are
--- strings such as "x" or "1": each goes under FUZZ_OUT (default /tmp) as
--- fuzz-<path>, never into the working tree.
+-- m:save and w:save write a file wherever their path says, and the
+-- fuzzer's paths are strings such as "x" or "1": each goes under FUZZ_OUT
+-- (default /tmp) as fuzz-<path>, never into the working tree (w:save, new
+-- with snapshot files, once left "nan", "rk4", "42" … in the repository root).
 local SAVE_DIR = os.getenv("FUZZ_OUT") or "/tmp"
 local function confined_save(save)
   return function(m, path, ...)
@@ -44,7 +45,8 @@ end
 function F.register(prefix, t)
   for k, v in pairs(t) do
     if type(v) == "function" then
-      F.fns[prefix .. "." .. k] = (prefix == "masks" and k == "save") and confined_save(v) or v
+      local writes = k == "save" and (prefix == "masks" or prefix == "world")
+      F.fns[prefix .. "." .. k] = writes and confined_save(v) or v
     end
   end
 end
