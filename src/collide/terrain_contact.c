@@ -128,21 +128,6 @@ static inline bool filter(const tt_world *w, const tt__terrain *T, uint32_t a)
     return (w->category[a] & T->def.mask) && (T->def.category & w->mask[a]);
 }
 
-/* Room for one more static contact (the contacts group's array, grown as
- * tt__grow grows it: this file calls nothing of the group's, so that the
- * group may call it). */
-static bool room(tt__collide *c)
-{
-    if (c->nsc < c->sccap) return true;
-    uint32_t cap = c->sccap ? c->sccap * 2 : 16;
-    if (cap <= c->sccap) return false;
-    tt__scontact *p = realloc(c->sc, (size_t)cap * sizeof *p);
-    if (!p) return false;
-    c->sc = p;
-    c->sccap = cap;
-    return true;
-}
-
 bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
 {
     const tt__terrains *ts = c->terr;
@@ -162,7 +147,7 @@ bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
             tt__hit hit;
             tt__terrain_hit(c, code, x, y, r, &hit);
             if (hit.depth <= -m) continue;
-            if (!room(c)) return false;
+            if (!tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) return false;
             c->sc[c->nsc++] = (tt__scontact){i, code, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0.0, 0.0, 0};
         }
     }
