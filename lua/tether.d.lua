@@ -988,11 +988,13 @@ function tether.gfx.image(img, x1, y1, x2, y2) end
 ---@class tether.draw_options
 ---@field particles? boolean default true
 ---@field springs? boolean default true; coloured by strain
+---@field constraints? boolean default true
+---@field shapes? boolean default true
 ---@field color? number[] {r, g, b [, a]} of particles
 ---@field pinned? number[] {r, g, b [, a]} of pinned particles
 ---@field min_radius? number px, in [0, 1000]; default 1.5
 
----Debug draw of the whole world (springs, particles) on the world layer;
+---Debug draw of the whole world (shapes, springs, constraints, particles) on the world layer;
 ---the world becomes draggable with the mouse in the window.
 ---@param opts? tether.draw_options
 function world:draw(opts) end
@@ -1104,7 +1106,9 @@ function tether.mask.polygon(points) end
 ---@field pixel? number metres per pixel; default 1
 ---@field tolerance? number pixels; default 0.5
 ---@field restitution? number
----@field friction? number
+---@field friction? number sets both frictions
+---@field friction_static? number
+---@field friction_kinetic? number
 ---@field category? integer
 ---@field mask? integer
 ---@field sensor? boolean

@@ -20,18 +20,22 @@ static tt_clock *check_clock(lua_State *L, int arg)
     return c;
 }
 
-static const char *const clock_opts[] = {"dt", "max_steps", "scale", NULL};
+typedef struct clock_def { double dt; uint32_t max_steps; double scale; } clock_def;
+static const tl_opt clock_opts[] = {
+    TL_OPT_NUM(clock_def, "dt", dt, &TL_R_DT),
+    TL_OPT_UINT(clock_def, "max_steps", max_steps, 1, 1000000),
+    TL_OPT_NUM(clock_def, "scale", scale, &R_SCALE),
+    TL_OPT_END,
+};
 
 /* tether.clock([opts]) → clock: dt (s, default 1/60), max_steps (default 8), scale (default 1) */
 static int clock_new(lua_State *L)
 {
-    tl_checkopts(L, 1, clock_opts);
-    double dt = tl_optfield_number(L, 1, "dt", &TL_R_DT, 1.0 / 60.0);
-    lua_Integer max_steps = tl_optfield_integer(L, 1, "max_steps", 1, 1000000, 8);
-    double scale = tl_optfield_number(L, 1, "scale", &R_SCALE, 1.0);
+    clock_def d = {1.0 / 60.0, 8, 1.0};
+    tl_readopts(L, 1, clock_opts, &d);
     tt_clock *c = lua_newuserdatauv(L, sizeof *c, 0);
-    tt_clock_init(c, dt, (uint32_t)max_steps);
-    tt_clock_set_scale(c, scale);
+    tt_clock_init(c, d.dt, d.max_steps);
+    tt_clock_set_scale(c, d.scale);
     luaL_setmetatable(L, TL_CLOCK_CLASS);
     return 1;
 }

@@ -6,8 +6,6 @@
 
 #include <string.h>
 
-#define TL_R_UNIT (&tl_r_unit)
-static const tl_range tl_r_unit = {0.0, 1.0, false};
 static const tl_range tl_r_pos = {0.0, TT_MAX_VALUE, true};
 
 static tt_shape check_shape(lua_State *L, tt_world *w, int arg)
@@ -18,21 +16,19 @@ static tt_shape check_shape(lua_State *L, tt_world *w, int arg)
 
 /* --- shapes ----------------------------------------------------------------- */
 
-static const char *const shape_opts[] = {"restitution", "friction_static", "friction_kinetic", "friction", "category",
-                                         "mask", "sensor", "angle", "loop", NULL};
+static const tl_opt shape_opts[] = {
+    TL_SURFACE_OPTS(tt_shape_def, ),
+    TL_FILTER_OPTS(tt_shape_def, ),
+    TL_OPT_FLAG(tt_shape_def, "sensor", sensor),
+    TL_OPT_BYHAND("angle"), /* only some shapes take these two */
+    TL_OPT_BYHAND("loop"),
+    TL_OPT_END,
+};
 
 /* Common options of every shape constructor; opts at arg. */
 static void shape_options(lua_State *L, int arg, tt_shape_def *d, bool angle, bool loop)
 {
-    tl_checkopts(L, arg, shape_opts);
-    d->restitution = tl_optfield_number(L, arg, "restitution", TL_R_UNIT, d->restitution);
-    double f = tl_optfield_number(L, arg, "friction", &TL_R_NONNEG, -1.0);
-    if (f >= 0.0) d->friction_static = d->friction_kinetic = f;
-    d->friction_static = tl_optfield_number(L, arg, "friction_static", &TL_R_NONNEG, d->friction_static);
-    d->friction_kinetic = tl_optfield_number(L, arg, "friction_kinetic", &TL_R_NONNEG, d->friction_kinetic);
-    d->category = (uint16_t)tl_optfield_integer(L, arg, "category", 0, 0xFFFF, d->category);
-    d->mask = (uint16_t)tl_optfield_integer(L, arg, "mask", 0, 0xFFFF, d->mask);
-    d->sensor = tl_optfield_boolean(L, arg, "sensor", d->sensor);
+    tl_readopts(L, arg, shape_opts, d);
     if (tl_getopt(L, arg, "angle")) {
         lua_pop(L, 1);
         if (!angle) tl_error(L, "option 'angle' is not valid for this shape (only box and polygon turn)");
@@ -224,7 +220,7 @@ static int w_set_shape_material(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     tt_shape s = check_shape(L, w, 2);
-    double e = tl_checknumber(L, 3, TL_R_UNIT), fs = tl_checknumber(L, 4, &TL_R_NONNEG);
+    double e = tl_checknumber(L, 3, &TL_R_UNIT), fs = tl_checknumber(L, 4, &TL_R_NONNEG);
     double fk = tl_optnumber(L, 5, &TL_R_NONNEG, fs);
     tl_check_result(L, w, tt_shape_set_material(w, s, e, fs, fk));
     return 0;
@@ -262,31 +258,27 @@ static int w_shape_aabb(lua_State *L)
 
 /* --- settings ----------------------------------------------------------------- */
 
-static const char *const collision_opts[] = {"particles", "broadphase", "cell_size", "restitution", "friction_static",
-                                             "friction_kinetic", "friction", "restitution_threshold", "events", NULL};
 static const char *const broadphases[] = {"grid", "brute", NULL};
 static const char *const event_names[] = {"begin", "persist", "end", NULL};
+static const tl_opt collision_opts[] = {
+    TL_OPT_FLAG(tt_collision_settings, "particles", particles),
+    TL_OPT_CHOICE(tt_collision_settings, "broadphase", broadphase, "broadphase", broadphases),
+    TL_OPT_NUM(tt_collision_settings, "cell_size", cell_size, &TL_R_NONNEG),
+    TL_SURFACE_OPTS(tt_collision_settings, ),
+    TL_OPT_NUM(tt_collision_settings, "restitution_threshold", restitution_threshold, &TL_R_NONNEG),
+    TL_OPT_BYHAND("events"),
+    TL_OPT_END,
+};
 
 /* w:set_collision([opts]) — switches collisions on; unset options keep their current value */
 static int w_set_collision(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     lua_settop(L, 2);
-    tl_checkopts(L, 2, collision_opts);
     tt_collision_settings s;
     tt_world_get_collision(w, &s);
-    s.particles = tl_optfield_boolean(L, 2, "particles", true);
-    s.broadphase = (tt_broadphase)tl_optfield_option(L, 2, "broadphase", "broadphase", broadphases, (int)s.broadphase);
-    s.cell_size = tl_optfield_number(L, 2, "cell_size", &TL_R_NONNEG, s.cell_size);
-    s.restitution = tl_optfield_number(L, 2, "restitution", TL_R_UNIT, s.restitution);
-    double f = tl_optfield_number(L, 2, "friction", &TL_R_NONNEG, -1.0);
-    if (f >= 0.0) s.friction_static = s.friction_kinetic = f;
-    s.friction_static = tl_optfield_number(L, 2, "friction_static", &TL_R_NONNEG, s.friction_static);
-    s.friction_kinetic = tl_optfield_number(L, 2, "friction_kinetic", &TL_R_NONNEG, s.friction_kinetic);
-    if (tl_getopt(L, 2, "restitution_threshold")) {
-        lua_pop(L, 1);
-        s.restitution_threshold = tl_optfield_number(L, 2, "restitution_threshold", &TL_R_NONNEG, 0.0);
-    }
+    s.particles = true; /* unlike the others, not kept: set_collision{} switches particle pairs on */
+    tl_readopts(L, 2, collision_opts, &s);
     if (tl_getopt(L, 2, "events")) {
         if (lua_type(L, -1) != LUA_TTABLE)
             tl_error(L, "bad option 'events' (array of 'begin', 'persist', 'end' expected, got %s)", luaL_typename(L, -1));
@@ -362,7 +354,7 @@ static int w_set_material(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     tt_particle p = tl_check_particle(L, w, 2);
-    double e = tl_checknumber(L, 3, TL_R_UNIT), fs = tl_checknumber(L, 4, &TL_R_NONNEG);
+    double e = tl_checknumber(L, 3, &TL_R_UNIT), fs = tl_checknumber(L, 4, &TL_R_NONNEG);
     double fk = tl_optnumber(L, 5, &TL_R_NONNEG, fs);
     tl_check_result(L, w, tt_particle_set_material(w, p, e, fs, fk));
     return 0;

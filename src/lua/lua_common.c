@@ -9,6 +9,7 @@
 
 const tl_range TL_R_COORD = { -TL_MAX_ABS, TL_MAX_ABS, false };
 const tl_range TL_R_NONNEG = { 0.0, TL_MAX_POS, false };
+const tl_range TL_R_UNIT = { 0.0, 1.0, false };
 const tl_range TL_R_MASS = { TL_MIN_MASS, TL_MAX_MASS, false };
 const tl_range TL_R_DT = { TT_MIN_DT, TL_MAX_DT, false };
 
@@ -134,8 +135,7 @@ bool tl_tonumber_in(lua_State *L, int idx, const tl_range *r, double *out)
     return true;
 }
 
-/* An integer-valued number inside [lo, hi]; otherwise pushes a message. */
-static bool tointeger_in(lua_State *L, int idx, lua_Integer lo, lua_Integer hi, lua_Integer *out)
+bool tl_tointeger_in(lua_State *L, int idx, lua_Integer lo, lua_Integer hi, lua_Integer *out)
 {
     int isint = 0;
     lua_Integer v;
@@ -173,7 +173,7 @@ double tl_optnumber(lua_State *L, int arg, const tl_range *r, double def)
 lua_Integer tl_checkinteger(lua_State *L, int arg, lua_Integer lo, lua_Integer hi)
 {
     lua_Integer v = 0;
-    if (!tointeger_in(L, arg, lo, hi, &v))
+    if (!tl_tointeger_in(L, arg, lo, hi, &v))
         tl_argerror(L, arg, "%s", lua_tostring(L, -1));
     return v;
 }
@@ -208,8 +208,7 @@ const char *tl_optstring(lua_State *L, int arg, const char *def)
     return lua_tostring(L, arg);
 }
 
-/* Pushes "'a', 'b', 'c'". */
-static void push_choices(lua_State *L, const char *const list[])
+void tl_push_choices(lua_State *L, const char *const list[])
 {
     luaL_Buffer b;
     luaL_buffinit(L, &b);
@@ -235,7 +234,7 @@ int tl_checkoption(lua_State *L, int arg, const char *what, const char *def, con
     for (int i = 0; list[i] != NULL; i++)
         if (strcmp(list[i], name) == 0)
             return i;
-    push_choices(L, list);
+    tl_push_choices(L, list);
     return tl_argerror(L, arg, "invalid %s '%s', expected one of: %s", what, name, lua_tostring(L, -1));
 }
 
@@ -246,154 +245,4 @@ bool tl_opttable(lua_State *L, int arg)
     if (lua_type(L, arg) != LUA_TTABLE)
         tl_typeerror(L, arg, "table or nil");
     return true;
-}
-
-/* --- option tables --------------------------------------------------------- */
-
-/* Pushes how an unknown option key is named in the message: as tostring
- * writes it, but never through the key's own __tostring, whose error or
- * odd answer would hide the message. Converts a copy: lua_tostring on the
- * key itself would change a number key in place and confuse lua_next. */
-static void push_key(lua_State *L, int idx)
-{
-    idx = lua_absindex(L, idx);
-    switch (lua_type(L, idx)) {
-    case LUA_TSTRING:
-    case LUA_TNUMBER:
-        lua_pushvalue(L, idx);
-        lua_tostring(L, -1);
-        break;
-    case LUA_TBOOLEAN:
-        lua_pushstring(L, lua_toboolean(L, idx) ? "true" : "false");
-        break;
-    default: {
-        const char *type = tl_pushtypename(L, idx);
-        lua_pushfstring(L, "%s: %p", type, lua_topointer(L, idx));
-        lua_remove(L, -2);
-    }
-    }
-}
-
-bool tl_checkopts(lua_State *L, int arg, const char *const keys[])
-{
-    if (!tl_opttable(L, arg))
-        return false;
-    lua_pushnil(L);
-    while (lua_next(L, arg) != 0) {
-        bool known = false;
-        lua_pop(L, 1); /* the value */
-        if (lua_type(L, -1) == LUA_TSTRING) {
-            const char *k = lua_tostring(L, -1);
-            for (int i = 0; keys[i] != NULL && !known; i++)
-                known = strcmp(keys[i], k) == 0;
-        }
-        if (!known) {
-            push_key(L, -1);
-            push_choices(L, keys);
-            tl_error(L, "unknown option '%s' (expected one of: %s)", lua_tostring(L, -2), lua_tostring(L, -1));
-        }
-    }
-    return true;
-}
-
-bool tl_getopt(lua_State *L, int arg, const char *key)
-{
-    if (lua_type(L, arg) != LUA_TTABLE)
-        return false;
-    if (lua_getfield(L, arg, key) == LUA_TNIL) {
-        lua_pop(L, 1);
-        return false;
-    }
-    return true;
-}
-
-/* Raises "fname: bad option 'key' (<message on top of the stack>)". */
-static int opterror(lua_State *L, const char *key)
-{
-    return tl_error(L, "bad option '%s' (%s)", key, lua_tostring(L, -1));
-}
-
-double tl_optfield_number(lua_State *L, int arg, const char *key, const tl_range *r, double def)
-{
-    double v = def;
-    if (!tl_getopt(L, arg, key))
-        return def;
-    if (!tl_tonumber_in(L, -1, r, &v))
-        opterror(L, key);
-    lua_pop(L, 1);
-    return v;
-}
-
-lua_Integer tl_optfield_integer(lua_State *L, int arg, const char *key, lua_Integer lo, lua_Integer hi, lua_Integer def)
-{
-    lua_Integer v = def;
-    if (!tl_getopt(L, arg, key))
-        return def;
-    if (!tointeger_in(L, -1, lo, hi, &v))
-        opterror(L, key);
-    lua_pop(L, 1);
-    return v;
-}
-
-bool tl_optfield_boolean(lua_State *L, int arg, const char *key, bool def)
-{
-    bool v;
-    if (!tl_getopt(L, arg, key))
-        return def;
-    if (lua_type(L, -1) != LUA_TBOOLEAN) {
-        tl_push_expected(L, -1, "boolean", false);
-        opterror(L, key);
-    }
-    v = lua_toboolean(L, -1) != 0;
-    lua_pop(L, 1);
-    return v;
-}
-
-tt_vec2 tl_optfield_vec2(lua_State *L, int arg, const char *key, const tl_range *r, tt_vec2 def)
-{
-    tt_vec2 v = def;
-    int t;
-    if (!tl_getopt(L, arg, key))
-        return def;
-    t = lua_gettop(L);
-    if (lua_type(L, t) != LUA_TTABLE) {
-        tl_push_expected(L, t, "table {x, y}", false);
-        opterror(L, key);
-    }
-    for (int i = 1; i <= 2; i++) {
-        double c = 0.0;
-        lua_rawgeti(L, t, i);
-        if (!tl_tonumber_in(L, -1, r, &c)) {
-            lua_pushfstring(L, "index %d: %s", i, lua_tostring(L, -1));
-            opterror(L, key);
-        }
-        lua_pop(L, 1);
-        if (i == 1) v.x = c; else v.y = c;
-    }
-    lua_rawgeti(L, t, 3);
-    if (!lua_isnil(L, -1)) {
-        lua_pushliteral(L, "table {x, y} of exactly two numbers expected");
-        opterror(L, key);
-    }
-    lua_pop(L, 2);
-    return v;
-}
-
-int tl_optfield_option(lua_State *L, int arg, const char *key, const char *what, const char *const list[], int def_index)
-{
-    const char *name;
-    if (!tl_getopt(L, arg, key))
-        return def_index;
-    if (lua_type(L, -1) != LUA_TSTRING) {
-        tl_push_expected(L, -1, "string", false);
-        opterror(L, key);
-    }
-    name = lua_tostring(L, -1);
-    for (int i = 0; list[i] != NULL; i++)
-        if (strcmp(list[i], name) == 0) {
-            lua_pop(L, 1);
-            return i;
-        }
-    push_choices(L, list);
-    return tl_error(L, "invalid %s '%s', expected one of: %s", what, name, lua_tostring(L, -1));
 }

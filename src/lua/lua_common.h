@@ -14,6 +14,7 @@
 #define TETHER_LUA_COMMON_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include <lua.h>
@@ -42,6 +43,7 @@ typedef struct tl_range {
 /* Ready-made ranges. */
 extern const tl_range TL_R_COORD;  /* [-1e12, 1e12]: positions, velocities, forces, impulses, gravity, wind */
 extern const tl_range TL_R_NONNEG; /* [0, 1e12]: radius, stiffness, damping, rest length */
+extern const tl_range TL_R_UNIT;   /* [0, 1]: stiffness, restitution, colour channels */
 extern const tl_range TL_R_MASS;   /* [1e-9, 1e9] */
 extern const tl_range TL_R_DT;     /* [1e-9, 10] */
 
@@ -88,17 +90,62 @@ int tl_checkoption(lua_State *L, int arg, const char *what, const char *def, con
 /* Nothing, nil or a table: returns true for a table. */
 bool tl_opttable(lua_State *L, int arg);
 
-/* --- option tables --------------------------------------------------------- */
+/* --- option tables (lua_options.c) -------------------------------------------
+ * Each option table a binding accepts is one tl_opt array, ended by
+ * TL_OPT_END: key, kind, range, and where the value goes in the C
+ * definition struct that the binding filled with its defaults first
+ * (tt_*_def_default()). The TL_OPT_* makers check at compile time that the
+ * field has the kind's size. An option the struct has no field for is
+ * TL_OPT_BYHAND: checked as a known key, read by the caller (tl_getopt or a
+ * tl_optfield_* reader). */
+typedef enum tl_opt_kind { TL_OPT_NUMBER, TL_OPT_NUMBER2, TL_OPT_U32, TL_OPT_U16, TL_OPT_I32, TL_OPT_BOOL, TL_OPT_VEC2, TL_OPT_ENUM, TL_OPT_OWN } tl_opt_kind;
+typedef struct tl_opt {
+    const char *key;
+    tl_opt_kind kind;
+    size_t at;                 /* offsetof the field */
+    size_t at2;                /* NUMBER2: the second field it sets */
+    const tl_range *range;     /* NUMBER, VEC2 */
+    lua_Integer lo, hi;        /* U32, U16, I32 */
+    const char *what;          /* ENUM: what its error calls the value */
+    const char *const *names;  /* ENUM: the names, in the enum's order */
+} tl_opt;
+#define TL__AT(T, f, size) (offsetof(T, f) + 0 * sizeof(char[sizeof(((T *)0)->f) == (size) ? 1 : -1]))
+#define TL_OPT_NUM(T, key, f, range) {key, TL_OPT_NUMBER, TL__AT(T, f, sizeof(double)), 0, range, 0, 0, NULL, NULL}
+/* One number that sets two fields (friction: static and kinetic); listed before the fields' own keys, which then win. */
+#define TL_OPT_NUM_BOTH(T, key, f, g, range) {key, TL_OPT_NUMBER2, TL__AT(T, f, sizeof(double)), TL__AT(T, g, sizeof(double)), range, 0, 0, NULL, NULL}
+#define TL_OPT_UINT(T, key, f, lo, hi) {key, TL_OPT_U32, TL__AT(T, f, sizeof(uint32_t)), 0, NULL, lo, hi, NULL, NULL}
+#define TL_OPT_INT(T, key, f, lo, hi) {key, TL_OPT_I32, TL__AT(T, f, sizeof(int)), 0, NULL, lo, hi, NULL, NULL}
+#define TL_OPT_UINT16(T, key, f, lo, hi) {key, TL_OPT_U16, TL__AT(T, f, sizeof(uint16_t)), 0, NULL, lo, hi, NULL, NULL}
+#define TL_OPT_FLAG(T, key, f) {key, TL_OPT_BOOL, TL__AT(T, f, sizeof(bool)), 0, NULL, 0, 0, NULL, NULL}
+#define TL_OPT_XY(T, key, f, range) {key, TL_OPT_VEC2, TL__AT(T, f, sizeof(tt_vec2)), 0, range, 0, 0, NULL, NULL}
+#define TL_OPT_CHOICE(T, key, f, what, names) {key, TL_OPT_ENUM, TL__AT(T, f, sizeof(int)), 0, NULL, 0, 0, what, names}
+#define TL_OPT_BYHAND(key) {key, TL_OPT_OWN, 0, 0, NULL, 0, 0, NULL, NULL}
+#define TL_OPT_END {NULL, TL_OPT_OWN, 0, 0, NULL, 0, 0, NULL, NULL}
+/* The surface and filter options of everything particles touch (shapes,
+ * terrains, mask chains, the world's collision settings): fields of these
+ * names at P (the struct itself, or a member path ending in '.'). */
+#define TL_SURFACE_OPTS(T, P)                                                                       \
+    TL_OPT_NUM(T, "restitution", P restitution, &TL_R_UNIT),                                        \
+    TL_OPT_NUM_BOTH(T, "friction", P friction_static, P friction_kinetic, &TL_R_NONNEG),            \
+    TL_OPT_NUM(T, "friction_static", P friction_static, &TL_R_NONNEG),                              \
+    TL_OPT_NUM(T, "friction_kinetic", P friction_kinetic, &TL_R_NONNEG)
+#define TL_FILTER_OPTS(T, P)                                                                        \
+    TL_OPT_UINT16(T, "category", P category, 0, 0xFFFF), TL_OPT_UINT16(T, "mask", P mask, 0, 0xFFFF)
 
-/* The argument is none, nil or a table whose keys are all in keys
- * (NULL-terminated). Raises "fname: unknown option 'gravty' (expected one
- * of: 'gravity', ...)" otherwise. Returns true if it is a table. */
-bool tl_checkopts(lua_State *L, int arg, const char *const keys[]);
+/* The argument is none, nil or a table whose keys are all keys of spec;
+ * raises "fname: unknown option 'gravty' (expected one of: 'gravity', ...)"
+ * otherwise. Then reads every option of spec present in it into dst, in
+ * spec's order, raising "fname: bad option 'key' (<why>)" at the first bad
+ * one. Returns true if it is a table. Nothing is read from the world, so a
+ * binding reads its options before it touches the world. */
+bool tl_readopts(lua_State *L, int arg, const tl_opt spec[], void *dst);
+/* The key check alone. */
+bool tl_checkopts(lua_State *L, int arg, const tl_opt spec[]);
 /* Pushes field key of the option table at arg (which may be absent).
  * Returns false (and pushes nothing) when the field is nil or the table absent. */
 bool tl_getopt(lua_State *L, int arg, const char *key);
-/* Field readers: def when the field is nil; otherwise the value must be valid
- * or "fname: bad option 'key' (<why>)" is raised. */
+/* Readers of one option: def when the field is nil; otherwise the value
+ * must be valid or "fname: bad option 'key' (<why>)" is raised. */
 double tl_optfield_number(lua_State *L, int arg, const char *key, const tl_range *r, double def);
 lua_Integer tl_optfield_integer(lua_State *L, int arg, const char *key, lua_Integer lo, lua_Integer hi, lua_Integer def);
 bool tl_optfield_boolean(lua_State *L, int arg, const char *key, bool def);
@@ -113,6 +160,10 @@ int tl_optfield_option(lua_State *L, int arg, const char *key, const char *what,
  * expected, got nan") and returns false. Used by the raising checkers above
  * and by the bulk functions that add "at index 7" to the message. */
 bool tl_tonumber_in(lua_State *L, int idx, const tl_range *r, double *out);
+/* An integer-valued number inside [lo, hi]. */
+bool tl_tointeger_in(lua_State *L, int idx, lua_Integer lo, lua_Integer hi, lua_Integer *out);
+/* Pushes "'a', 'b', 'c'". */
+void tl_push_choices(lua_State *L, const char *const list[]);
 /* Pushes "<what> expected, got <type>" for the value at idx, or with
  * by_value "got <the number>" when it is a number. */
 void tl_push_expected(lua_State *L, int idx, const char *what, bool by_value);

@@ -5,7 +5,6 @@
  * here first, so the core never sees a bad value. */
 #include "lua_common.h"
 
-static const tl_range R_UNIT = {0.0, 1.0, false};
 static const tl_range R_POS = {0.0, TT_MAX_VALUE, true};
 
 static tt_composite check_composite(lua_State *L, tt_world *w, int arg)
@@ -19,18 +18,25 @@ static void push_composite(lua_State *L, tt_world *w, tt_composite c)
     tl_push_composite(L, c);
 }
 
-#define COMMON_KEYS "mass", "radius", "stiffness", "compliance", "collide"
+/* The options every composite takes (tt_composite_common). */
+#define COMMON_OPTS(T)                                                        \
+    TL_OPT_NUM(T, "mass", common.mass, &TL_R_MASS),                           \
+    TL_OPT_NUM(T, "radius", common.radius, &TL_R_NONNEG),                     \
+    TL_OPT_NUM(T, "stiffness", common.stiffness, &TL_R_UNIT),                    \
+    TL_OPT_NUM(T, "compliance", common.compliance, &TL_R_NONNEG),             \
+    TL_OPT_FLAG(T, "collide", common.collide)
 
-static void common_opts(lua_State *L, int arg, tt_composite_common *k)
-{
-    k->mass = tl_optfield_number(L, arg, "mass", &TL_R_MASS, k->mass);
-    k->radius = tl_optfield_number(L, arg, "radius", &TL_R_NONNEG, k->radius);
-    k->stiffness = tl_optfield_number(L, arg, "stiffness", &R_UNIT, k->stiffness);
-    k->compliance = tl_optfield_number(L, arg, "compliance", &TL_R_NONNEG, k->compliance);
-    k->collide = tl_optfield_boolean(L, arg, "collide", k->collide);
-}
-
-static const char *const rope_opts[] = {COMMON_KEYS, "start", "finish", "segments", "pin_start", "pin_finish", "slack", "break_strain", NULL};
+static const tl_opt rope_opts[] = {
+    COMMON_OPTS(tt_rope_def),
+    TL_OPT_XY(tt_rope_def, "start", start, &TL_R_COORD),
+    TL_OPT_XY(tt_rope_def, "finish", finish, &TL_R_COORD),
+    TL_OPT_UINT(tt_rope_def, "segments", segments, 1, 100000),
+    TL_OPT_FLAG(tt_rope_def, "pin_start", pin_start),
+    TL_OPT_FLAG(tt_rope_def, "pin_finish", pin_finish),
+    TL_OPT_FLAG(tt_rope_def, "slack", slack),
+    TL_OPT_NUM(tt_rope_def, "break_strain", break_strain, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 /* w:rope({start = {x, y}, finish = {x, y}, segments, pin_start, pin_finish, slack, break_strain, …common}) → composite */
 static int c_rope(lua_State *L)
@@ -38,21 +44,25 @@ static int c_rope(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     lua_settop(L, 2);
     tt_rope_def d = tt_rope_def_default();
-    tl_checkopts(L, 2, rope_opts);
-    common_opts(L, 2, &d.common);
-    d.start = tl_optfield_vec2(L, 2, "start", &TL_R_COORD, d.start);
-    d.finish = tl_optfield_vec2(L, 2, "finish", &TL_R_COORD, d.finish);
-    d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 1, 100000, d.segments);
-    d.pin_start = tl_optfield_boolean(L, 2, "pin_start", d.pin_start);
-    d.pin_finish = tl_optfield_boolean(L, 2, "pin_finish", d.pin_finish);
-    d.slack = tl_optfield_boolean(L, 2, "slack", d.slack);
-    d.break_strain = tl_optfield_number(L, 2, "break_strain", &TL_R_NONNEG, d.break_strain);
+    tl_readopts(L, 2, rope_opts, &d);
     push_composite(L, w, tt_rope_create(w, &d));
     return 1;
 }
 
-static const char *const cloth_opts[] = {COMMON_KEYS, "origin", "width", "height", "columns", "rows", "shear_stiffness",
-                                         "bend_stiffness", "pin_top_corners", "pin_top_row", "break_strain", NULL};
+static const tl_opt cloth_opts[] = {
+    COMMON_OPTS(tt_cloth_def),
+    TL_OPT_XY(tt_cloth_def, "origin", origin, &TL_R_COORD),
+    TL_OPT_NUM(tt_cloth_def, "width", width, &R_POS),
+    TL_OPT_NUM(tt_cloth_def, "height", height, &R_POS),
+    TL_OPT_UINT(tt_cloth_def, "columns", columns, 2, 4096),
+    TL_OPT_UINT(tt_cloth_def, "rows", rows, 2, 4096),
+    TL_OPT_NUM(tt_cloth_def, "shear_stiffness", shear_stiffness, &TL_R_UNIT),
+    TL_OPT_NUM(tt_cloth_def, "bend_stiffness", bend_stiffness, &TL_R_UNIT),
+    TL_OPT_FLAG(tt_cloth_def, "pin_top_corners", pin_top_corners),
+    TL_OPT_FLAG(tt_cloth_def, "pin_top_row", pin_top_row),
+    TL_OPT_NUM(tt_cloth_def, "break_strain", break_strain, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 /* w:cloth({origin = {x, y}, width, height, columns, rows, shear_stiffness, bend_stiffness,
  *          pin_top_corners, pin_top_row, break_strain, …common}) → composite */
@@ -61,23 +71,18 @@ static int c_cloth(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     lua_settop(L, 2);
     tt_cloth_def d = tt_cloth_def_default();
-    tl_checkopts(L, 2, cloth_opts);
-    common_opts(L, 2, &d.common);
-    d.origin = tl_optfield_vec2(L, 2, "origin", &TL_R_COORD, d.origin);
-    d.width = tl_optfield_number(L, 2, "width", &R_POS, d.width);
-    d.height = tl_optfield_number(L, 2, "height", &R_POS, d.height);
-    d.columns = (uint32_t)tl_optfield_integer(L, 2, "columns", 2, 4096, d.columns);
-    d.rows = (uint32_t)tl_optfield_integer(L, 2, "rows", 2, 4096, d.rows);
-    d.shear_stiffness = tl_optfield_number(L, 2, "shear_stiffness", &R_UNIT, d.shear_stiffness);
-    d.bend_stiffness = tl_optfield_number(L, 2, "bend_stiffness", &R_UNIT, d.bend_stiffness);
-    d.pin_top_corners = tl_optfield_boolean(L, 2, "pin_top_corners", d.pin_top_corners);
-    d.pin_top_row = tl_optfield_boolean(L, 2, "pin_top_row", d.pin_top_row);
-    d.break_strain = tl_optfield_number(L, 2, "break_strain", &TL_R_NONNEG, d.break_strain);
+    tl_readopts(L, 2, cloth_opts, &d);
     push_composite(L, w, tt_cloth_create(w, &d));
     return 1;
 }
 
-static const char *const ragdoll_opts[] = {COMMON_KEYS, "position", "height", "limits", NULL};
+static const tl_opt ragdoll_opts[] = {
+    COMMON_OPTS(tt_ragdoll_def),
+    TL_OPT_XY(tt_ragdoll_def, "position", position, &TL_R_COORD),
+    TL_OPT_NUM(tt_ragdoll_def, "height", height, &R_POS),
+    TL_OPT_FLAG(tt_ragdoll_def, "limits", limits),
+    TL_OPT_END,
+};
 
 /* w:ragdoll({position = {x, y}, height, limits, …common}) → composite */
 static int c_ragdoll(lua_State *L)
@@ -85,17 +90,21 @@ static int c_ragdoll(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     lua_settop(L, 2);
     tt_ragdoll_def d = tt_ragdoll_def_default();
-    tl_checkopts(L, 2, ragdoll_opts);
-    common_opts(L, 2, &d.common);
-    d.position = tl_optfield_vec2(L, 2, "position", &TL_R_COORD, d.position);
-    d.height = tl_optfield_number(L, 2, "height", &R_POS, d.height);
-    d.limits = tl_optfield_boolean(L, 2, "limits", d.limits);
+    tl_readopts(L, 2, ragdoll_opts, &d);
     push_composite(L, w, tt_ragdoll_create(w, &d));
     return 1;
 }
 
-static const char *const soft_body_opts[] = {COMMON_KEYS, "center", "ring_radius", "segments", "pressure", "area_stiffness",
-                                             "area_compliance", NULL};
+static const tl_opt soft_body_opts[] = {
+    COMMON_OPTS(tt_soft_body_def),
+    TL_OPT_XY(tt_soft_body_def, "center", center, &TL_R_COORD),
+    TL_OPT_NUM(tt_soft_body_def, "ring_radius", ring_radius, &R_POS),
+    TL_OPT_UINT(tt_soft_body_def, "segments", segments, 3, 65536),
+    TL_OPT_NUM(tt_soft_body_def, "pressure", pressure, &R_POS),
+    TL_OPT_NUM(tt_soft_body_def, "area_stiffness", area_stiffness, &TL_R_UNIT),
+    TL_OPT_NUM(tt_soft_body_def, "area_compliance", area_compliance, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 /* w:soft_body({center = {x, y}, size (ring radius), segments, pressure, area_stiffness, area_compliance, …common}) */
 static int c_soft_body(lua_State *L)
@@ -103,19 +112,22 @@ static int c_soft_body(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     lua_settop(L, 2);
     tt_soft_body_def d = tt_soft_body_def_default();
-    tl_checkopts(L, 2, soft_body_opts);
-    common_opts(L, 2, &d.common);
-    d.center = tl_optfield_vec2(L, 2, "center", &TL_R_COORD, d.center);
-    d.ring_radius = tl_optfield_number(L, 2, "ring_radius", &R_POS, d.ring_radius);
-    d.segments = (uint32_t)tl_optfield_integer(L, 2, "segments", 3, 65536, d.segments);
-    d.pressure = tl_optfield_number(L, 2, "pressure", &R_POS, d.pressure);
-    d.area_stiffness = tl_optfield_number(L, 2, "area_stiffness", &R_UNIT, d.area_stiffness);
-    d.area_compliance = tl_optfield_number(L, 2, "area_compliance", &TL_R_NONNEG, d.area_compliance);
+    tl_readopts(L, 2, soft_body_opts, &d);
     push_composite(L, w, tt_soft_body_create(w, &d));
     return 1;
 }
 
-static const char *const lattice_opts[] = {COMMON_KEYS, "center", "width", "height", "angle", "columns", "rows", "points", NULL};
+static const tl_opt lattice_opts[] = {
+    COMMON_OPTS(tt_lattice_def),
+    TL_OPT_XY(tt_lattice_def, "center", center, &TL_R_COORD),
+    TL_OPT_NUM(tt_lattice_def, "width", width, &R_POS),
+    TL_OPT_NUM(tt_lattice_def, "height", height, &R_POS),
+    TL_OPT_NUM(tt_lattice_def, "angle", angle, &TL_R_COORD),
+    TL_OPT_UINT(tt_lattice_def, "columns", columns, 2, 1024),
+    TL_OPT_UINT(tt_lattice_def, "rows", rows, 2, 1024),
+    TL_OPT_BYHAND("points"),
+    TL_OPT_END,
+};
 
 /* w:lattice({center = {x, y}, width, height, angle, columns, rows, …common})
  * or w:lattice({points = {x1, y1, x2, y2, …}, …common}) → composite */
@@ -124,14 +136,7 @@ static int c_lattice(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     lua_settop(L, 2);
     tt_lattice_def d = tt_lattice_def_default();
-    tl_checkopts(L, 2, lattice_opts);
-    common_opts(L, 2, &d.common);
-    d.center = tl_optfield_vec2(L, 2, "center", &TL_R_COORD, d.center);
-    d.width = tl_optfield_number(L, 2, "width", &R_POS, d.width);
-    d.height = tl_optfield_number(L, 2, "height", &R_POS, d.height);
-    d.angle = tl_optfield_number(L, 2, "angle", &TL_R_COORD, d.angle);
-    d.columns = (uint32_t)tl_optfield_integer(L, 2, "columns", 2, 1024, d.columns);
-    d.rows = (uint32_t)tl_optfield_integer(L, 2, "rows", 2, 1024, d.rows);
+    tl_readopts(L, 2, lattice_opts, &d);
     tt_vec2 pts[64];
     if (tl_getopt(L, 2, "points")) {
         int t = lua_gettop(L);

@@ -8,7 +8,6 @@
 
 #define PI 3.14159265358979323846
 
-static const tl_range R_UNIT = {0.0, 1.0, false};
 static const tl_range R_ANGLE = {-PI, PI, false};
 static const tl_range R_POS = {0.0, TT_MAX_VALUE, true};
 
@@ -62,16 +61,20 @@ static tt_particle *check_handle_list(lua_State *L, tt_world *w, int idx, const 
     return ps;
 }
 
-/* The stiffness/compliance pair shared by every constraint's options. */
-static void soft_opts(lua_State *L, int arg, double *k, double *alpha)
-{
-    *k = tl_optfield_number(L, arg, "stiffness", &R_UNIT, *k);
-    *alpha = tl_optfield_number(L, arg, "compliance", &TL_R_NONNEG, *alpha);
-}
+/* The stiffness/compliance pair of every constraint's options. */
+#define SOFT_OPTS(T) TL_OPT_NUM(T, "stiffness", stiffness, &TL_R_UNIT), TL_OPT_NUM(T, "compliance", compliance, &TL_R_NONNEG)
 
 /* --- constraints ------------------------------------------------------------- */
 
-static const char *const distance_opts[] = {"length", "mode", "stiffness", "compliance", "break_strain", "collide", "max_rate", NULL};
+static const tl_opt distance_opts[] = {
+    TL_OPT_NUM(tt_distance_def, "length", length, &TL_R_NONNEG),
+    TL_OPT_CHOICE(tt_distance_def, "mode", mode, "mode", mode_names),
+    SOFT_OPTS(tt_distance_def),
+    TL_OPT_NUM(tt_distance_def, "break_strain", break_strain, &TL_R_NONNEG),
+    TL_OPT_FLAG(tt_distance_def, "collide", collide),
+    TL_OPT_NUM(tt_distance_def, "max_rate", max_rate, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 /* w:distance(a, b [, {length, mode, stiffness, compliance, break_strain, collide, max_rate}]) → constraint */
 static int c_distance(lua_State *L)
@@ -82,18 +85,17 @@ static int c_distance(lua_State *L)
     d.a = tl_check_particle(L, w, 2);
     d.b = tl_check_particle(L, w, 3);
     if (d.a.index == d.b.index) tl_argerror(L, 3, "a distance constraint needs two distinct particles");
-    tl_checkopts(L, 4, distance_opts);
-    d.length = tl_optfield_number(L, 4, "length", &TL_R_NONNEG, -1.0);
-    d.mode = (tt_distance_mode)tl_optfield_option(L, 4, "mode", "mode", mode_names, 0);
-    soft_opts(L, 4, &d.stiffness, &d.compliance);
-    d.break_strain = tl_optfield_number(L, 4, "break_strain", &TL_R_NONNEG, 0.0);
-    d.collide = tl_optfield_boolean(L, 4, "collide", false);
-    d.max_rate = tl_optfield_number(L, 4, "max_rate", &TL_R_NONNEG, 0.0);
+    tl_readopts(L, 4, distance_opts, &d);
     push_constraint(L, w, tt_distance_create(w, &d));
     return 1;
 }
 
-static const char *const pin_opts[] = {"anchor", "stiffness", "compliance", "max_rate", NULL};
+static const tl_opt pin_opts[] = {
+    TL_OPT_XY(tt_pin_def, "anchor", anchor, &TL_R_COORD),
+    SOFT_OPTS(tt_pin_def),
+    TL_OPT_NUM(tt_pin_def, "max_rate", max_rate, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 /* w:pin(p [, {anchor = {x, y}, stiffness, compliance, max_rate}]) → constraint */
 static int c_pin(lua_State *L)
@@ -102,19 +104,21 @@ static int c_pin(lua_State *L)
     lua_settop(L, 3);
     tt_pin_def d = tt_pin_def_default();
     d.particle = tl_check_particle(L, w, 2);
-    tl_checkopts(L, 3, pin_opts);
-    if (tl_getopt(L, 3, "anchor")) {
+    if (tl_getopt(L, 3, "anchor")) { /* an anchor given: there, not where the particle is */
         lua_pop(L, 1);
         d.anchor_here = false;
-        d.anchor = tl_optfield_vec2(L, 3, "anchor", &TL_R_COORD, d.anchor);
     }
-    soft_opts(L, 3, &d.stiffness, &d.compliance);
-    d.max_rate = tl_optfield_number(L, 3, "max_rate", &TL_R_NONNEG, 0.0);
+    tl_readopts(L, 3, pin_opts, &d);
     push_constraint(L, w, tt_pin_create(w, &d));
     return 1;
 }
 
-static const char *const bounds_opts[] = {"particles", "outside", "friction", NULL};
+static const tl_opt bounds_opts[] = {
+    TL_OPT_BYHAND("particles"),
+    TL_OPT_FLAG(tt_bounds_def, "outside", outside),
+    TL_OPT_NUM(tt_bounds_def, "friction", friction, &TL_R_UNIT),
+    TL_OPT_END,
+};
 
 /* w:bounds(xmin, ymin, xmax, ymax [, {particles = {…}, outside, friction}]) → constraint */
 static int c_bounds(lua_State *L)
@@ -128,9 +132,7 @@ static int c_bounds(lua_State *L)
     d.max.y = tl_checknumber(L, 5, &TL_R_COORD);
     if (!(d.min.x < d.max.x)) tl_argerror(L, 4, "xmax must be greater than xmin");
     if (!(d.min.y < d.max.y)) tl_argerror(L, 5, "ymax must be greater than ymin");
-    tl_checkopts(L, 6, bounds_opts);
-    d.outside = tl_optfield_boolean(L, 6, "outside", false);
-    d.friction = tl_optfield_number(L, 6, "friction", &R_UNIT, 0.0);
+    tl_readopts(L, 6, bounds_opts, &d);
     if (tl_getopt(L, 6, "particles")) {
         d.particles = check_handle_list(L, w, lua_gettop(L), "particles", 1, 1u << 30, &d.count);
     }
@@ -138,7 +140,12 @@ static int c_bounds(lua_State *L)
     return 1;
 }
 
-static const char *const angle_opts[] = {"min", "max", "stiffness", "compliance", NULL};
+static const tl_opt angle_opts[] = {
+    TL_OPT_NUM(tt_angle_def, "min", min, &R_ANGLE),
+    TL_OPT_NUM(tt_angle_def, "max", max, &R_ANGLE),
+    SOFT_OPTS(tt_angle_def),
+    TL_OPT_END,
+};
 
 /* w:angle(a, b, c [, {min, max, stiffness, compliance}]) → constraint; min/max default to the angle now */
 static int c_angle(lua_State *L)
@@ -151,21 +158,23 @@ static int c_angle(lua_State *L)
     d.c = tl_check_particle(L, w, 4);
     if (d.a.index == d.b.index || d.b.index == d.c.index || d.a.index == d.c.index)
         tl_argerror(L, 4, "an angle constraint needs three distinct particles");
-    tl_checkopts(L, 5, angle_opts);
+    tl_readopts(L, 5, angle_opts, &d);
     bool has_min = tl_getopt(L, 5, "min");
     if (has_min) lua_pop(L, 1);
     bool has_max = tl_getopt(L, 5, "max");
     if (has_max) lua_pop(L, 1);
     if (has_min != has_max) tl_error(L, "give both 'min' and 'max', or neither (the angle now)");
-    d.min = tl_optfield_number(L, 5, "min", &R_ANGLE, d.min);
-    d.max = tl_optfield_number(L, 5, "max", &R_ANGLE, d.max);
     d.use_current = !has_min;
-    soft_opts(L, 5, &d.stiffness, &d.compliance);
     push_constraint(L, w, tt_angle_create(w, &d));
     return 1;
 }
 
-static const char *const area_opts[] = {"area", "pressure", "stiffness", "compliance", NULL};
+static const tl_opt area_opts[] = {
+    TL_OPT_NUM(tt_area_def, "area", area, &TL_R_COORD),
+    TL_OPT_NUM(tt_area_def, "pressure", pressure, &R_POS),
+    SOFT_OPTS(tt_area_def),
+    TL_OPT_END,
+};
 
 /* w:area({p1, p2, p3, …} [, {area, pressure, stiffness, compliance}]) → constraint */
 static int c_area(lua_State *L)
@@ -174,19 +183,16 @@ static int c_area(lua_State *L)
     lua_settop(L, 3);
     tt_area_def d = tt_area_def_default();
     d.particles = check_handle_list(L, w, 2, NULL, 3, 65536, &d.count);
-    tl_checkopts(L, 3, area_opts);
-    if (tl_getopt(L, 3, "area")) {
+    if (tl_getopt(L, 3, "area")) { /* an area given: that one, not the area now */
         lua_pop(L, 1);
         d.use_current = false;
-        d.area = tl_optfield_number(L, 3, "area", &TL_R_COORD, 0.0);
     }
-    d.pressure = tl_optfield_number(L, 3, "pressure", &R_POS, 1.0);
-    soft_opts(L, 3, &d.stiffness, &d.compliance);
+    tl_readopts(L, 3, area_opts, &d);
     push_constraint(L, w, tt_area_create(w, &d));
     return 1;
 }
 
-static const char *const soft_only_opts[] = {"stiffness", "compliance", NULL};
+static const tl_opt collinear_opts[] = {SOFT_OPTS(tt_collinear_def), TL_OPT_END};
 
 /* w:collinear(a, b, c [, {stiffness, compliance}]) → constraint */
 static int c_collinear(lua_State *L)
@@ -199,8 +205,7 @@ static int c_collinear(lua_State *L)
     d.c = tl_check_particle(L, w, 4);
     if (d.a.index == d.b.index || d.b.index == d.c.index || d.a.index == d.c.index)
         tl_argerror(L, 4, "a collinear constraint needs three distinct particles");
-    tl_checkopts(L, 5, soft_only_opts);
-    soft_opts(L, 5, &d.stiffness, &d.compliance);
+    tl_readopts(L, 5, collinear_opts, &d);
     push_constraint(L, w, tt_collinear_create(w, &d));
     return 1;
 }
@@ -254,7 +259,19 @@ static int c_constraint_particles(lua_State *L)
     return 1;
 }
 
-static const char *const set_opts[] = {"stiffness", "compliance", "length", "anchor", "box", "max_rate", NULL};
+/* What set_constraint was given: −1 (and no anchor) for what it was not. */
+typedef struct set_def {
+    double stiffness, compliance, length, max_rate;
+    tt_vec2 anchor;
+} set_def;
+static const tl_opt set_opts[] = {
+    SOFT_OPTS(set_def),
+    TL_OPT_NUM(set_def, "length", length, &TL_R_NONNEG),
+    TL_OPT_XY(set_def, "anchor", anchor, &TL_R_COORD),
+    TL_OPT_BYHAND("box"),
+    TL_OPT_NUM(set_def, "max_rate", max_rate, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 /* w:set_constraint(c, {stiffness, compliance, length, anchor = {x, y}, box = {xmin, ymin, xmax, ymax}, max_rate})
  * — every field is checked (value and kind) before anything changes. */
@@ -264,15 +281,12 @@ static int c_set_constraint(lua_State *L)
     tt_constraint c = check_constraint(L, w, 2);
     lua_settop(L, 3);
     if (lua_type(L, 3) != LUA_TTABLE) tl_typeerror(L, 3, "table");
-    tl_checkopts(L, 3, set_opts);
+    set_def o = {-1, -1, -1, -1, {0, 0}};
+    tl_readopts(L, 3, set_opts, &o);
     tt_constraint_kind kind;
     tt_constraint_get_kind(w, c, &kind);
-    double k = tl_optfield_number(L, 3, "stiffness", &R_UNIT, -1), a = tl_optfield_number(L, 3, "compliance", &TL_R_NONNEG, -1);
-    double len = tl_optfield_number(L, 3, "length", &TL_R_NONNEG, -1);
-    double rate = tl_optfield_number(L, 3, "max_rate", &TL_R_NONNEG, -1);
     bool has_anchor = tl_getopt(L, 3, "anchor");
     if (has_anchor) lua_pop(L, 1);
-    tt_vec2 anchor = tl_optfield_vec2(L, 3, "anchor", &TL_R_COORD, (tt_vec2){0, 0});
     double box[4] = {0, 0, 0, 0};
     bool has_box = tl_getopt(L, 3, "box");
     if (has_box) {
@@ -287,17 +301,17 @@ static int c_set_constraint(lua_State *L)
         lua_pop(L, 1);
         if (!(box[0] < box[2] && box[1] < box[3])) tl_error(L, "bad option 'box' (need xmin < xmax and ymin < ymax)");
     }
-    if ((k >= 0 || a >= 0) && kind == TT_CONSTRAINT_BOUNDS) tl_error(L, "bounds have no stiffness or compliance");
-    if (len >= 0 && kind != TT_CONSTRAINT_DISTANCE) tl_error(L, "'length' is for distance constraints");
+    if ((o.stiffness >= 0 || o.compliance >= 0) && kind == TT_CONSTRAINT_BOUNDS) tl_error(L, "bounds have no stiffness or compliance");
+    if (o.length >= 0 && kind != TT_CONSTRAINT_DISTANCE) tl_error(L, "'length' is for distance constraints");
     if (has_anchor && kind != TT_CONSTRAINT_PIN) tl_error(L, "'anchor' is for pins");
     if (has_box && kind != TT_CONSTRAINT_BOUNDS) tl_error(L, "'box' is for bounds");
-    if (rate >= 0 && kind != TT_CONSTRAINT_DISTANCE && kind != TT_CONSTRAINT_PIN)
+    if (o.max_rate >= 0 && kind != TT_CONSTRAINT_DISTANCE && kind != TT_CONSTRAINT_PIN)
         tl_error(L, "'max_rate' is for distance constraints and pins");
-    if (rate >= 0) tl_check_result(L, w, tt_constraint_set_max_rate(w, c, rate));
-    if (k >= 0) tl_check_result(L, w, tt_constraint_set_stiffness(w, c, k));
-    if (a >= 0) tl_check_result(L, w, tt_constraint_set_compliance(w, c, a));
-    if (len >= 0) tl_check_result(L, w, tt_distance_set_length(w, c, len));
-    if (has_anchor) tl_check_result(L, w, tt_pin_set_anchor(w, c, anchor));
+    if (o.max_rate >= 0) tl_check_result(L, w, tt_constraint_set_max_rate(w, c, o.max_rate));
+    if (o.stiffness >= 0) tl_check_result(L, w, tt_constraint_set_stiffness(w, c, o.stiffness));
+    if (o.compliance >= 0) tl_check_result(L, w, tt_constraint_set_compliance(w, c, o.compliance));
+    if (o.length >= 0) tl_check_result(L, w, tt_distance_set_length(w, c, o.length));
+    if (has_anchor) tl_check_result(L, w, tt_pin_set_anchor(w, c, o.anchor));
     if (has_box) tl_check_result(L, w, tt_bounds_set_box(w, c, (tt_vec2){box[0], box[1]}, (tt_vec2){box[2], box[3]}));
     return 0;
 }

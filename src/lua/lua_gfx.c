@@ -10,7 +10,6 @@
 
 #include <stdio.h>
 
-static const tl_range R_UNIT = { 0.0, 1.0, false };
 static const tl_range R_POS = { 0.0, TT_MAX_VALUE, false };
 static const tl_range R_ZOOM = { 0.0, 1e9, true };
 
@@ -28,8 +27,8 @@ static int g_color(lua_State *L)
         lua_pushnumber(L, k.a / 255.0);
         return 4;
     }
-    tt_color k = { tl_byte_of(tl_checknumber(L, 1, &R_UNIT)), tl_byte_of(tl_checknumber(L, 2, &R_UNIT)),
-                   tl_byte_of(tl_checknumber(L, 3, &R_UNIT)), tl_byte_of(tl_optnumber(L, 4, &R_UNIT, 1.0)) };
+    tt_color k = { tl_byte_of(tl_checknumber(L, 1, &TL_R_UNIT)), tl_byte_of(tl_checknumber(L, 2, &TL_R_UNIT)),
+                   tl_byte_of(tl_checknumber(L, 3, &TL_R_UNIT)), tl_byte_of(tl_optnumber(L, 4, &TL_R_UNIT, 1.0)) };
     tt_canvas_set_color(c, k);
     return 0;
 }
@@ -38,8 +37,8 @@ static int g_color(lua_State *L)
 static int g_clear(lua_State *L)
 {
     tt_canvas *c = tl_render_canvas(L);
-    tt_color k = { tl_byte_of(tl_checknumber(L, 1, &R_UNIT)), tl_byte_of(tl_checknumber(L, 2, &R_UNIT)),
-                   tl_byte_of(tl_checknumber(L, 3, &R_UNIT)), 255 };
+    tt_color k = { tl_byte_of(tl_checknumber(L, 1, &TL_R_UNIT)), tl_byte_of(tl_checknumber(L, 2, &TL_R_UNIT)),
+                   tl_byte_of(tl_checknumber(L, 3, &TL_R_UNIT)), 255 };
     tt_canvas_clear(c, k);
     return 0;
 }
@@ -206,7 +205,17 @@ static int g_hud(lua_State *L)
 
 /* --- world:draw([opts]) ------------------------------------------------------ */
 
-static const char *const draw_opts[] = { "particles", "springs", "constraints", "shapes", "color", "pinned", "min_radius", NULL };
+static const tl_range R_PX = { 0.0, 1000.0, false };
+static const tl_opt draw_opts[] = {
+    TL_OPT_FLAG(tt_debug_draw, "particles", particles),
+    TL_OPT_FLAG(tt_debug_draw, "springs", springs),
+    TL_OPT_FLAG(tt_debug_draw, "constraints", constraints),
+    TL_OPT_FLAG(tt_debug_draw, "shapes", shapes),
+    TL_OPT_BYHAND("color"), /* colours: opt_color */
+    TL_OPT_BYHAND("pinned"),
+    TL_OPT_NUM(tt_debug_draw, "min_radius", min_radius_px, &R_PX),
+    TL_OPT_END,
+};
 
 static tt_color opt_color(lua_State *L, int arg, const char *key, tt_color def)
 {
@@ -216,7 +225,7 @@ static tt_color opt_color(lua_State *L, int arg, const char *key, tt_color def)
     if (n < 3 || n > 4) tl_error(L, "bad option '%s' ({r, g, b [, a]} with numbers in [0, 1] expected)", key);
     for (int i = 0; i < n; i++) {
         lua_rawgeti(L, -1 - 0, i + 1);
-        if (!tl_tonumber_in(L, -1, &R_UNIT, &v[i])) tl_error(L, "bad option '%s' (%s at index %d)", key, lua_tostring(L, -1), i + 1);
+        if (!tl_tonumber_in(L, -1, &TL_R_UNIT, &v[i])) tl_error(L, "bad option '%s' (%s at index %d)", key, lua_tostring(L, -1), i + 1);
         lua_pop(L, 1);
     }
     lua_pop(L, 1);
@@ -226,15 +235,9 @@ static tt_color opt_color(lua_State *L, int arg, const char *key, tt_color def)
 static int w_draw(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
-    tl_checkopts(L, 2, draw_opts);
-    tt_canvas *c = tl_render_canvas(L);
     tt_debug_draw d = tt_debug_draw_default();
-    d.particles = tl_optfield_boolean(L, 2, "particles", d.particles);
-    d.springs = tl_optfield_boolean(L, 2, "springs", d.springs);
-    d.constraints = tl_optfield_boolean(L, 2, "constraints", d.constraints);
-    d.shapes = tl_optfield_boolean(L, 2, "shapes", d.shapes);
-    static const tl_range r_px = { 0.0, 1000.0, false };
-    d.min_radius_px = tl_optfield_number(L, 2, "min_radius", &r_px, d.min_radius_px);
+    tl_readopts(L, 2, draw_opts, &d);
+    tt_canvas *c = tl_render_canvas(L);
     d.particle = opt_color(L, 2, "color", d.particle);
     d.pinned = opt_color(L, 2, "pinned", d.pinned);
     tl_check_canvas_result(L, c, tt_canvas_draw_world(c, w, &d));

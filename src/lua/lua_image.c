@@ -5,7 +5,6 @@
 
 #include <string.h>
 
-static const tl_range R_UNIT = { 0.0, 1.0, false };
 
 /* A closed image drawn in the frame being made keeps its pixels until the
  * frame is rendered (tl_render_done): the canvas points at them. */
@@ -123,8 +122,8 @@ static int img_set_pixel(lua_State *L)
 {
     tt_image *img = check_image(L, 1);
     uint8_t *p = pixel_at(L, img);
-    uint8_t k[4] = { tl_byte_of(tl_checknumber(L, 4, &R_UNIT)), tl_byte_of(tl_checknumber(L, 5, &R_UNIT)),
-                     tl_byte_of(tl_checknumber(L, 6, &R_UNIT)), tl_byte_of(tl_optnumber(L, 7, &R_UNIT, 1.0)) };
+    uint8_t k[4] = { tl_byte_of(tl_checknumber(L, 4, &TL_R_UNIT)), tl_byte_of(tl_checknumber(L, 5, &TL_R_UNIT)),
+                     tl_byte_of(tl_checknumber(L, 6, &TL_R_UNIT)), tl_byte_of(tl_optnumber(L, 7, &TL_R_UNIT, 1.0)) };
     memcpy(p, k, 4);
     tt_image_touch(img);
     return 0;
@@ -142,8 +141,8 @@ static int img_pixel(lua_State *L)
 static int img_fill(lua_State *L)
 {
     tt_image *img = check_image(L, 1);
-    uint8_t k[4] = { tl_byte_of(tl_checknumber(L, 2, &R_UNIT)), tl_byte_of(tl_checknumber(L, 3, &R_UNIT)),
-                     tl_byte_of(tl_checknumber(L, 4, &R_UNIT)), tl_byte_of(tl_optnumber(L, 5, &R_UNIT, 1.0)) };
+    uint8_t k[4] = { tl_byte_of(tl_checknumber(L, 2, &TL_R_UNIT)), tl_byte_of(tl_checknumber(L, 3, &TL_R_UNIT)),
+                     tl_byte_of(tl_checknumber(L, 4, &TL_R_UNIT)), tl_byte_of(tl_optnumber(L, 5, &TL_R_UNIT, 1.0)) };
     int w, h;
     tt_image_size(img, &w, &h);
     uint8_t *p = tt_image_pixels(img);

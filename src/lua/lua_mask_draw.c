@@ -5,14 +5,13 @@
 #include "lua_mask.h"
 #include "lua_render.h"
 
-static const tl_range R_UNIT = { 0.0, 1.0, false };
 
 /* A colour at args arg…arg+3 (r, g, b [, a]) in [0, 1], or def when arg is none. */
 static tt_color opt_color(lua_State *L, int arg, tt_color def)
 {
     if (lua_isnoneornil(L, arg)) return def;
-    return (tt_color){ tl_byte_of(tl_checknumber(L, arg, &R_UNIT)), tl_byte_of(tl_checknumber(L, arg + 1, &R_UNIT)),
-                       tl_byte_of(tl_checknumber(L, arg + 2, &R_UNIT)), tl_byte_of(tl_optnumber(L, arg + 3, &R_UNIT, 1.0)) };
+    return (tt_color){ tl_byte_of(tl_checknumber(L, arg, &TL_R_UNIT)), tl_byte_of(tl_checknumber(L, arg + 1, &TL_R_UNIT)),
+                       tl_byte_of(tl_checknumber(L, arg + 2, &TL_R_UNIT)), tl_byte_of(tl_optnumber(L, arg + 3, &TL_R_UNIT, 1.0)) };
 }
 
 /* tether.mask.from_image(img [, threshold = 0.5]) — set where alpha > threshold (0…254/255) */
@@ -32,9 +31,9 @@ static int f_from_image(lua_State *L)
 static int f_from_color(lua_State *L)
 {
     tt_image *img = tl_check_image(L, 1);
-    uint8_t key[3] = { tl_byte_of(tl_checknumber(L, 2, &R_UNIT)), tl_byte_of(tl_checknumber(L, 3, &R_UNIT)),
-                       tl_byte_of(tl_checknumber(L, 4, &R_UNIT)) };
-    int tol = tl_byte_of(tl_optnumber(L, 5, &R_UNIT, 0.0));
+    uint8_t key[3] = { tl_byte_of(tl_checknumber(L, 2, &TL_R_UNIT)), tl_byte_of(tl_checknumber(L, 3, &TL_R_UNIT)),
+                       tl_byte_of(tl_checknumber(L, 4, &TL_R_UNIT)) };
+    int tol = tl_byte_of(tl_optnumber(L, 5, &TL_R_UNIT, 0.0));
     bool invert = lua_isnoneornil(L, 6) ? false : tl_checkboolean(L, 6);
     int w, h;
     tt_image_size(img, &w, &h);

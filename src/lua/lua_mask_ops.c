@@ -8,7 +8,6 @@
 
 static const tl_range R_TOL = { 0.0, 1e6, false };
 static const tl_range R_PIXEL = { 0.0, TT_MAX_VALUE / TT_MASK_MAX_SIDE, true };
-static const tl_range R_UNIT = { 0.0, 1.0, false };
 
 static void check_r(lua_State *L, tt_result r)
 {
@@ -214,8 +213,20 @@ static int m_polylines(lua_State *L)
     return 1;
 }
 
-static const char *const chain_opts[] = { "origin", "pixel", "tolerance", "restitution", "friction", "category",
-                                          "mask", "sensor", NULL };
+typedef struct chain_def {
+    tt_mask_place place;
+    double tolerance;
+    tt_shape_def shape;
+} chain_def;
+static const tl_opt chain_opts[] = {
+    TL_OPT_XY(chain_def, "origin", place.origin, &TL_R_COORD),
+    TL_OPT_NUM(chain_def, "pixel", place.pixel, &R_PIXEL),
+    TL_OPT_NUM(chain_def, "tolerance", tolerance, &R_TOL),
+    TL_SURFACE_OPTS(chain_def, shape.),
+    TL_FILTER_OPTS(chain_def, shape.),
+    TL_OPT_FLAG(chain_def, "sensor", shape.sensor),
+    TL_OPT_END,
+};
 
 /* w:mask_chains(m [, {origin = {x, y} (world position of pixel (0, 0)'s top-left corner), pixel = 1 (m per pixel),
  * tolerance = 0.5 (pixels), restitution =, friction =, category =, mask =, sensor =}]) → {shape, …}:
@@ -225,18 +236,11 @@ static int w_mask_chains(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     tt_mask *m = tl_check_mask(L, 2);
     lua_settop(L, 3);
-    tl_checkopts(L, 3, chain_opts);
-    tt_mask_place p = tt_mask_place_default();
-    p.origin = tl_optfield_vec2(L, 3, "origin", &TL_R_COORD, p.origin);
-    p.pixel = tl_optfield_number(L, 3, "pixel", &R_PIXEL, 1.0);
-    double tol = tl_optfield_number(L, 3, "tolerance", &R_TOL, 0.5);
-    tt_shape_def d = tt_shape_def_default();
-    d.restitution = tl_optfield_number(L, 3, "restitution", &R_UNIT, d.restitution);
-    double f = tl_optfield_number(L, 3, "friction", &TL_R_NONNEG, -1.0);
-    if (f >= 0.0) d.friction_static = d.friction_kinetic = f;
-    d.category = (uint16_t)tl_optfield_integer(L, 3, "category", 0, 0xFFFF, d.category);
-    d.mask = (uint16_t)tl_optfield_integer(L, 3, "mask", 0, 0xFFFF, d.mask);
-    d.sensor = tl_optfield_boolean(L, 3, "sensor", d.sensor);
+    chain_def o = {tt_mask_place_default(), 0.5, tt_shape_def_default()};
+    tl_readopts(L, 3, chain_opts, &o);
+    const tt_mask_place p = o.place;
+    const double tol = o.tolerance;
+    const tt_shape_def d = o.shape;
     uint32_t n;
     tt_mask_polyline *lines;
     check_r(L, tt_mask_polylines(m, tol, &lines, &n)); /* to know how many: the chains call makes them again */

@@ -23,7 +23,17 @@ static void clear_user(lua_State *L, uint64_t h)
     lua_pop(L, 1);
 }
 
-static const char *const particle_opts[] = { "vx", "vy", "mass", "radius", "pinned", "category", "mask", "user", NULL };
+static const tl_opt particle_opts[] = {
+    TL_OPT_NUM(tt_particle_def, "vx", velocity.x, &TL_R_COORD),
+    TL_OPT_NUM(tt_particle_def, "vy", velocity.y, &TL_R_COORD),
+    TL_OPT_NUM(tt_particle_def, "mass", mass, &TL_R_MASS),
+    TL_OPT_NUM(tt_particle_def, "radius", radius, &TL_R_NONNEG),
+    TL_OPT_FLAG(tt_particle_def, "pinned", pinned),
+    TL_OPT_UINT16(tt_particle_def, "category", category, 0, 0xFFFF),
+    TL_OPT_UINT16(tt_particle_def, "mask", mask, 0, 0xFFFF),
+    TL_OPT_BYHAND("user"),
+    TL_OPT_END,
+};
 
 /* w:particle(x, y [, opts]) → handle */
 static int w_particle(lua_State *L)
@@ -35,14 +45,7 @@ static int w_particle(lua_State *L)
     lua_settop(L, 4);
     def.position.x = tl_checknumber(L, 2, &TL_R_COORD);
     def.position.y = tl_checknumber(L, 3, &TL_R_COORD);
-    tl_checkopts(L, 4, particle_opts);
-    def.velocity.x = tl_optfield_number(L, 4, "vx", &TL_R_COORD, def.velocity.x);
-    def.velocity.y = tl_optfield_number(L, 4, "vy", &TL_R_COORD, def.velocity.y);
-    def.mass = tl_optfield_number(L, 4, "mass", &TL_R_MASS, def.mass);
-    def.radius = tl_optfield_number(L, 4, "radius", &TL_R_NONNEG, def.radius);
-    def.pinned = tl_optfield_boolean(L, 4, "pinned", def.pinned);
-    def.category = (uint16_t)tl_optfield_integer(L, 4, "category", 0, 0xFFFF, def.category);
-    def.mask = (uint16_t)tl_optfield_integer(L, 4, "mask", 0, 0xFFFF, def.mask);
+    tl_readopts(L, 4, particle_opts, &def);
     /* read before the particle is made: a read that raises must leave no particle behind */
     bool has_user = tl_getopt(L, 4, "user");
 

@@ -33,21 +33,31 @@ static tt_rewind *check_ring(lua_State *L, int arg)
     return u->r;
 }
 
-static const char *const rewind_opts[] = {"every", "seconds", "dt", "max_bytes", NULL};
 static const tl_range R_SECONDS = {1e-9, 1e9, false};
 static const tl_range R_BYTES = {1024, 1e15, false};
+typedef struct rewind_opts_def {
+    tt_rewind_def def;
+    double seconds, dt, max_bytes; /* the ring counts steps and bytes; a script says seconds */
+} rewind_opts_def;
+static const tl_opt rewind_opts[] = {
+    TL_OPT_UINT(rewind_opts_def, "every", def.every, 1, 1000000),
+    TL_OPT_NUM(rewind_opts_def, "seconds", seconds, &R_SECONDS),
+    TL_OPT_NUM(rewind_opts_def, "dt", dt, &TL_R_DT),
+    TL_OPT_NUM(rewind_opts_def, "max_bytes", max_bytes, &R_BYTES),
+    TL_OPT_END,
+};
 
 /* tether.rewind([opts]) → ring: every (steps between keyframes, default
  * 10), seconds of history (default 10) at dt (default 1/60), max_bytes
  * (default 256 MB) */
 static int rewind_new(lua_State *L)
 {
-    tl_checkopts(L, 1, rewind_opts);
-    tt_rewind_def def = tt_rewind_def_default();
-    def.every = (uint32_t)tl_optfield_integer(L, 1, "every", 1, 1000000, def.every);
-    const double seconds = tl_optfield_number(L, 1, "seconds", &R_SECONDS, 10.0);
-    const double dt = tl_optfield_number(L, 1, "dt", &TL_R_DT, 1.0 / 60.0);
-    def.max_bytes = (size_t)tl_optfield_number(L, 1, "max_bytes", &R_BYTES, (double)def.max_bytes);
+    rewind_opts_def o = {tt_rewind_def_default(), 10.0, 1.0 / 60.0, 0.0};
+    o.max_bytes = (double)o.def.max_bytes;
+    tl_readopts(L, 1, rewind_opts, &o);
+    tt_rewind_def def = o.def;
+    def.max_bytes = (size_t)o.max_bytes;
+    const double seconds = o.seconds, dt = o.dt;
     const double steps = ceil(seconds / dt);
     if (steps > 9007199254740992.0) tl_error(L, "bad option 'seconds' (%f s at dt %f is too many steps)", seconds, dt);
     def.keep_steps = (uint64_t)steps < def.every ? def.every : (uint64_t)steps;

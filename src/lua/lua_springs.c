@@ -8,7 +8,12 @@ static tt_spring check_spring(lua_State *L, tt_world *w, int arg)
     return tt_spring_from_u64(tl_checkhandle(L, w, arg, TT_KIND_SPRING));
 }
 
-static const char *const spring_opts[] = { "stiffness", "damping", "rest", NULL };
+static const tl_opt spring_opts[] = {
+    TL_OPT_NUM(tt_spring_def, "stiffness", stiffness, &TL_R_NONNEG),
+    TL_OPT_NUM(tt_spring_def, "damping", damping, &TL_R_NONNEG),
+    TL_OPT_NUM(tt_spring_def, "rest", rest_length, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 /* w:spring(a, b [, opts]) → spring handle */
 static int w_spring(lua_State *L)
@@ -22,10 +27,7 @@ static int w_spring(lua_State *L)
     def.b = tl_check_particle(L, w, 3);
     if (def.a.index == def.b.index && def.a.gen == def.b.gen)
         tl_argerror(L, 3, "a spring needs two distinct particles");
-    tl_checkopts(L, 4, spring_opts);
-    def.stiffness = tl_optfield_number(L, 4, "stiffness", &TL_R_NONNEG, def.stiffness);
-    def.damping = tl_optfield_number(L, 4, "damping", &TL_R_NONNEG, def.damping);
-    def.rest_length = tl_optfield_number(L, 4, "rest", &TL_R_NONNEG, def.rest_length);
+    tl_readopts(L, 4, spring_opts, &def);
 
     s = tt_spring_create(w, &def);
     if (s.gen == 0)
@@ -86,19 +88,17 @@ static int w_set_spring(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     tt_spring s = check_spring(L, w, 2);
-    double k, c, rest;
 
     lua_settop(L, 3);
     if (lua_type(L, 3) != LUA_TTABLE)
         tl_typeerror(L, 3, "table");
-    tl_checkopts(L, 3, spring_opts);
     /* −1 marks a field that is absent: every valid value is ≥ 0 */
-    k = tl_optfield_number(L, 3, "stiffness", &TL_R_NONNEG, -1.0);
-    c = tl_optfield_number(L, 3, "damping", &TL_R_NONNEG, -1.0);
-    rest = tl_optfield_number(L, 3, "rest", &TL_R_NONNEG, -1.0);
-    if (k >= 0.0) tl_check_result(L, w, tt_spring_set_stiffness(w, s, k));
-    if (c >= 0.0) tl_check_result(L, w, tt_spring_set_damping(w, s, c));
-    if (rest >= 0.0) tl_check_result(L, w, tt_spring_set_rest_length(w, s, rest));
+    tt_spring_def o = tt_spring_def_default();
+    o.stiffness = o.damping = o.rest_length = -1.0;
+    tl_readopts(L, 3, spring_opts, &o);
+    if (o.stiffness >= 0.0) tl_check_result(L, w, tt_spring_set_stiffness(w, s, o.stiffness));
+    if (o.damping >= 0.0) tl_check_result(L, w, tt_spring_set_damping(w, s, o.damping));
+    if (o.rest_length >= 0.0) tl_check_result(L, w, tt_spring_set_rest_length(w, s, o.rest_length));
     return 0;
 }
 

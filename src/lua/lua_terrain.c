@@ -6,7 +6,6 @@
 #include "lua_common.h"
 #include "lua_mask.h"
 
-static const tl_range R_UNIT = {0.0, 1.0, false};
 static const tl_range R_PIXEL = {1e-9, TT_MAX_VALUE, false};
 
 static tt_terrain check_terrain(lua_State *L, tt_world *w, int arg)
@@ -14,8 +13,14 @@ static tt_terrain check_terrain(lua_State *L, tt_world *w, int arg)
     return tt_terrain_from_u64(tl_checkhandle(L, w, arg, TT_KIND_TERRAIN));
 }
 
-static const char *const terrain_opts[] = {"origin", "pixel", "band", "restitution", "friction", "friction_static",
-                                           "friction_kinetic", "category", "mask", NULL};
+static const tl_opt terrain_opts[] = {
+    TL_OPT_XY(tt_terrain_def, "origin", origin, &TL_R_COORD),
+    TL_OPT_NUM(tt_terrain_def, "pixel", pixel, &R_PIXEL),
+    TL_OPT_INT(tt_terrain_def, "band", band, 5, TT_TERRAIN_MAX_BAND),
+    TL_SURFACE_OPTS(tt_terrain_def, ),
+    TL_FILTER_OPTS(tt_terrain_def, ),
+    TL_OPT_END,
+};
 
 /* w:terrain(m [, {origin = {x, y} (pixel (0, 0)'s top-left corner, m), pixel = 0.05 (m), band = 10 (pixels, 5…32),
  * restitution = 0, friction =, friction_static = 0.6, friction_kinetic = 0.5, category = 1, mask = 0xFFFF}]) → terrain */
@@ -25,17 +30,7 @@ static int w_terrain(lua_State *L)
     lua_settop(L, 3);
     tt_mask *m = tl_check_mask(L, 2);
     tt_terrain_def d = tt_terrain_def_default();
-    tl_checkopts(L, 3, terrain_opts);
-    d.origin = tl_optfield_vec2(L, 3, "origin", &TL_R_COORD, d.origin);
-    d.pixel = tl_optfield_number(L, 3, "pixel", &R_PIXEL, d.pixel);
-    d.band = (int)tl_optfield_integer(L, 3, "band", 5, TT_TERRAIN_MAX_BAND, d.band);
-    d.restitution = tl_optfield_number(L, 3, "restitution", &R_UNIT, d.restitution);
-    double f = tl_optfield_number(L, 3, "friction", &TL_R_NONNEG, -1.0);
-    if (f >= 0.0) d.friction_static = d.friction_kinetic = f;
-    d.friction_static = tl_optfield_number(L, 3, "friction_static", &TL_R_NONNEG, d.friction_static);
-    d.friction_kinetic = tl_optfield_number(L, 3, "friction_kinetic", &TL_R_NONNEG, d.friction_kinetic);
-    d.category = (uint16_t)tl_optfield_integer(L, 3, "category", 0, 0xFFFF, d.category);
-    d.mask = (uint16_t)tl_optfield_integer(L, 3, "mask", 0, 0xFFFF, d.mask);
+    tl_readopts(L, 3, terrain_opts, &d);
     m = tl_check_mask(L, 2); /* again: an option's metamethod may have run, but a mask is never freed under us */
     d.solid = m;
     tt_terrain t = tt_terrain_create(w, &d);
@@ -157,7 +152,7 @@ static int w_set_terrain_material(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     tt_terrain t = check_terrain(L, w, 2);
-    double e = tl_checknumber(L, 3, &R_UNIT), fs = tl_checknumber(L, 4, &TL_R_NONNEG);
+    double e = tl_checknumber(L, 3, &TL_R_UNIT), fs = tl_checknumber(L, 4, &TL_R_NONNEG);
     double fk = tl_optnumber(L, 5, &TL_R_NONNEG, fs);
     tl_check_result(L, w, tt_terrain_set_material(w, t, e, fs, fk));
     return 0;

@@ -96,11 +96,27 @@ void *tl_scratch(lua_State *L, size_t bytes)
 
 /* --- construction and life cycle -------------------------------------------- */
 
-static const char *const world_opts[] = { "gravity", "integrator", "damping", "wind", "dt_hint", "capacity",
-                                          "substeps", "iterations", "tolerance", "solver", "snapshot", "file",
-                                          "sleep", "sleep_speed", "sleep_time", NULL };
 /* Same order as tt_solver_order. */
 const char *const tl_solver_names[] = { "gauss_seidel", "jacobi", NULL };
+
+static const tl_opt world_opts[] = {
+    TL_OPT_XY(tt_world_def, "gravity", gravity, &TL_R_COORD),
+    TL_OPT_CHOICE(tt_world_def, "integrator", integrator, "integrator", tl_integrator_names),
+    TL_OPT_NUM(tt_world_def, "damping", damping, &TL_R_NONNEG),
+    TL_OPT_XY(tt_world_def, "wind", wind, &TL_R_COORD),
+    TL_OPT_NUM(tt_world_def, "dt_hint", dt_hint, &TL_R_DT),
+    TL_OPT_UINT(tt_world_def, "capacity", capacity, 0, TL_MAX_CAPACITY),
+    TL_OPT_UINT(tt_world_def, "substeps", substeps, 1, TT_MAX_SUBSTEPS),
+    TL_OPT_UINT(tt_world_def, "iterations", iterations, 1, TT_MAX_ITERATIONS),
+    TL_OPT_NUM(tt_world_def, "tolerance", tolerance, &TL_R_NONNEG),
+    TL_OPT_CHOICE(tt_world_def, "solver", order, "solver", tl_solver_names),
+    TL_OPT_BYHAND("snapshot"),
+    TL_OPT_BYHAND("file"),
+    TL_OPT_FLAG(tt_world_def, "sleep", sleep),
+    TL_OPT_NUM(tt_world_def, "sleep_speed", sleep_speed, &TL_R_NONNEG),
+    TL_OPT_NUM(tt_world_def, "sleep_time", sleep_time, &TL_R_NONNEG),
+    TL_OPT_END,
+};
 
 int tl_world_new(lua_State *L)
 {
@@ -108,20 +124,7 @@ int tl_world_new(lua_State *L)
     tl_world_ud *u;
 
     lua_settop(L, 1);
-    tl_checkopts(L, 1, world_opts);
-    def.gravity = tl_optfield_vec2(L, 1, "gravity", &TL_R_COORD, def.gravity);
-    def.integrator = (tt_integrator)tl_optfield_option(L, 1, "integrator", "integrator", tl_integrator_names, (int)def.integrator);
-    def.damping = tl_optfield_number(L, 1, "damping", &TL_R_NONNEG, def.damping);
-    def.wind = tl_optfield_vec2(L, 1, "wind", &TL_R_COORD, def.wind);
-    def.dt_hint = tl_optfield_number(L, 1, "dt_hint", &TL_R_DT, def.dt_hint);
-    def.capacity = (uint32_t)tl_optfield_integer(L, 1, "capacity", 0, TL_MAX_CAPACITY, def.capacity);
-    def.substeps = (uint32_t)tl_optfield_integer(L, 1, "substeps", 1, TT_MAX_SUBSTEPS, def.substeps);
-    def.iterations = (uint32_t)tl_optfield_integer(L, 1, "iterations", 1, TT_MAX_ITERATIONS, def.iterations);
-    def.tolerance = tl_optfield_number(L, 1, "tolerance", &TL_R_NONNEG, def.tolerance);
-    def.order = (tt_solver_order)tl_optfield_option(L, 1, "solver", "solver", tl_solver_names, (int)def.order);
-    def.sleep = tl_optfield_boolean(L, 1, "sleep", def.sleep);
-    def.sleep_speed = tl_optfield_number(L, 1, "sleep_speed", &TL_R_NONNEG, def.sleep_speed);
-    def.sleep_time = tl_optfield_number(L, 1, "sleep_time", &TL_R_NONNEG, def.sleep_time);
+    tl_readopts(L, 1, world_opts, &def);
 
     /* Harmless first: a userdata with no world, its metatable and its user
      * table; only then the world. An error in between leaves nothing. */

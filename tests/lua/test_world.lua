@@ -416,6 +416,52 @@ T.test("docs/lua-api.md and lua/tether.d.lua cover every function", function()
   end
 end)
 
+T.test("each option class of lua/tether.d.lua names exactly the keys its function accepts", function()
+  local f = io.open("lua/tether.d.lua", "r")
+  T.ok(f, "lua/tether.d.lua readable")
+  if not f then return end
+  local ann = f:read("a")
+  f:close()
+  local function documented(class)
+    local keys, body = {}, ann:match("%-%-%-@class tether%." .. class .. "\n(.-)\n\n")
+    T.ok(body, class .. " found")
+    for k in (body or ""):gmatch("%-%-%-@field ([%w_]+)") do keys[k] = true end
+    return keys
+  end
+  -- the keys listed by the unknown-key error of a call given {zz_unknown = 1}
+  local unpack = table.unpack or unpack -- LuaJIT has the global
+  local function accepted(fn, ...)
+    local args = { n = select("#", ...), ... }
+    args[args.n + 1] = { zz_unknown = 1 }
+    local ok, msg = pcall(fn, unpack(args, 1, args.n + 1))
+    T.ok(not ok and msg:find("unknown option 'zz_unknown'", 1, true), tostring(msg))
+    local keys = {}
+    for k in tostring(msg):match("expected one of: (.*)%)$"):gmatch("'([%w_]+)'") do keys[k] = true end
+    return keys
+  end
+  local w = tether.world()
+  local a, b = w:particle(0, 0), w:particle(1, 0)
+  local m = tether.mask.rect(4, 4)
+  local cases = {
+    { "world_options", tether.world },
+    { "clock_options", tether.clock },
+    { "rewind_options", tether.rewind },
+    { "particle_options", w.particle, w, 0, 0 },
+    { "spring_options", w.spring, w, a, b },
+    { "distance_options", w.distance, w, a, b },
+    { "shape_options", w.circle, w, 0, 0, 1 },
+    { "collision_settings", w.set_collision, w },
+    { "terrain_options", w.terrain, w, m },
+    { "draw_options", w.draw, w },
+    { "mask_chain_options", w.mask_chains, w, m },
+  }
+  for _, c in ipairs(cases) do
+    local doc, got = documented(c[1]), accepted(unpack(c, 2))
+    for k in pairs(got) do T.ok(doc[k], c[1] .. ": accepted key '" .. k .. "' is documented") end
+    for k in pairs(doc) do T.ok(got[k], c[1] .. ": documented key '" .. k .. "' is accepted") end
+  end
+end)
+
 T.test("a core refusal names the Lua function once", function()
   local w = tether.world()
   local p = w:particle(0, 0, { pinned = true })
