@@ -13,15 +13,15 @@ local STEPS = 120
 local golden = {
   cloth = { "bf95991b563e9272", "6525abdc094c4633" },
   fountain = { "6f5670ad6bc772f6", "8e2eb4be3075c5e7" },
-  galton = { "691d5abbecf7c831", "9233a36173c72b3d" },
+  galton = { "8c6fcd0f80161128", "d53512656daf934c" },
   hourglass = { "c09cda5bf493f092", "0770fe70fadb78da" },
   integrators = { "72823523ba511575", "3621fcd6145aab93,26f29bf1c1082c37,95cb19c7b2324695,8ccc75868e811135,ea6678e9ca425f4c" },
   ragdoll = { "218a40738c049b9c", "44a768ea8a87c004" },
   rope_bridge = { "73fa3817e5c476a7", "1695e8d069c351f6" },
   soft_bodies = { "53b95d0bf05b10d2", "7be9a3697b1b1bbf" },
   spring_net = { "2a61a51d9d763317", "23f95701ff040468" },
-  terrain = { "3e396ac7473475ca", "9633655d12604942" },
-  worms = { "c7e2fd1582a805ae", "74159825ce26ce67" },
+  terrain = { "06cc662cfae0adc4", "a8faa1348f33a5c7" },
+  worms = { "4e68fa6104715743", "0f8d4be85da5bbcf" },
 }
 
 local function digest(h, xy)
