@@ -324,20 +324,21 @@ static void pair_one(void *ctx, uint32_t k)
     pair_end(p->w, p->c, p->c->bat.a[k], p->c->bat.b[k], p->h, p->thr, false);
 }
 
-/* Verlet's bounce off a static surface, placed in time. The velocity pass
- * alone turns the normal velocity around at the end of the substep, with
- * the particle where the sweeps left it, on the surface: the time between
- * the impact and the end of the substep is lost, and a ball rebounds short
- * of e²·h (−51 % from 0.1 m at e = 0.2, 1/60 s). Verlet's samples lie on
- * the free-flight parabola, so the impact is found exactly: from the
- * height a above the surface at the substep's start and the mean normal
- * velocity vbar over it (the pre-solve one), under gravity's normal part
- * gn, the particle meets the surface at t* with speed v*; it leaves with
- * −e·v* and flies the rest of the substep, τ = h − t*. The particle is
- * put where that flight ends (dn along the normal) with the mean velocity
- * of the flight's parabola over the substep (*vn). False, leaving the
- * velocity pass as it was, when there is no such flight: no bounce (e = 0,
- * or the flight would end under the surface), or no root. */
+/* A bounce off a still surface, placed in time. The velocity pass alone
+ * turns the normal velocity around at the end of the substep, with the
+ * particle where the sweeps left it, on the surface: the time between the
+ * impact and the end of the substep is lost, and a ball rebounds short of
+ * e²·h (−51 % from 0.1 m at e = 0.2, 1/60 s). With Verlet and symplectic
+ * Euler the samples of a free flight lie on its parabola, and the velocity
+ * after a substep is the parabola's mean over it, so the impact is found
+ * exactly: from the height a above the surface at the substep's start and
+ * the mean normal velocity vbar over it (the pre-solve one), under
+ * gravity's normal part gn, the particle meets the surface at t* with
+ * speed v*; it leaves with −e·v* and flies the rest of the substep,
+ * τ = h − t*. The particle is put where that flight ends (dn along the
+ * normal) with the flight's mean velocity over the substep (*vn). False,
+ * leaving the velocity pass as it was, when there is no such flight: no
+ * bounce (e = 0, or the flight would end under the surface), or no root. */
 static bool bounce_in_time(double a, double vbar, double gn, double e, double h, double *dn, double *vn)
 {
     const double vk = vbar - 0.5 * gn * h; /* the normal velocity at the substep's start */
@@ -368,7 +369,8 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     static_material(c, s, &se, &sfs, &sfk);
     double mus = sqrt(tt__mat(c, a, 1) * sfs), muk = sqrt(tt__mat(c, a, 2) * sfk);
     const double ux = s->cx / h, uy = s->cy / h; /* the shape's velocity at the contact */
-    const double above = (w->qx[a] - w->px[a]) * s->nx + (w->qy[a] - w->py[a]) * s->ny; /* Verlet: at the start */
+    const bool in_time = w->integrator == TT_VERLET || w->integrator == TT_SYMPLECTIC_EULER; /* see bounce_in_time */
+    const double above = in_time && !s->ccd ? (start_x(w, c)[a] - w->px[a]) * s->nx + (start_y(w, c)[a] - w->py[a]) * s->ny : 0.0;
     double vx, vy;
     if (s->ccd) { /* the sweep cut the substep's motion short: restart from the velocity before it */
         vx = c->vx0[a];
@@ -405,13 +407,11 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     const double vn0 = c->vx0[a] * s->nx + c->vy0[a] * s->ny;
     double dn, vn;
 
-    if (w->integrator == TT_VERLET && e > 0.0 && vn0 < -thr && !s->ccd && s->cx == 0.0 && s->cy == 0.0 &&
-        bounce_in_time(above, vn0,
-                       w->gravity.x * s->nx + w->gravity.y * s->ny, e, h, &dn, &vn)) {
+    if (in_time && e > 0.0 && vn0 < -thr && !s->ccd && s->cx == 0.0 && s->cy == 0.0 &&
+        bounce_in_time(above, vn0, w->gravity.x * s->nx + w->gravity.y * s->ny, e, h, &dn, &vn)) {
         /* respond left the normal velocity at −e·vn0 (> 0 here); the flight replaces it */
-        w->px[a] += dn * s->nx;
-        w->py[a] += dn * s->ny;
-        const double now = -e * vn0 + dn / h; /* moving x alone carries Verlet's velocity along */
+        shift(w, a, dn * s->nx, dn * s->ny, h);
+        const double now = -e * vn0 + dn / h; /* shift carried the velocity along */
         tt__add_velocity(w, a, (vn - now) * s->nx, (vn - now) * s->ny);
     }
     if (events) {
