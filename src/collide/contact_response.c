@@ -21,8 +21,11 @@
  * slides: end gives back the (μs − μk)·ln it was held by too much.
  * Euler, leapfrog and RK4 move positions by a velocity that lags, so ln
  * under-measures the load; their friction stays in the velocity pass
- * (respond) as an impulse bounded by μ·Δvn, as does friction between two
- * particles: grains that cannot roll would otherwise stand in columns. */
+ * (respond) as an impulse bounded by μ times the larger of Δvn and ln/h:
+ * Δvn alone is the contact particle's own weight and misses what a body's
+ * links bring down on it (a lattice block slid down a 15° slope at
+ * μs = 0.5). Friction between two particles is bounded by μ·Δvn: grains
+ * that cannot roll would otherwise stand in columns. */
 static inline bool rub_in_sweeps(const tt_world *w)
 {
     return w->integrator == TT_VERLET || w->integrator == TT_SYMPLECTIC_EULER;
@@ -241,11 +244,12 @@ void tt__contacts_sweeps_done(tt_world *w, void *self)
  * With μ > 0 also Coulomb friction (particle pairs; shapes with Euler,
  * leapfrog, RK4; a sweep's contact whose velocity restarts here): static
  * (tangential v under μs·Δvn) writes the tangential velocity to undo into
- * stick, kinetic reduces it by μk·Δvn. */
+ * stick, kinetic reduces it by μk·Δvn; Δvn is at least load (a shape
+ * contact's ln/h, above; 0 between particles). */
 static inline __attribute__((always_inline)) void respond(double vx, double vy, double v0x, double v0y, double nx,
                                                          double ny, double e, bool settled, double mus, double muk,
-                                                         double thr, double *dvx, double *dvy, double *stick_x,
-                                                         double *stick_y, double *dvn)
+                                                         double thr, double load, double *dvx, double *dvy,
+                                                         double *stick_x, double *stick_y, double *dvn)
 {
     const double vn0 = v0x * nx + v0y * ny, vn = vx * nx + vy * ny;
     /* no approach: vn ≥ 0; settled: nor more separation than before, min(vn, max(vn0, 0)) */
@@ -258,12 +262,13 @@ static inline __attribute__((always_inline)) void respond(double vx, double vy, 
     *dvy = (target - vn) * ny;
     *stick_x = *stick_y = 0.0;
     if (mus == 0.0 && muk == 0.0) return;
-    const double tx = vx - vn * nx, ty = vy - vn * ny, t2 = tx * tx + ty * ty, lim = mus * change;
+    const double n = change > load ? change : load;
+    const double tx = vx - vn * nx, ty = vy - vn * ny, t2 = tx * tx + ty * ty, lim = mus * n;
     if (t2 <= lim * lim) { /* squared: no root for the common sticking contact */
         *stick_x = tx;
         *stick_y = ty;
     } else {
-        const double tl = sqrt(t2), f = (muk * change < tl ? muk * change : tl) / tl;
+        const double tl = sqrt(t2), f = (muk * n < tl ? muk * n : tl) / tl;
         *dvx -= tx * f;
         *dvy -= ty * f;
     }
@@ -298,8 +303,8 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
     }
     double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0), e = ea > eb ? ea : eb;
     double dvx, dvy, sx, sy, dvn;
-    respond(rvx, rvy, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr, &dvx, &dvy, &sx, &sy,
-            &dvn);
+    respond(rvx, rvy, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr, 0.0, &dvx, &dvy, &sx,
+            &sy, &dvn);
     if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
         unslide(w, c, a, h, nx, ny, wa, sx, sy, 0.0, 0.0);
         unslide(w, c, b, h, nx, ny, wb, -sx, -sy, 0.0, 0.0);
@@ -395,8 +400,8 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     }
     double ea = tt__mat(c, a, 0), e = ea > se ? ea : se;
     double dvx, dvy, sx, sy, dvn;
-    respond(vx - ux, vy - uy, c->vx0[a] - ux, c->vy0[a] - uy, s->nx, s->ny, e, true, mus, muk, thr, &dvx, &dvy, &sx, &sy,
-            &dvn);
+    respond(vx - ux, vy - uy, c->vx0[a] - ux, c->vy0[a] - uy, s->nx, s->ny, e, true, mus, muk, thr, s->lambda / h, &dvx,
+            &dvy, &sx, &sy, &dvn);
     if (s->ccd) {
         dvx -= sx;
         dvy -= sy;
