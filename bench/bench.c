@@ -197,6 +197,7 @@ static const struct {
     {"pour", bench_pour},
     {"render", bench_render},
     {"constraints", bench_constraints},
+    {"cloth", bench_cloth},
     {"mask", bench_mask},
     {"snapshot", bench_snapshot},
     {"terrain", bench_terrain},
@@ -206,7 +207,7 @@ static const struct {
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : ".";
+    const char *dir = argc > 1 ? argv[1] : "build"; /* not the checkout's root: make bench passes its folder */
     const char *only = argc > 2 ? argv[2] : NULL;
     printf("tether %s benchmarks (medians; CSV in %s)\n", tt_version(), dir);
     for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++)

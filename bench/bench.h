@@ -18,6 +18,7 @@ void bench_collide(const char *dir);
 void bench_pour(const char *dir);
 void bench_render(const char *dir);
 void bench_constraints(const char *dir);
+void bench_cloth(const char *dir);
 void bench_mask(const char *dir);
 void bench_snapshot(const char *dir);
 void bench_terrain(const char *dir);

@@ -44,6 +44,12 @@ typedef struct tt_cloth_def {
     bool pin_top_corners;   ///< default true
     bool pin_top_row;       ///< every top-row particle pinned; default false
     double break_strain;    ///< structural and shear links tear past this strain; default 0 = never
+    bool long_range;        ///< long-range attachments (Kim, Chentanez & Müller 2012): no unpinned particle gets
+                            ///< farther from the cloth's pinned ones than in the rest shape (a "max" distance link
+                            ///< to each pinned corner, or with a pinned top row to the particle atop its column),
+                            ///< solved after the other links: a hanging cloth stops stretching under its own
+                            ///< weight at the same sweeps. Not with break_strain (a torn piece would stay tied
+                            ///< to the pins); default false
 } tt_cloth_def;
 
 /// A ragdoll of 11 particles, in this order: 0 head, 1 neck, 2 pelvis,

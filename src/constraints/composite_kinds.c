@@ -135,6 +135,28 @@ tt_composite tt_rope_create(tt_world *w, const tt_rope_def *d)
     return tt__builder_finish(&b);
 }
 
+/* The cloth's long-range attachments: a "max" link from each unpinned
+ * particle to each pinned corner, or with a pinned top row to the pinned
+ * particle atop its column, the nearest. In the plane the rest distance is
+ * the geodesic one. Made last, so the sweeps solve them last. */
+static void attach_to_pins(tt__builder *b, const tt_cloth_def *d)
+{
+    const uint32_t C = d->columns, R = d->rows;
+    for (uint32_t i = C; i < R * C; i++) { /* every row but the top one: nothing there is pinned */
+        if (d->pin_top_row) {
+            tt__builder_link(b, i % C, i, 1.0, TT_DISTANCE_MAX, 0.0);
+        } else if (d->pin_top_corners) {
+            tt__builder_link(b, 0, i, 1.0, TT_DISTANCE_MAX, 0.0);
+            tt__builder_link(b, C - 1, i, 1.0, TT_DISTANCE_MAX, 0.0);
+        }
+    }
+    if (!d->pin_top_row && d->pin_top_corners) /* the top row's own unpinned particles */
+        for (uint32_t c = 1; c + 1 < C; c++) {
+            tt__builder_link(b, 0, c, 1.0, TT_DISTANCE_MAX, 0.0);
+            tt__builder_link(b, C - 1, c, 1.0, TT_DISTANCE_MAX, 0.0);
+        }
+}
+
 tt_composite tt_cloth_create(tt_world *w, const tt_cloth_def *d)
 {
     const char *fn = "tt_cloth_create";
@@ -148,6 +170,10 @@ tt_composite tt_cloth_create(tt_world *w, const tt_cloth_def *d)
     if (!unit(w, d->shear_stiffness, fn, "shear_stiffness") || !unit(w, d->bend_stiffness, fn, "bend_stiffness") ||
         !strain_ok(w, d->break_strain, fn))
         return NONE;
+    if (d->long_range && d->break_strain > 0) {
+        tt__fail(w, TT_EINVAL, "%s: long_range ties every particle to the pins, so a torn piece could not fall: not with break_strain", fn);
+        return NONE;
+    }
     const uint32_t C = d->columns, R = d->rows;
     tt__builder b;
     if (!tt__builder_begin(&b, w, &d->common, C * R, fn)) return NONE;
@@ -189,6 +215,7 @@ tt_composite tt_cloth_create(tt_world *w, const tt_cloth_def *d)
                     for (uint32_t c = 0; c < C; c++) tt__builder_link(&b, P(r, c), P(r + 2, c), bb, TT_DISTANCE_RIGID, bs);
     }
 #undef P
+    if (d->long_range) attach_to_pins(&b, d);
     return tt__builder_finish(&b);
 }
 

@@ -61,6 +61,7 @@ static const tl_opt cloth_opts[] = {
     TL_OPT_FLAG(tt_cloth_def, "pin_top_corners", pin_top_corners),
     TL_OPT_FLAG(tt_cloth_def, "pin_top_row", pin_top_row),
     TL_OPT_NUM(tt_cloth_def, "break_strain", break_strain, &TL_R_NONNEG),
+    TL_OPT_FLAG(tt_cloth_def, "long_range", long_range),
     TL_OPT_END,
 };
 
