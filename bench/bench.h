@@ -4,6 +4,8 @@
 
 #include <stdio.h>
 
+#include "tether.h"
+
 double bench_now_ns(void);
 /* Sorts v in place and returns its median. */
 double bench_median(double *v, int n);
@@ -19,6 +21,8 @@ void bench_pour(const char *dir);
 void bench_render(const char *dir);
 void bench_constraints(const char *dir);
 void bench_cloth(const char *dir);
+/* Distance links cs[0, n) now: mean and max of |d/rest − 1| (bench_cloth.c). */
+void bench_cloth_strain(const tt_world *w, const tt_constraint *cs, uint32_t n, double *mean, double *max);
 void bench_mask(const char *dir);
 void bench_snapshot(const char *dir);
 void bench_terrain(const char *dir);

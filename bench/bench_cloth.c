@@ -19,8 +19,7 @@ typedef struct cloth_row {
     uint32_t iterations;
 } cloth_row;
 
-/* The structural links' strain now: mean and max of |d/rest − 1|. */
-static void strain(const tt_world *w, const tt_constraint *cs, uint32_t n, double *mean, double *max)
+void bench_cloth_strain(const tt_world *w, const tt_constraint *cs, uint32_t n, double *mean, double *max)
 {
     double sum = 0, mx = 0;
     for (uint32_t i = 0; i < n; i++) {
@@ -74,7 +73,7 @@ void bench_cloth(const char *dir)
             tt_world_step(w, 1.0 / 60);
             ts[s] = (bench_now_ns() - t0) * 1e-6;
             double mean, max;
-            strain(w, cs, 2 * N * (N - 1), &mean, &max);
+            bench_cloth_strain(w, cs, 2 * N * (N - 1), &mean, &max);
             if (mean > worst_mean) worst_mean = mean;
             if (max > worst_max) worst_max = max;
         }

@@ -81,20 +81,31 @@ T.test("slope: sticks when tan < mu, slides when greater", function()
   end
 end)
 
+-- A 5x3 lattice block resting on a slope of deg degrees, mu_s = 0.5 and mu_k = 0.4 on both sides.
+local function block_on_slope(deg, world_opts)
+  local MU, R, th = 0.5, 0.05, math.rad(deg)
+  local w = tether.world(world_opts)
+  w:set_collision { friction_static = MU, friction_kinetic = 0.4 }
+  local c, s = math.cos(th), math.sin(th)
+  w:segment(-20 * c, -20 * s, 20 * c, 20 * s, { friction_static = MU, friction_kinetic = 0.4 })
+  local h = 0.25 + R
+  local block = w:lattice { center = { -s * h, c * h }, width = 1, height = 0.5, columns = 5, rows = 3, angle = th, radius = R }
+  return w, block, c, s
+end
+
+-- How far the block's centre goes in n steps of 1/60 s.
+local function travel(w, block, n)
+  local x0, y0 = w:composite_center(block)
+  w:step(1 / 60, n)
+  local x1, y1 = w:composite_center(block)
+  return math.sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2), x1 - x0, y1 - y0
+end
+
 T.test("a lattice block on a slope sticks when tan(slope) < mu_s and slides when greater", function()
-  local MU, R = 0.5, 0.05
   local function slide(deg)
-    local th = math.rad(deg)
-    local w = tether.world { substeps = 4, iterations = 20 }
-    w:set_collision { friction_static = MU, friction_kinetic = 0.4 }
-    local c, s = math.cos(th), math.sin(th)
-    w:segment(-20 * c, -20 * s, 20 * c, 20 * s, { friction_static = MU, friction_kinetic = 0.4 })
-    local h = 0.25 + R
-    local block = w:lattice { center = { -s * h, c * h }, width = 1, height = 0.5, columns = 5, rows = 3, angle = th, radius = R }
-    local x0, y0 = w:composite_center(block)
-    w:step(1 / 60, 120)
-    local x1, y1 = w:composite_center(block)
-    return -((x1 - x0) * c + (y1 - y0) * s), w:composite_angle(block) -- the angle is relative to the rest pose
+    local w, block, c, s = block_on_slope(deg, { substeps = 4, iterations = 20 })
+    local _, dx, dy = travel(w, block, 120)
+    return -(dx * c + dy * s), w:composite_angle(block) -- the angle is relative to the rest pose
   end
   local still, turn1 = slide(20)
   local moved, turn2 = slide(35)
@@ -106,18 +117,9 @@ end)
 T.test("at the defaults a lattice block on a 15 deg slope with mu_s = 0.5 moves under 1 mm in 10 s", function()
   -- issue 21's creep target, at the settings the default figures use (1 substep, 10 sweeps);
   -- measured 0.13 mm, all of it while the block settles in its first steps
-  local MU, R, th = 0.5, 0.05, math.rad(15)
   for _, integ in ipairs { "verlet", "symplectic_euler" } do
-    local w = tether.world { integrator = integ }
-    w:set_collision { friction_static = MU, friction_kinetic = 0.4 }
-    local c, s = math.cos(th), math.sin(th)
-    w:segment(-20 * c, -20 * s, 20 * c, 20 * s, { friction_static = MU, friction_kinetic = 0.4 })
-    local h = 0.25 + R
-    local block = w:lattice { center = { -s * h, c * h }, width = 1, height = 0.5, columns = 5, rows = 3, angle = th, radius = R }
-    local x0, y0 = w:composite_center(block)
-    w:step(1 / 60, 600)
-    local x1, y1 = w:composite_center(block)
-    local moved = math.sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2)
+    local w, block = block_on_slope(15, { integrator = integ })
+    local moved = travel(w, block, 600)
     T.ok(moved < 1e-3, ("%s: moved %.2e m"):format(integ, moved))
   end
 end)
@@ -127,20 +129,9 @@ T.test("with leapfrog and RK4 a lattice block on a 15 deg slope with mu_s = 0.5 
   -- The load was the contact's own normal velocity change, which misses the weight the block's
   -- links bring down on its bottom row: the block slid 76 m in 10 s. Bounded by the normal
   -- correction the sweeps accumulated too, it slides 4.3 cm while it settles, then holds.
-  local MU, R, th = 0.5, 0.05, math.rad(15)
   for _, integ in ipairs { "leapfrog", "rk4" } do
-    local w = tether.world { integrator = integ }
-    w:set_collision { friction_static = MU, friction_kinetic = 0.4 }
-    local c, s = math.cos(th), math.sin(th)
-    w:segment(-20 * c, -20 * s, 20 * c, 20 * s, { friction_static = MU, friction_kinetic = 0.4 })
-    local h = 0.25 + R
-    local block = w:lattice { center = { -s * h, c * h }, width = 1, height = 0.5, columns = 5, rows = 3, angle = th, radius = R }
-    local x0, y0 = w:composite_center(block)
-    w:step(1 / 60, 120)
-    local x1, y1 = w:composite_center(block)
-    w:step(1 / 60, 480)
-    local x2, y2 = w:composite_center(block)
-    local settle, creep = math.sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2), math.sqrt((x2 - x1) ^ 2 + (y2 - y1) ^ 2)
+    local w, block = block_on_slope(15, { integrator = integ })
+    local settle, creep = travel(w, block, 120), travel(w, block, 480)
     T.ok(settle < 0.06, ("%s: slid %.3f m while settling"):format(integ, settle))
     T.ok(creep < 1e-3, ("%s: crept %.2e m from 2 s to 10 s"):format(integ, creep))
   end
