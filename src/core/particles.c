@@ -189,9 +189,15 @@ tt_result tt_particle_destroy(tt_world *w, tt_particle p)
     uint32_t i = p.index;
     if (w->springs_alive) w->springs_detach(w, i);
     tt__solver_particle_removed(w, i);
+    /* the slot as a loaded world has it (the stream holds zeros for a dead
+     * slot): whatever still reads a dead slot reads the same in both */
     w->flags[i] = 0;
-    w->inv_mass[i] = 0.0;
+    w->px[i] = w->py[i] = w->qx[i] = w->qy[i] = 0.0;
+    w->inv_mass[i] = w->mass[i] = 0.0;
+    w->radius[i] = 0.0f;
+    w->category[i] = w->mask[i] = 0;
     if (w->fx) w->fx[i] = w->fy[i] = 0.0;
+    if (w->user) w->user[i] = 0;
     tt_pool_free(&w->ppool, i);
     w->alive--;
     return TT_OK;
