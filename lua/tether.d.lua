@@ -55,6 +55,7 @@ local tether = {}
 ---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default false
 ---@field sleep_speed? number a particle rests while slower than this, m/s, in [0, 1e12]; default 0.05
 ---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 0.5
+---@field fixed_point? boolean|number positions on a fixed-point lattice, so `w:reverse()` runs back bit for bit: true for the quantum 2^-32 m (range ±2^19 m), or the quantum itself, a power of two 2^-k, k = 1..60 (range ±2^51 quanta); positions given are rounded onto it, one outside the range raises; needs integrator "verlet"; default false
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
 ---@field file? string a snapshot file (w:save(path), tt_world_save_file): the new world is the saved one; a file that cannot be read or is damaged raises; no other option may be given
 
@@ -149,8 +150,13 @@ function rewind:destroy() end
 ---Time reversal (position Verlet with forces only): swaps every particle's position
 ---and previous position, so the next steps of the same dt run the motion backwards.
 ---Raises naming what prevents it: another integrator, damping, constraints,
----collisions, spring damping, a velocity set since the last step.
+---collisions, spring damping, a velocity set since the last step. In a world made
+---with `fixed_point` the round trip is exact, bit for bit.
 function world:reverse() end
+
+---The fixed-point quantum of the world (option `fixed_point`), m, or nil when positions are plain doubles.
+---@return number|nil
+function world:fixed_point() end
 
 ---A new, empty rewind ring.
 ---@param opts? tether.rewind_options

@@ -107,6 +107,7 @@ struct tt_world {
     double dt_prev;       /* dt of the last step (dt_hint before the first): Verlet's x_old is x − v·dt_prev */
     uint32_t max_particles;
     uint32_t tag;         /* 1…255: the high byte of every handle generation this world hands out */
+    double fixed_point;   /* 0, or the quantum every position is a multiple of (fixed_point.c) */
 
     /* particles: struct of arrays indexed by slot; a slot keeps its index for life */
     tt_pool ppool;
@@ -282,6 +283,17 @@ bool tt__sleep_loaded_ok(const tt_world *w);
  * polygon's outline (a point repeated, three consecutive points on a line,
  * with `convex` a turn against the winding), or n when none does. */
 uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex);
+
+/* Fixed-point positions (fixed_point.c). The nearest multiple of q to v
+ * (q a power of two, so v/q and m·q are exact). */
+static inline double tt__fixed_snap(double q, double v) { return round(v / q) * q; }
+bool tt__fixed_quantum_ok(double q);
+double tt__fixed_range(const tt_world *w);                /* 2^51·q: the largest |coordinate| */
+bool tt__fixed_in_range(const tt_world *w, tt_vec2 p);   /* true when off */
+tt_vec2 tt__fixed_snap_vec(const tt_world *w, tt_vec2 p); /* p when off */
+tt_result tt__fixed_check(const tt_world *w, tt_vec2 p, const char *fn);
+void tt__fixed_after_solve(tt_world *w);
+bool tt__fixed_loaded_ok(const tt_world *w);
 
 /* Forces and integration (integrate.c / forces.c). */
 bool tt__has_forces(const tt_world *w);

@@ -98,9 +98,22 @@ void *tl_scratch(lua_State *L, size_t bytes)
 
 static const char *const world_opts[] = { "gravity", "integrator", "damping", "wind", "dt_hint", "capacity",
                                           "substeps", "iterations", "tolerance", "solver", "snapshot", "file",
-                                          "sleep", "sleep_speed", "sleep_time", NULL };
+                                          "sleep", "sleep_speed", "sleep_time", "fixed_point", NULL };
 /* Same order as tt_solver_order. */
 const char *const tl_solver_names[] = { "gauss_seidel", "jacobi", NULL };
+
+/* fixed_point = true (the quantum TT_FIXED_POINT_QUANTUM), false (off) or
+ * the quantum itself, checked by tt_world_create. */
+static double opt_fixed_point(lua_State *L, double def)
+{
+    if (!tl_getopt(L, 1, "fixed_point")) return def;
+    double q = def;
+    if (lua_type(L, -1) == LUA_TBOOLEAN) q = lua_toboolean(L, -1) ? TT_FIXED_POINT_QUANTUM : 0.0;
+    else if (lua_type(L, -1) == LUA_TNUMBER) q = lua_tonumber(L, -1);
+    else tl_error(L, "bad option 'fixed_point' (boolean or number expected, got %s)", luaL_typename(L, -1));
+    lua_pop(L, 1);
+    return q;
+}
 
 int tl_world_new(lua_State *L)
 {
@@ -122,6 +135,7 @@ int tl_world_new(lua_State *L)
     def.sleep = tl_optfield_boolean(L, 1, "sleep", def.sleep);
     def.sleep_speed = tl_optfield_number(L, 1, "sleep_speed", &TL_R_NONNEG, def.sleep_speed);
     def.sleep_time = tl_optfield_number(L, 1, "sleep_time", &TL_R_NONNEG, def.sleep_time);
+    def.fixed_point = opt_fixed_point(L, def.fixed_point);
 
     /* Harmless first: a userdata with no world, its metatable and its user
      * table; only then the world. An error in between leaves nothing. */
