@@ -997,11 +997,22 @@ function tether.gfx.image(img, x1, y1, x2, y2) end
 ---@field color? number[] {r, g, b [, a]} of particles
 ---@field pinned? number[] {r, g, b [, a]} of pinned particles
 ---@field min_radius? number px, in [0, 1000]; default 1.5
+---@field alpha? number in [0, 1]: particles and springs drawn at previous + alpha*(current - previous), between the last two steps; default the frame's (the runner's clock alpha in a window, 1 headless: the current positions). Below 1 it turns w:set_interpolation(true) on
 
 ---Debug draw of the whole world (springs, particles) on the world layer;
 ---the world becomes draggable with the mouse in the window.
 ---@param opts? tether.draw_options
 function world:draw(opts) end
+
+---Keeps (true) or drops (false) where every particle was as each step began, for
+---drawing between steps (w:draw{alpha=}): 16 bytes a particle, any integrator. Not
+---world state: the hash and snapshots do not see it. Default false.
+---@param on boolean
+function world:set_interpolation(on) end
+
+---Whether the world keeps its previous positions (w:set_interpolation).
+---@return boolean
+function world:interpolation() end
 
 ---A width × height bit mask (1..16384 a side) for pixel-perfect collision.
 ---Pixel (0, 0) is the image's top-left; y goes down (the world's goes up).

@@ -165,6 +165,16 @@ TT_API tt_result tt_world_get_attractor(const tt_world *w, uint32_t slot, tt_att
 /// A particle exactly at the centre is left alone (no direction).
 TT_API tt_result tt_world_explode(tt_world *w, tt_vec2 center, double radius, double impulse);
 
+/// Keeps (on) or drops (off) where every particle was as each step begins,
+/// for drawing between steps (tt_world_read_previous_positions): 16 bytes
+/// per particle and one copy of the positions per step while on; default
+/// off. Any integrator (Verlet's previous position is not that one: it spans
+/// a substep and contacts rewrite it). Not simulation state: neither saved
+/// nor hashed, and a restore keeps it on, from the restored positions.
+TT_API tt_result tt_world_set_interpolation(tt_world *w, bool on);
+/// Whether the world keeps the previous positions (tt_world_set_interpolation).
+TT_API bool tt_world_get_interpolation(const tt_world *w);
+
 /// Stats of the last step (see tt_stats).
 TT_API tt_result tt_world_get_stats(const tt_world *w, tt_stats *out);
 /// Energy now (see tt_energy).

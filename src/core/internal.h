@@ -125,6 +125,7 @@ struct tt_world {
     uint64_t *user;
     double *scratch[TT_SCRATCH_COUNT];
     uint32_t scratch_cap[TT_SCRATCH_COUNT];
+    double *ox, *oy;      /* interpolation.c: positions as the last step began; NULL while not asked for */
     uint32_t *fresh;      /* Verlet particles whose velocity was set exactly since the last step */
     uint32_t fresh_count, fresh_cap;
 
@@ -283,6 +284,18 @@ bool tt__sleep_loaded_ok(const tt_world *w);
  * polygon's outline (a point repeated, three consecutive points on a line,
  * with `convex` a turn against the winding), or n when none does. */
 uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex);
+
+/* Positions as the last step began, for drawing (interpolation.c): a
+ * particle made or moved since then was where it is now. */
+bool tt__interp_start(tt_world *w); /* false on no memory */
+void tt__interp_step_begin(tt_world *w);
+void tt__interp_stop(tt_world *w);
+static inline void tt__interp_moved(tt_world *w, uint32_t i)
+{
+    if (!w->ox) return;
+    w->ox[i] = w->px[i];
+    w->oy[i] = w->py[i];
+}
 
 /* Fixed-point positions (fixed_point.c). The nearest multiple of q to v
  * (q a power of two, so v/q and m·q are exact). */

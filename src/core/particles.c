@@ -29,6 +29,7 @@ tt_result tt__particles_reserve(tt_world *w, uint32_t cap)
               grow((void **)&w->category, sizeof(uint16_t), n) && grow((void **)&w->mask, sizeof(uint16_t), n);
     if (ok && w->fx) ok = grow((void **)&w->fx, sizeof(double), n) && grow((void **)&w->fy, sizeof(double), n);
     if (ok && w->user) ok = grow((void **)&w->user, sizeof(uint64_t), n);
+    if (ok && w->ox) ok = grow((void **)&w->ox, sizeof(double), n) && grow((void **)&w->oy, sizeof(double), n);
     if (!ok) return tt__fail(w, TT_ENOMEM, "out of memory growing to %u particles", n);
     if (w->fx) {
         memset(w->fx + w->pcap, 0, (size_t)(n - w->pcap) * sizeof(double));
@@ -45,6 +46,7 @@ void tt__particles_free(tt_world *w)
     free(w->inv_mass); free(w->mass); free(w->radius);
     free(w->flags); free(w->category); free(w->mask);
     free(w->fx); free(w->fy); free(w->user); free(w->fresh);
+    free(w->ox); free(w->oy);
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) free(w->scratch[k]);
     tt_pool_destroy(&w->ppool);
 }
@@ -170,6 +172,7 @@ tt_particle tt_particle_create(tt_world *w, const tt_particle_def *d)
     const tt_vec2 at = tt__fixed_snap_vec(w, d->position);
     w->px[i] = at.x;
     w->py[i] = at.y;
+    tt__interp_moved(w, i);
     w->mass[i] = d->mass;
     w->inv_mass[i] = d->pinned ? 0.0 : 1.0 / d->mass;
     w->radius[i] = (float)d->radius;
@@ -231,6 +234,7 @@ tt_result tt_particle_set_position(tt_world *w, tt_particle p, tt_vec2 pos, tt_m
     }
     w->px[i] = pos.x;
     w->py[i] = pos.y;
+    tt__interp_moved(w, i);
     w->epoch++;
     if (mode == TT_MOVE_RESET_VELOCITY) tt__set_velocity(w, i, (tt_vec2){0, 0});
     return TT_OK;

@@ -430,6 +430,11 @@ tt_result tt_world_restore(tt_world *w, const void *data, size_t size)
     char why[200];
     tt_world *fresh = parse(data, size, w->epoch + 1, why, sizeof why);
     if (!fresh) return tt__fail(w, TT_EINVAL, "tt_world_restore: %s; the world is unchanged", why);
+    /* drawing between steps goes on, from the restored positions (a jump has nothing to draw between) */
+    if (w->ox && !tt__interp_start(fresh)) {
+        tt_world_destroy(fresh);
+        return tt__fail(w, TT_ENOMEM, "tt_world_restore: out of memory; the world is unchanged");
+    }
     /* the world keeps its address (scripts and the binding hold it); what it held goes with the husk */
     tt_world old = *w;
     *w = *fresh;

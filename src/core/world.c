@@ -140,6 +140,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
     w->step_oom = NULL;
+    if (w->ox) tt__interp_step_begin(w);
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
@@ -329,6 +330,7 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
     size_t per = 6 * sizeof(double) + sizeof(float) + 3 * sizeof(uint16_t);
     if (w->fx) per += 2 * sizeof(double);
     if (w->user) per += sizeof(uint64_t);
+    if (w->ox) per += 2 * sizeof(double);
     size_t particles = per * w->pcap + tt_pool_bytes(&w->ppool);
     size_t total = sizeof *w + particles;
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);

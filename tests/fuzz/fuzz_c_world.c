@@ -255,7 +255,22 @@ GET_VAL(tt_world_get_substeps, if (w && (tt_world_get_substeps(w) - 1u) >= TT_MA
 GET_VAL(tt_world_get_iterations, if (w && (tt_world_get_iterations(w) - 1u) >= TT_MAX_ITERATIONS) fz_fail(f, "bad iterations"))
 GET_VAL(tt_world_get_solver_order, if (w && (unsigned)tt_world_get_solver_order(w) > TT_JACOBI) fz_fail(f, "bad order"))
 GET_VAL(tt_world_get_fixed_point, if (w && tt_world_get_fixed_point(w) != 0.0 && (tt_world_get_fixed_point(w) < 0x1p-60 || tt_world_get_fixed_point(w) > 0.5)) fz_fail(f, "bad fixed-point quantum"))
+GET_VAL(tt_world_get_interpolation, if (!w && tt_world_get_interpolation(w)) fz_fail(f, "a NULL world keeps positions"))
 GET_VAL(tt_world_hash, if (tt_world_hash(w) != tt_world_hash(w)) fz_fail(f, "two hashes of one state differ"))
+
+/* Keeping the previous positions is not state: the hash must not move. */
+static void c_world_set_interpolation(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    bool on = fz_chance(f, 2);
+    fz_log(f, "tt_world_set_interpolation(%s, %s)", fz_wn(f, w), on ? "true" : "false");
+    FZ_HIT(f, tt_world_set_interpolation);
+    uint64_t h = w ? tt_world_hash(w) : 0;
+    tt_result r = tt_world_set_interpolation(w, on);
+    fz_res(f, r);
+    if (w && tt_world_hash(w) != h) fz_fail(f, "tt_world_set_interpolation changed the hash");
+    if (w && r == TT_OK && tt_world_get_interpolation(w) != on) fz_fail(f, "tt_world_get_interpolation disagrees");
+}
 
 static void c_world_set_damping(fz *f)
 {
@@ -400,6 +415,8 @@ const fz_entry fz_world_entries[] = {
     { "tt_world_set_integrator", c_tt_world_set_integrator, 5 },
     { "tt_world_get_integrator", c_tt_world_get_integrator, 1 },
     { "tt_world_get_fixed_point", c_tt_world_get_fixed_point, 1 },
+    { "tt_world_set_interpolation", c_world_set_interpolation, 2 },
+    { "tt_world_get_interpolation", c_tt_world_get_interpolation, 1 },
     { "tt_world_set_substeps", c_tt_world_set_substeps, 4 },
     { "tt_world_get_substeps", c_tt_world_get_substeps, 1 },
     { "tt_world_set_iterations", c_tt_world_set_iterations, 4 },
