@@ -156,6 +156,28 @@ TEST(fixed_point_positions_are_rounded_onto_the_lattice_and_refused_outside_its_
     tt_world_destroy(w);
 }
 
+/* An impulse moves x_old off the lattice; reversing then makes it the
+ * position, rounded back onto the lattice. */
+TEST(fixed_point_reverse_after_an_impulse_keeps_positions_on_the_lattice)
+{
+    const double q = 0x1p-20;
+    tt_world_def wd = tt_world_def_default();
+    wd.fixed_point = q;
+    tt_world *w = tt_world_create(&wd);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle p = tt_particle_create(w, &pd);
+    tt_world_step(w, 1.0 / 60);
+    ENSURE_OK(tt_particle_apply_impulse(w, p, (tt_vec2){0.1, 0.3}));
+    ENSURE_OK(tt_world_reverse(w));
+    double xy[2];
+    tt_world_read_positions(w, xy, 1);
+    ENSURE(on_lattice(xy, 1, q));
+    tt_world_step(w, 1.0 / 60);
+    tt_world_read_positions(w, xy, 1);
+    ENSURE(on_lattice(xy, 1, q));
+    tt_world_destroy(w);
+}
+
 /* Constraints and contacts correct positions by amounts off the lattice:
  * they are rounded back onto it after the sweeps. */
 TEST(fixed_point_stays_on_the_lattice_with_constraints_and_collisions)
