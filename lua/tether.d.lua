@@ -55,6 +55,7 @@ local tether = {}
 ---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default false
 ---@field sleep_speed? number a particle rests while slower than this, m/s, in [0, 1e12]; default 0.05
 ---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 0.5
+---@field fixed_point? boolean|number positions on a fixed-point lattice, so `w:reverse()` runs back bit for bit: true for the quantum 2^-32 m (range ±2^19 m), or the quantum itself, a power of two 2^-k, k = 1..60 (range ±2^51 quanta); positions given are rounded onto it, one outside the range raises; needs integrator "verlet"; default false
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
 ---@field file? string a snapshot file (w:save(path), tt_world_save_file): the new world is the saved one; a file that cannot be read or is damaged raises; no other option may be given
 
@@ -149,8 +150,13 @@ function rewind:destroy() end
 ---Time reversal (position Verlet with forces only): swaps every particle's position
 ---and previous position, so the next steps of the same dt run the motion backwards.
 ---Raises naming what prevents it: another integrator, damping, constraints,
----collisions, spring damping, a velocity set since the last step.
+---collisions, spring damping, a velocity set since the last step. In a world made
+---with `fixed_point` the round trip is exact, bit for bit.
 function world:reverse() end
+
+---The fixed-point quantum of the world (option `fixed_point`), m, or nil when positions are plain doubles.
+---@return number|nil
+function world:fixed_point() end
 
 ---A new, empty rewind ring.
 ---@param opts? tether.rewind_options
@@ -993,11 +999,22 @@ function tether.gfx.image(img, x1, y1, x2, y2) end
 ---@field color? number[] {r, g, b [, a]} of particles
 ---@field pinned? number[] {r, g, b [, a]} of pinned particles
 ---@field min_radius? number px, in [0, 1000]; default 1.5
+---@field alpha? number in [0, 1]: particles and springs drawn at previous + alpha*(current - previous), between the last two steps; default the frame's (the runner's clock alpha in a window, 1 headless: the current positions). Below 1 it turns w:set_interpolation(true) on
 
 ---Debug draw of the whole world (shapes, springs, constraints, particles) on the world layer;
 ---the world becomes draggable with the mouse in the window.
 ---@param opts? tether.draw_options
 function world:draw(opts) end
+
+---Keeps (true) or drops (false) where every particle was as each step began, for
+---drawing between steps (w:draw{alpha=}): 16 bytes a particle, any integrator. Not
+---world state: the hash and snapshots do not see it. Default false.
+---@param on boolean
+function world:set_interpolation(on) end
+
+---Whether the world keeps its previous positions (w:set_interpolation).
+---@return boolean
+function world:interpolation() end
 
 ---A width × height bit mask (1..16384 a side) for pixel-perfect collision.
 ---Pixel (0, 0) is the image's top-left; y goes down (the world's goes up).

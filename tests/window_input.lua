@@ -51,6 +51,9 @@ function tether.unload()
   local x, y = w:position(p)
   check(math.abs(x - 0.5) < 1e-9 and math.abs(y - 0.5) < 1e-9 and not w:pinned(p), "a click on empty space drags nothing")
   check(size_at[30][1] == 320 and size_at[30][2] == 240, "320x240 before the resize")
+  -- the window draws at its clock's alpha, in [0, 1): w:draw then keeps the previous positions
+  -- (headless frames draw at 1 and keep nothing: tests/lua/test_render.lua)
+  check(w:interpolation() == true, "the clock's alpha reached w:draw (the world keeps its previous positions)")
   local s = size_at[40]
   check(s[1] == 400 and s[2] == 300, ("400x300 after the resize (got %dx%d)"):format(s[1], s[2]))
   print(("%d passed, %d failed"):format(passed, failed))

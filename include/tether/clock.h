@@ -39,7 +39,8 @@ TT_API tt_result tt_clock_init(tt_clock *c, double dt, uint32_t max_steps);
 /// single step). On an error *steps is 0 and the clock is unchanged.
 TT_API tt_result tt_clock_advance(tt_clock *c, double real, uint32_t *steps);
 /// How far the world is from its last step towards its next, [0, 1): draw
-/// the previous state blended with the current one by this much.
+/// the previous state blended with the current one by this much
+/// (tt_debug_draw.alpha, with tt_world_set_interpolation on; the runner's window does).
 TT_API double tt_clock_alpha(const tt_clock *c);
 TT_API tt_result tt_clock_set_scale(tt_clock *c, double scale);
 TT_API tt_result tt_clock_set_paused(tt_clock *c, bool paused);

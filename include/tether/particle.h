@@ -71,6 +71,14 @@ TT_API uint32_t tt_world_list_particles(const tt_world *w, tt_particle *out, uin
 /// Bulk: positions of up to `cap` live particles in slot order (the order of
 /// tt_world_list_particles) into xy as x0, y0, x1, y1, …; returns how many.
 TT_API uint32_t tt_world_read_positions(const tt_world *w, double *xy, uint32_t cap);
+/// Bulk, as tt_world_read_positions: where each particle was as the last step
+/// began, kept while tt_world_set_interpolation is on (the current position
+/// when it is off, and for a particle made or moved by the script since).
+/// Drawn at previous + alpha·(current − previous), with a clock's alpha
+/// (tt_clock_alpha), motion is smooth between fixed steps.
+TT_API uint32_t tt_world_read_previous_positions(const tt_world *w, double *xy, uint32_t cap);
+/// The same for one particle.
+TT_API tt_result tt_particle_get_previous_position(const tt_world *w, tt_particle p, tt_vec2 *out);
 /// Bulk: positions of n given particles into xy (2n doubles). Stops at the first stale handle.
 TT_API tt_result tt_particles_get_positions(const tt_world *w, const tt_particle *ids, uint32_t n, double *xy);
 /// Bulk kinematic move of n given particles (2n finite doubles). Validates everything before changing anything.

@@ -54,6 +54,9 @@ typedef struct tt_debug_draw {
     tt_color pinned;       ///< default (230, 70, 70, 255)
     tt_color constraint;   ///< default (120, 190, 230, 255)
     tt_color shape;        ///< default (150, 220, 150, 255)
+    double alpha;          ///< where between the last two steps particles and springs are drawn, 0…1: previous +
+                           ///< alpha·(current − previous) (tt_world_read_previous_positions; pass tt_clock_alpha);
+                           ///< default 1, the current positions. Constraint lines and shapes are drawn as they are now
 } tt_debug_draw;
 
 /// Makes a canvas of width × height pixels (1…16384 each); NULL if out of memory or out of range.

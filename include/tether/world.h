@@ -35,7 +35,15 @@ typedef struct tt_world_def {
     bool sleep;               ///< particles at rest fall asleep by islands and cost nothing until woken; default false
     double sleep_speed;       ///< a particle rests while its mean speed (since its rest began) is under this, m/s; default 0.05; 0…TT_MAX_VALUE
     double sleep_time;        ///< an island sleeps once all of it rested this long, s; default 0.5; 0…TT_MAX_VALUE
+    double fixed_point;       ///< 0 (default): positions are plain doubles. Else the quantum q, m, a power of two 2^-k
+                              ///< (k = 1…60; TT_FIXED_POINT_QUANTUM = 2^-32 is a good choice): every position is kept
+                              ///< a multiple of q within |x| ≤ 2^51·q (2^19 m = 524 288 m for 2^-32), so position
+                              ///< Verlet runs backwards bit for bit (tt_world_reverse). Positions given are rounded
+                              ///< to the nearest multiple; one outside the range is refused. Needs TT_VERLET.
 } tt_world_def;
+
+/// The fixed-point quantum to use when in doubt: 2^-32 m (0.23 nm), range ±2^19 m.
+#define TT_FIXED_POINT_QUANTUM (1.0 / 4294967296.0)
 
 /// Pipeline stages timed by the world (milliseconds of the last step).
 /// A stage the world does not use is skipped outright and reads 0.
@@ -110,8 +118,12 @@ TT_API tt_vec2 tt_world_get_wind(const tt_world *w);
 TT_API tt_result tt_world_set_damping(tt_world *w, double damping); ///< 1/s, finite, ≥ 0
 TT_API double tt_world_get_damping(const tt_world *w);
 /// Switches integrator between steps; every particle keeps its velocity.
+/// TT_ESTATE in a fixed_point world (it keeps TT_VERLET).
 TT_API tt_result tt_world_set_integrator(tt_world *w, tt_integrator i);
 TT_API tt_integrator tt_world_get_integrator(const tt_world *w);
+/// The fixed-point quantum of the world (tt_world_def.fixed_point), m; 0 when positions are plain doubles.
+/// It is set when the world is made and kept for life (a snapshot carries it).
+TT_API double tt_world_get_fixed_point(const tt_world *w);
 
 /// Substeps per step (1…1000): at equal cost, more substeps beat more iterations.
 TT_API tt_result tt_world_set_substeps(tt_world *w, uint32_t substeps);
@@ -152,6 +164,16 @@ TT_API tt_result tt_world_get_attractor(const tt_world *w, uint32_t slot, tt_att
 /// an impulse of `impulse`·(1 − d/radius) N·s pointing away from the centre.
 /// A particle exactly at the centre is left alone (no direction).
 TT_API tt_result tt_world_explode(tt_world *w, tt_vec2 center, double radius, double impulse);
+
+/// Keeps (on) or drops (off) where every particle was as each step begins,
+/// for drawing between steps (tt_world_read_previous_positions): 16 bytes
+/// per particle and one copy of the positions per step while on; default
+/// off. Any integrator (Verlet's previous position is not that one: it spans
+/// a substep and contacts rewrite it). Not simulation state: neither saved
+/// nor hashed, and a restore keeps it on, from the restored positions.
+TT_API tt_result tt_world_set_interpolation(tt_world *w, bool on);
+/// Whether the world keeps the previous positions (tt_world_set_interpolation).
+TT_API bool tt_world_get_interpolation(const tt_world *w);
 
 /// Stats of the last step (see tt_stats).
 TT_API tt_result tt_world_get_stats(const tt_world *w, tt_stats *out);
@@ -207,7 +229,9 @@ TT_API tt_world *tt_world_load_file(const char *path);
 /// Only for position Verlet with forces alone (gravity, wind, undamped
 /// springs, applied forces); TT_ESTATE naming what prevents it otherwise
 /// (another integrator, damping, constraints, collisions, spring damping, a
-/// velocity set since the last step), the world unchanged.
+/// velocity set since the last step), the world unchanged. In a world with
+/// fixed_point positions (tt_world_def) the round trip is exact, bit for bit,
+/// as long as dt stays the same.
 TT_API tt_result tt_world_reverse(tt_world *w);
 
 /// The last error raised by a call on this world, or by tt_world_create when

@@ -85,6 +85,9 @@ bool tt__builder_spawn(tt__builder *b)
                      b->spots[i].at.x, b->spots[i].at.y, TT_MAX_VALUE);
             release(b);
             return false;
+        } else if (tt__fixed_check(w, b->spots[i].at, b->fn) != TT_OK) {
+            release(b);
+            return false;
         }
     if (b->nspots > tt__particle_room(w)) {
         tt__fail(w, TT_ENOMEM, "%s: the world is full (max_particles %u)", b->fn, w->max_particles);

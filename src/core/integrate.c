@@ -23,6 +23,59 @@ static bool accel(tt_world *w, const double *x, const double *y, const double *v
     return true;
 }
 
+/* A velocity set exactly at time t starts with x + v·dt + a·dt²/2 (a
+ * Taylor step), which makes Verlet exact for constant acceleration. */
+static void verlet_fresh(tt_world *w, const double *ax, const double *ay)
+{
+    const double h = 0.5 * w->dt_prev * w->dt_prev;
+    for (uint32_t k = 0; k < w->fresh_count; k++) {
+        uint32_t i = w->fresh[k];
+        if (!(w->flags[i] & TT_PF_FRESH)) continue;
+        w->flags[i] &= (uint16_t)~TT_PF_FRESH;
+        if (w->inv_mass[i] == 0.0) continue;
+        w->qx[i] += (ax ? ax[i] : w->gravity.x) * h;
+        w->qy[i] += (ay ? ay[i] : w->gravity.y) * h;
+    }
+    w->fresh_count = 0;
+}
+
+/* Verlet on the fixed-point lattice (fixed_point.c): x and x_old are
+ * multiples of q, the displacement is x − x_old (exact) plus a·dt² rounded
+ * to the lattice, so every sum below is exact and the step can be undone
+ * bit for bit. x_old off the lattice (a velocity set since the last step),
+ * a changed dt or damping round the whole displacement instead: the
+ * positions stay on the lattice, that one step is not reversible (nor is
+ * damping ever). A particle whose step would leave the range is stopped. */
+static uint32_t verlet_fixed(tt_world *w, double dt, const double *ax, const double *ay)
+{
+    const uint32_t n = w->ppool.count;
+    double *px = w->px, *py = w->py, *qx = w->qx, *qy = w->qy;
+    const double q = w->fixed_point, range = tt__fixed_range(w), dmax = fmin(2 * range, TT_DIVERGED * dt);
+    const double r = dt / w->dt_prev, f = damping_factor(w, dt), dt2 = 0.5 * dt * (dt + w->dt_prev);
+    const bool exact = r == 1.0 && f == 1.0;
+    uint32_t bad = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        if (w->inv_mass[i] == 0.0) continue;
+        const double x = px[i], y = py[i], gx = ax ? ax[i] : w->gravity.x, gy = ay ? ay[i] : w->gravity.y;
+        double dx, dy;
+        if (exact) {
+            dx = tt__fixed_snap(q, x - qx[i]) + tt__fixed_snap(q, gx * dt * dt);
+            dy = tt__fixed_snap(q, y - qy[i]) + tt__fixed_snap(q, gy * dt * dt);
+        } else {
+            dx = tt__fixed_snap(q, ((x - qx[i]) * r + gx * dt2) * f);
+            dy = tt__fixed_snap(q, ((y - qy[i]) * r + gy * dt2) * f);
+        }
+        const double nx = x + dx, ny = y + dy;
+        qx[i] = x;
+        qy[i] = y;
+        /* |dx| ≤ 2·range keeps x + dx exact; an inexact dx is past 4·range, so it is caught too */
+        if (TT_UNLIKELY(!(fabs(dx) <= dmax && fabs(dy) <= dmax && fabs(nx) <= range && fabs(ny) <= range))) { bad++; continue; }
+        px[i] = nx;
+        py[i] = ny;
+    }
+    return bad;
+}
+
 static uint32_t verlet(tt_world *w, double dt, bool forces)
 {
     const uint32_t n = w->ppool.count;
@@ -31,19 +84,8 @@ static uint32_t verlet(tt_world *w, double dt, bool forces)
     const double gx = w->gravity.x, gy = w->gravity.y;
     double *ax = NULL, *ay = NULL;
     if (forces && !accel(w, px, py, NULL, NULL, &ax, &ay)) forces = false;
-
-    /* A velocity set exactly at time t starts with x + v·dt + a·dt²/2 (a
-     * Taylor step), which makes Verlet exact for constant acceleration. */
-    for (uint32_t k = 0; k < w->fresh_count; k++) {
-        uint32_t i = w->fresh[k];
-        if (!(w->flags[i] & TT_PF_FRESH)) continue;
-        w->flags[i] &= (uint16_t)~TT_PF_FRESH;
-        if (inv[i] == 0.0) continue;
-        double h = 0.5 * w->dt_prev * w->dt_prev;
-        qx[i] += (forces ? ax[i] : gx) * h;
-        qy[i] += (forces ? ay[i] : gy) * h;
-    }
-    w->fresh_count = 0;
+    verlet_fresh(w, forces ? ax : NULL, forces ? ay : NULL);
+    if (w->fixed_point != 0.0) return verlet_fixed(w, dt, forces ? ax : NULL, forces ? ay : NULL);
 
     /* Time-corrected Verlet: with dt ≠ dt_prev, x + (x − x_old)·dt/dt_prev +
      * a·dt·(dt + dt_prev)/2 stays exact for constant acceleration. */

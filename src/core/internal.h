@@ -107,6 +107,7 @@ struct tt_world {
     double dt_prev;       /* dt of the last step (dt_hint before the first): Verlet's x_old is x − v·dt_prev */
     uint32_t max_particles;
     uint32_t tag;         /* 1…255: the high byte of every handle generation this world hands out */
+    double fixed_point;   /* 0, or the quantum every position is a multiple of (fixed_point.c) */
 
     /* particles: struct of arrays indexed by slot; a slot keeps its index for life */
     tt_pool ppool;
@@ -124,6 +125,7 @@ struct tt_world {
     uint64_t *user;
     double *scratch[TT_SCRATCH_COUNT];
     uint32_t scratch_cap[TT_SCRATCH_COUNT];
+    double *ox, *oy;      /* interpolation.c: positions as the last step began; NULL while not asked for */
     uint32_t *fresh;      /* Verlet particles whose velocity was set exactly since the last step */
     uint32_t fresh_count, fresh_cap;
 
@@ -282,6 +284,29 @@ bool tt__sleep_loaded_ok(const tt_world *w);
  * polygon's outline (a point repeated, three consecutive points on a line,
  * with `convex` a turn against the winding), or n when none does. */
 uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex);
+
+/* Positions as the last step began, for drawing (interpolation.c): a
+ * particle made or moved since then was where it is now. */
+bool tt__interp_start(tt_world *w); /* false on no memory */
+void tt__interp_step_begin(tt_world *w);
+void tt__interp_stop(tt_world *w);
+static inline void tt__interp_moved(tt_world *w, uint32_t i)
+{
+    if (!w->ox) return;
+    w->ox[i] = w->px[i];
+    w->oy[i] = w->py[i];
+}
+
+/* Fixed-point positions (fixed_point.c). The nearest multiple of q to v
+ * (q a power of two, so v/q and m·q are exact). */
+static inline double tt__fixed_snap(double q, double v) { return round(v / q) * q; }
+bool tt__fixed_quantum_ok(double q);
+double tt__fixed_range(const tt_world *w);                /* 2^51·q: the largest |coordinate| */
+bool tt__fixed_in_range(const tt_world *w, tt_vec2 p);   /* true when off */
+tt_vec2 tt__fixed_snap_vec(const tt_world *w, tt_vec2 p); /* p when off */
+tt_result tt__fixed_check(const tt_world *w, tt_vec2 p, const char *fn);
+void tt__fixed_after_solve(tt_world *w);
+bool tt__fixed_loaded_ok(const tt_world *w);
 
 /* Forces and integration (integrate.c / forces.c). */
 bool tt__has_forces(const tt_world *w);

@@ -29,6 +29,7 @@ tt_result tt__particles_reserve(tt_world *w, uint32_t cap)
               grow((void **)&w->category, sizeof(uint16_t), n) && grow((void **)&w->mask, sizeof(uint16_t), n);
     if (ok && w->fx) ok = grow((void **)&w->fx, sizeof(double), n) && grow((void **)&w->fy, sizeof(double), n);
     if (ok && w->user) ok = grow((void **)&w->user, sizeof(uint64_t), n);
+    if (ok && w->ox) ok = grow((void **)&w->ox, sizeof(double), n) && grow((void **)&w->oy, sizeof(double), n);
     if (!ok) return tt__fail(w, TT_ENOMEM, "out of memory growing to %u particles", n);
     if (w->fx) {
         memset(w->fx + w->pcap, 0, (size_t)(n - w->pcap) * sizeof(double));
@@ -45,6 +46,7 @@ void tt__particles_free(tt_world *w)
     free(w->inv_mass); free(w->mass); free(w->radius);
     free(w->flags); free(w->category); free(w->mask);
     free(w->fx); free(w->fy); free(w->user); free(w->fresh);
+    free(w->ox); free(w->oy);
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) free(w->scratch[k]);
     tt_pool_destroy(&w->ppool);
 }
@@ -143,6 +145,7 @@ static tt_result check_def(const tt_world *w, const tt_particle_def *d)
     const char *fn = "tt_particle_create";
     if (!d) return tt__fail(w, TT_EINVAL, "%s: def is NULL", fn);
     if (!tt__vec_ok(d->position)) return tt__fail(w, TT_EINVAL, "%s: position must be finite, |x| <= %g", fn, TT_MAX_VALUE);
+    if (tt__fixed_check(w, d->position, fn) != TT_OK) return TT_EINVAL;
     if (!tt__vec_ok(d->velocity)) return tt__fail(w, TT_EINVAL, "%s: velocity must be finite, |v| <= %g", fn, TT_MAX_VALUE);
     if (!tt__in_range(d->mass, TT_MIN_MASS, TT_MAX_MASS))
         return tt__fail(w, TT_EINVAL, "%s: mass must be in [%g, %g], got %g", fn, TT_MIN_MASS, TT_MAX_MASS, d->mass);
@@ -166,8 +169,10 @@ tt_particle tt_particle_create(tt_world *w, const tt_particle_def *d)
         tt__fail(w, TT_ENOMEM, "tt_particle_create: the world is full (max_particles %u)", w->max_particles);
         return none;
     }
-    w->px[i] = d->position.x;
-    w->py[i] = d->position.y;
+    const tt_vec2 at = tt__fixed_snap_vec(w, d->position);
+    w->px[i] = at.x;
+    w->py[i] = at.y;
+    tt__interp_moved(w, i);
     w->mass[i] = d->mass;
     w->inv_mass[i] = d->pinned ? 0.0 : 1.0 / d->mass;
     w->radius[i] = (float)d->radius;
@@ -226,6 +231,8 @@ tt_result tt_particle_set_position(tt_world *w, tt_particle p, tt_vec2 pos, tt_m
     if (!tt__vec_ok(pos)) return tt__fail(w, TT_EINVAL, "tt_particle_set_position: position must be finite, |x| <= %g", TT_MAX_VALUE);
     if (mode != TT_MOVE_KEEP_VELOCITY && mode != TT_MOVE_RESET_VELOCITY)
         return tt__fail(w, TT_EINVAL, "tt_particle_set_position: unknown move mode %d", (int)mode);
+    if (tt__fixed_check(w, pos, "tt_particle_set_position") != TT_OK) return TT_EINVAL;
+    pos = tt__fixed_snap_vec(w, pos);
     tt__sleep_touch(w, i);
     if (w->integrator == TT_VERLET && mode == TT_MOVE_KEEP_VELOCITY) {
         w->qx[i] += pos.x - w->px[i]; /* x_old travels with x: the implied velocity is unchanged */
@@ -233,6 +240,7 @@ tt_result tt_particle_set_position(tt_world *w, tt_particle p, tt_vec2 pos, tt_m
     }
     w->px[i] = pos.x;
     w->py[i] = pos.y;
+    tt__interp_moved(w, i);
     w->epoch++;
     if (mode == TT_MOVE_RESET_VELOCITY) tt__set_velocity(w, i, (tt_vec2){0, 0});
     return TT_OK;
@@ -464,6 +472,7 @@ tt_result tt_particles_set_positions(tt_world *w, const tt_particle *ids, uint32
         if (r != TT_OK) return r;
         if (!tt__vec_ok((tt_vec2){xy[2 * k], xy[2 * k + 1]}))
             return tt__fail(w, TT_EINVAL, "tt_particles_set_positions: position %u must be finite, |x| <= %g", k, TT_MAX_VALUE);
+        if (tt__fixed_check(w, (tt_vec2){xy[2 * k], xy[2 * k + 1]}, "tt_particles_set_positions") != TT_OK) return TT_EINVAL;
     }
     for (uint32_t k = 0; k < n; k++)
         tt_particle_set_position(w, ids[k], (tt_vec2){xy[2 * k], xy[2 * k + 1]}, mode);

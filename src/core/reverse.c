@@ -32,11 +32,14 @@ tt_result tt_world_reverse(tt_world *w)
     const char *why = irreversible(w);
     if (why) return tt__fail(w, TT_ESTATE, "tt_world_reverse: cannot run backwards: %s", why);
     const uint32_t n = w->ppool.count;
+    const double q = w->fixed_point;
     for (uint32_t i = 0; i < n; i++) {
         if (!(w->flags[i] & TT_PF_ALIVE)) continue;
         double x = w->px[i], y = w->py[i];
-        w->px[i] = w->qx[i];
-        w->py[i] = w->qy[i];
+        /* x_old is on a fixed-point lattice after every step; an impulse
+         * since moved it off, and positions never leave it */
+        w->px[i] = q != 0.0 ? tt__fixed_snap(q, w->qx[i]) : w->qx[i];
+        w->py[i] = q != 0.0 ? tt__fixed_snap(q, w->qy[i]) : w->qy[i];
         w->qx[i] = x;
         w->qy[i] = y;
     }

@@ -24,6 +24,7 @@
 enum { TT__SNAP_VERSION = 1, TT__SNAP_HEADER = 32 };
 static const char magic[4] = {'T', 'T', 'S', 'S'};
 #define ID_WORLD TT__ID('W', 'R', 'L', 'D')
+#define ID_FIXED TT__ID('F', 'X', 'P', 'T') /* inside WRLD, after the attractors: the fixed-point quantum */
 
 /* ---- saving ---------------------------------------------------------------- */
 
@@ -136,6 +137,15 @@ static void save_attractors(const tt_world *w, tt__sink *s)
     }
 }
 
+/* Written only when set (after its tag, which no attractor count equals),
+ * so that a world of plain doubles saves and hashes as before it existed. */
+static void save_fixed_point(const tt_world *w, tt__sink *s)
+{
+    if (w->fixed_point == 0.0) return;
+    tt__put_u32(s, ID_FIXED);
+    tt__put_f64(s, w->fixed_point);
+}
+
 /* The body; false when a group cannot be saved (hashing skips it). */
 static bool save_body(const tt_world *w, tt__sink *s, const char **unsaveable)
 {
@@ -144,6 +154,7 @@ static bool save_body(const tt_world *w, tt__sink *s, const char **unsaveable)
     save_particles(w, s);
     save_springs(w, s);
     save_attractors(w, s);
+    save_fixed_point(w, s);
     tt__section_close(s, at);
     for (int g = 0; g < w->group_count; g++) {
         const tt__group_ops *ops = w->groups[g].ops;
@@ -323,10 +334,9 @@ static void load_springs(tt_world *w, tt__source *s)
         if (w->springs[w->spool.free_list[k]].alive) tt__src_fail(s, "spring %u is alive and free", w->spool.free_list[k]);
 }
 
-static void load_attractors(tt_world *w, tt__source *s, const tt__section *sec)
+static void load_attractor_slots(tt_world *w, tt__source *s, uint32_t tag)
 {
-    if (s->failed || s->at >= sec->end) return; /* none saved */
-    if (tt__get_u32(s) != TT_MAX_ATTRACTORS) { tt__src_fail(s, "attractor slots: not %d", TT_MAX_ATTRACTORS); return; }
+    if (tag != TT_MAX_ATTRACTORS) { tt__src_fail(s, "attractor slots: not %d", TT_MAX_ATTRACTORS); return; }
     for (int k = 0; k < TT_MAX_ATTRACTORS && !s->failed; k++) {
         tt_attractor *a = &w->attractors[k];
         a->center.x = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "attractor centre");
@@ -340,6 +350,23 @@ static void load_attractors(tt_world *w, tt__source *s, const tt__section *sec)
     if (!s->failed && !w->attractors_used) tt__src_fail(s, "attractors saved but none in use");
 }
 
+/* What follows the springs: the attractors, then the fixed-point quantum, each only when saved. */
+static void load_extras(tt_world *w, tt__source *s, const tt__section *sec)
+{
+    if (s->failed || s->at >= sec->end) return; /* neither saved */
+    uint32_t tag = tt__get_u32(s);
+    if (tag != ID_FIXED) {
+        load_attractor_slots(w, s, tag);
+        if (s->failed || s->at >= sec->end) return;
+        tag = tt__get_u32(s);
+        if (tag != ID_FIXED) { tt__src_fail(s, "unknown field after the attractors"); return; }
+    }
+    w->fixed_point = tt__get_num(s, 0x1p-60, 0x1p-1, "fixed-point quantum");
+    if (!s->failed && !tt__fixed_quantum_ok(w->fixed_point)) tt__src_fail(s, "fixed-point quantum %g is not a power of two", w->fixed_point);
+    if (!s->failed && !tt__fixed_loaded_ok(w))
+        tt__src_fail(s, "a fixed-point world with a position off its lattice or range, or not integrated by 'verlet'");
+}
+
 static void load_sections(tt_world *w, tt__source *s)
 {
     tt__section sec;
@@ -348,7 +375,7 @@ static void load_sections(tt_world *w, tt__source *s)
     load_settings(w, s);
     load_particles(w, s);
     load_springs(w, s);
-    load_attractors(w, s, &sec);
+    load_extras(w, s, &sec);
     if (!tt__section_end(s, &sec)) return;
     while (s->at < s->len && !s->failed) {
         if (!tt__section_begin(s, &sec)) return;
@@ -403,6 +430,11 @@ tt_result tt_world_restore(tt_world *w, const void *data, size_t size)
     char why[200];
     tt_world *fresh = parse(data, size, w->epoch + 1, why, sizeof why);
     if (!fresh) return tt__fail(w, TT_EINVAL, "tt_world_restore: %s; the world is unchanged", why);
+    /* drawing between steps goes on, from the restored positions (a jump has nothing to draw between) */
+    if (w->ox && !tt__interp_start(fresh)) {
+        tt_world_destroy(fresh);
+        return tt__fail(w, TT_ENOMEM, "tt_world_restore: out of memory; the world is unchanged");
+    }
     /* the world keeps its address (scripts and the binding hold it); what it held goes with the husk */
     tt_world old = *w;
     *w = *fresh;

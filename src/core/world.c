@@ -83,6 +83,8 @@ tt_world *tt_world_create(const tt_world_def *def)
     if (!tt__in_range(d.tolerance, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: tolerance must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.tolerance); return NULL; }
     if (d.order != TT_GAUSS_SEIDEL && d.order != TT_JACOBI) { tt__fail(NULL, TT_EINVAL, "%s: unknown solver order %d", fn, (int)d.order); return NULL; }
     if (d.sleep && !(tt__in_range(d.sleep_speed, 0.0, TT_MAX_VALUE) && tt__in_range(d.sleep_time, 0.0, TT_MAX_VALUE))) { tt__fail(NULL, TT_EINVAL, "%s: sleep_speed and sleep_time must be in [0, %g]", fn, TT_MAX_VALUE); return NULL; }
+    if (d.fixed_point != 0.0 && !tt__fixed_quantum_ok(d.fixed_point)) { tt__fail(NULL, TT_EINVAL, "%s: fixed_point must be 0 (off) or a power of two 2^-k, k = 1…60, got %g", fn, d.fixed_point); return NULL; }
+    if (d.fixed_point != 0.0 && d.integrator != TT_VERLET) { tt__fail(NULL, TT_EINVAL, "%s: fixed_point needs the 'verlet' integrator (the others keep a velocity, not a position on the lattice)", fn); return NULL; }
     if (d.capacity > d.max_particles) { tt__fail(NULL, TT_EINVAL, "%s: capacity %u is over max_particles %u", fn, d.capacity, d.max_particles); return NULL; }
 
     tt_world *w = calloc(1, sizeof *w);
@@ -104,6 +106,7 @@ tt_world *tt_world_create(const tt_world_def *def)
     w->iterations = d.iterations;
     w->tolerance = d.tolerance;
     w->order = d.order;
+    w->fixed_point = d.fixed_point;
     if (d.capacity && tt__particles_reserve(w, d.capacity) != TT_OK) {
         tt__fail(NULL, TT_ENOMEM, "%s: cannot reserve %u particles", fn, d.capacity);
         tt_world_destroy(w);
@@ -137,6 +140,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
     w->step_oom = NULL;
+    if (w->ox) tt__interp_step_begin(w);
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
@@ -151,6 +155,7 @@ tt_result tt_world_step(tt_world *w, double dt)
         tt__integrate(w, h); /* forces are evaluated inside, as often as the integrator needs */
         w->dt_prev = h;      /* from here on x − x_old spans h: velocity reads inside the solve are exact */
         tt__solve(w, h);     /* detect → relax → velocity pass; nothing when no group is registered */
+        if (w->fixed_point != 0.0 && w->group_count) tt__fixed_after_solve(w);
     }
     tt__solver_after_step(w); /* events, gathered outside every loop */
 
@@ -208,6 +213,8 @@ tt_result tt_world_set_integrator(tt_world *w, tt_integrator i)
     if ((unsigned)i >= TT_INTEGRATOR_COUNT)
         return tt__fail(w, TT_EINVAL, "tt_world_set_integrator: unknown integrator %d", (int)i);
     if (i == w->integrator) return TT_OK;
+    if (w->fixed_point != 0.0)
+        return tt__fail(w, TT_ESTATE, "tt_world_set_integrator: a fixed_point world keeps the 'verlet' integrator (the others keep a velocity, not a position on the lattice)");
     tt__convert_state(w, w->integrator, i);
     w->integrator = i;
     return TT_OK;
@@ -323,6 +330,7 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
     size_t per = 6 * sizeof(double) + sizeof(float) + 3 * sizeof(uint16_t);
     if (w->fx) per += 2 * sizeof(double);
     if (w->user) per += sizeof(uint64_t);
+    if (w->ox) per += 2 * sizeof(double);
     size_t particles = per * w->pcap + tt_pool_bytes(&w->ppool);
     size_t total = sizeof *w + particles;
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);

@@ -214,6 +214,7 @@ static const tl_opt draw_opts[] = {
     TL_OPT_BYHAND("color"), /* colours: opt_color */
     TL_OPT_BYHAND("pinned"),
     TL_OPT_NUM(tt_debug_draw, "min_radius", min_radius_px, &R_PX),
+    TL_OPT_BYHAND("alpha"), /* its default is the frame's */
     TL_OPT_END,
 };
 
@@ -240,9 +241,26 @@ static int w_draw(lua_State *L)
     tt_canvas *c = tl_render_canvas(L);
     d.particle = opt_color(L, 2, "color", d.particle);
     d.pinned = opt_color(L, 2, "pinned", d.pinned);
+    d.alpha = tl_optfield_number(L, 2, "alpha", &TL_R_UNIT, tl_render_alpha(L));
+    tl_render_interpolate(L, w, d.alpha);
     tl_check_canvas_result(L, c, tt_canvas_draw_world(c, w, &d));
     tl_render_remember(L, 1, c);
     return 0;
+}
+
+/* w:set_interpolation(on): keep where every particle was as each step began
+ * (tt_world_set_interpolation); w:draw at alpha < 1 turns it on by itself */
+static int w_set_interpolation(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tl_check_result(L, w, tt_world_set_interpolation(w, tl_checkboolean(L, 2)));
+    return 0;
+}
+
+static int w_interpolation(lua_State *L)
+{
+    lua_pushboolean(L, tt_world_get_interpolation(tl_check_world(L, 1)));
+    return 1;
 }
 
 /* --- registration ----------------------------------------------------------- */
@@ -256,7 +274,8 @@ static const luaL_Reg gfx_funcs[] = {
 /* the ones whose argument 1 is a world, pinned while they run (lua_common.h) */
 static const luaL_Reg gfx_world_funcs[] = { { "hud", g_hud }, { NULL, NULL } };
 
-static const luaL_Reg world_draw[] = { { "draw", w_draw }, { NULL, NULL } };
+static const luaL_Reg world_draw[] = { { "draw", w_draw }, { "set_interpolation", w_set_interpolation },
+                                        { "interpolation", w_interpolation }, { NULL, NULL } };
 
 void tl_render_register(lua_State *L)
 {

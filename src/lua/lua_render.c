@@ -32,6 +32,7 @@ typedef struct tl_render {
     lua_Integer nworlds;   /* worlds made so far (keys of WORLDS_KEY) */
     tt_vec2 auto_lo, auto_hi; /* what the automatic view has shown so far */
     bool auto_set;
+    double alpha;      /* the frame's interpolation factor (tl_render_set_alpha) */
 } tl_render;
 
 static int state_gc(lua_State *L)
@@ -71,6 +72,18 @@ tt_canvas *tl_render_canvas(lua_State *L)
 }
 
 uint8_t tl_byte_of(double v) { return (uint8_t)(v * 255.0 + 0.5); }
+
+double tl_render_alpha(lua_State *L) { return state(L)->alpha; }
+
+void tl_render_set_alpha(lua_State *L, double alpha)
+{
+    state(L)->alpha = alpha >= 0.0 && alpha <= 1.0 ? alpha : 1.0;
+}
+
+void tl_render_interpolate(lua_State *L, tt_world *w, double alpha)
+{
+    if (alpha != 1.0 && !tt_world_get_interpolation(w)) tl_check_result(L, w, tt_world_set_interpolation(w, true));
+}
 
 void tl_check_canvas_result(lua_State *L, tt_canvas *c, tt_result r)
 {
@@ -190,7 +203,11 @@ void tl_render_auto(lua_State *L)
     for (lua_Integer k = 1; k <= r->nworlds && lua_istable(L, t); k++) {
         lua_rawgeti(L, t, k);
         tt_world *w = tl_toworld(L, -1);
-        if (w && tt_canvas_draw_world(c, w, NULL) == TT_OK) {
+        tt_debug_draw dd = tt_debug_draw_default();
+        dd.alpha = r->alpha;
+        if (w && r->alpha != 1.0 && !tt_world_get_interpolation(w) && tt_world_set_interpolation(w, true) != TT_OK)
+            dd.alpha = 1.0; /* no memory to keep where it was: drawn where it is */
+        if (w && tt_canvas_draw_world(c, w, &dd) == TT_OK) {
             tl_render_remember(L, lua_gettop(L), c);
             if (shown++ == 0) {
                 tt_stats st;
@@ -219,6 +236,7 @@ void tl_render_begin(lua_State *L, tt_canvas *c)
     tl_render *r = state(L);
     r->canvas = c;
     r->ndrawn = 0;
+    r->alpha = 1.0;
     lua_newtable(L);
     lua_setfield(L, LUA_REGISTRYINDEX, DRAWN_KEY);
     lua_newtable(L);

@@ -17,6 +17,10 @@ void tl_render_register(lua_State *L);
  * Images drawn stay referenced until tl_render_done, to be called once the
  * back end has drawn the canvas: it frees those closed in the meantime. */
 void tl_render_begin(lua_State *L, tt_canvas *c);
+/* The frame's interpolation factor (the runner's clock alpha, 0…1): where
+ * between their last two steps worlds are drawn unless world:draw says;
+ * 1 (the current positions) from tl_render_begin until set. */
+void tl_render_set_alpha(lua_State *L, double alpha);
 void tl_render_end(lua_State *L);
 void tl_render_done(lua_State *L);
 /* For a script without tether.draw: draws every live world it made (in the
@@ -47,6 +51,11 @@ uint8_t tl_byte_of(double v);
 void tl_check_canvas_result(lua_State *L, tt_canvas *c, tt_result r);
 /* Draws text in a HUD panel at height *y, and moves *y below it. */
 void tl_render_hud_panel(tt_canvas *c, const char *text, double *y);
+/* The frame's alpha (tl_render_set_alpha). */
+double tl_render_alpha(lua_State *L);
+/* Drawing w at alpha < 1 needs its previous positions: turns their keeping
+ * on (tt_world_set_interpolation) the first time; raises on no memory. */
+void tl_render_interpolate(lua_State *L, tt_world *w, double alpha);
 /* Remembers the world at idx and the camera it is drawn with, for mouse picking. */
 void tl_render_remember(lua_State *L, int idx, tt_canvas *c);
 /* Wraps tether.world of the module table on the top of the stack (lua_render.c). */

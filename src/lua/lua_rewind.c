@@ -159,7 +159,16 @@ static int w_reverse(lua_State *L)
     return 0;
 }
 
-static const luaL_Reg reverse_world_methods[] = {{"reverse", w_reverse}, {NULL, NULL}};
+/* w:fixed_point() → the quantum of a fixed-point world (tether.world{fixed_point = …}), or nil */
+static int w_fixed_point(lua_State *L)
+{
+    double q = tt_world_get_fixed_point(tl_check_world(L, 1));
+    if (q == 0.0) lua_pushnil(L);
+    else lua_pushnumber(L, q);
+    return 1;
+}
+
+static const luaL_Reg reverse_world_methods[] = {{"reverse", w_reverse}, {"fixed_point", w_fixed_point}, {NULL, NULL}};
 
 static const luaL_Reg rewind_methods[] = {
     {"record", r_record}, {"seek", r_seek}, {"range", r_range}, {"memory", r_memory}, {"count", r_count},

@@ -115,8 +115,22 @@ static const tl_opt world_opts[] = {
     TL_OPT_FLAG(tt_world_def, "sleep", sleep),
     TL_OPT_NUM(tt_world_def, "sleep_speed", sleep_speed, &TL_R_NONNEG),
     TL_OPT_NUM(tt_world_def, "sleep_time", sleep_time, &TL_R_NONNEG),
+    TL_OPT_BYHAND("fixed_point"), /* a boolean or the quantum: opt_fixed_point */
     TL_OPT_END,
 };
+
+/* fixed_point = true (the quantum TT_FIXED_POINT_QUANTUM), false (off) or
+ * the quantum itself, checked by tt_world_create. */
+static double opt_fixed_point(lua_State *L, double def)
+{
+    if (!tl_getopt(L, 1, "fixed_point")) return def;
+    double q = def;
+    if (lua_type(L, -1) == LUA_TBOOLEAN) q = lua_toboolean(L, -1) ? TT_FIXED_POINT_QUANTUM : 0.0;
+    else if (lua_type(L, -1) == LUA_TNUMBER) q = lua_tonumber(L, -1);
+    else tl_error(L, "bad option 'fixed_point' (boolean or number expected, got %s)", luaL_typename(L, -1));
+    lua_pop(L, 1);
+    return q;
+}
 
 int tl_world_new(lua_State *L)
 {
@@ -125,6 +139,7 @@ int tl_world_new(lua_State *L)
 
     lua_settop(L, 1);
     tl_readopts(L, 1, world_opts, &def);
+    def.fixed_point = opt_fixed_point(L, def.fixed_point);
 
     /* Harmless first: a userdata with no world, its metatable and its user
      * table; only then the world. An error in between leaves nothing. */

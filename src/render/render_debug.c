@@ -21,7 +21,22 @@ tt_debug_draw tt_debug_draw_default(void)
     d.shapes = true;
     d.constraint = (tt_color){120, 190, 230, 255};
     d.shape = (tt_color){150, 220, 150, 255};
+    d.alpha = 1.0;
     return d;
+}
+
+/* Between where a particle was as the last step began and where it is:
+ * at alpha 1 exactly where it is (the picture without interpolation). */
+static double between(double prev, double now, double alpha)
+{
+    return alpha == 1.0 ? now : prev + alpha * (now - prev);
+}
+
+static tt_vec2 drawn_at(const tt_world *w, tt_particle p, double alpha, tt_vec2 now)
+{
+    tt_vec2 prev;
+    if (alpha == 1.0 || tt_particle_get_previous_position(w, p, &prev) != TT_OK) return now;
+    return (tt_vec2){between(prev.x, now.x, alpha), between(prev.y, now.y, alpha)};
 }
 
 /* Strain s (relative length change) → blue (compressed) · grey (rest) · red (stretched). */
@@ -61,7 +76,7 @@ static tt_result draw_springs(tt_canvas *c, const tt_world *w, const tt_debug_dr
             double len = hypot(a.x - b.x, a.y - b.y);
             double strain = d.rest_length > 0 ? (len - d.rest_length) / d.rest_length : 0;
             tt_color k = stress_color(strain, o->strain_full);
-            r = tt_canvas_line2(c, a, b, k, k);
+            r = tt_canvas_line2(c, drawn_at(w, d.a, o->alpha, a), drawn_at(w, d.b, o->alpha, b), k, k);
         }
         free(s);
     }
@@ -125,11 +140,16 @@ static tt_result draw_particles(tt_canvas *c, const tt_world *w, const tt_debug_
     uint32_t n = tt_world_particle_count(w);
     tt_particle *ids = malloc(((size_t)n + 1) * sizeof *ids);
     double *xy = malloc((2 * (size_t)n + 2) * sizeof *xy);
-    if (!ids || !xy) {
+    double *was = o->alpha != 1.0 ? malloc((2 * (size_t)n + 2) * sizeof *was) : NULL;
+    if (!ids || !xy || (o->alpha != 1.0 && !was)) {
         r = TT_ENOMEM;
     } else {
         n = tt_world_list_particles(w, ids, n);
         tt_world_read_positions(w, xy, n);
+        if (was) {
+            tt_world_read_previous_positions(w, was, n);
+            for (uint32_t i = 0; i < 2 * n; i++) xy[i] = between(was[i], xy[i], o->alpha);
+        }
         double minr = o->min_radius_px / c->zoom;
         for (uint32_t i = 0; i < n; i++) {
             double rad = 0;
@@ -144,6 +164,7 @@ static tt_result draw_particles(tt_canvas *c, const tt_world *w, const tt_debug_
     }
     free(ids);
     free(xy);
+    free(was);
     return r;
 }
 
@@ -158,6 +179,10 @@ tt_result tt_canvas_draw_world(tt_canvas *c, const tt_world *w, const tt_debug_d
     tt_debug_draw o = opts ? *opts : tt_debug_draw_default();
     if (!(o.min_radius_px >= 0 && o.min_radius_px <= 1000) || !(o.strain_full > 0 && o.strain_full <= 1e6)) {
         tt__errf(c->error, sizeof c->error, "%s: min_radius_px must be in [0, 1000] and strain_full in (0, 1e6]", fn);
+        return TT_EINVAL;
+    }
+    if (!(o.alpha >= 0 && o.alpha <= 1)) {
+        tt__errf(c->error, sizeof c->error, "%s: alpha must be in [0, 1], got %g", fn, o.alpha);
         return TT_EINVAL;
     }
     tt_layer layer = c->layer;

@@ -55,14 +55,16 @@ static bool update_once(session *s, const options *o, bool *has_update)
     return tr_docall(s->L, 1, 0);
 }
 
-/* Clears c and lets the script draw on it; false on a script error. */
-static bool draw_frame(session *s, tt_canvas *c)
+/* Clears c and lets the script draw on it, worlds at `alpha` between their
+ * last two steps (the window's clock; 1 headless); false on a script error. */
+static bool draw_frame(session *s, tt_canvas *c, double alpha)
 {
     bool bad = false, ok = true;
     tt_canvas_clear(c, BACKGROUND);
     tt_canvas_set_layer(c, TT_LAYER_WORLD);
     tt_canvas_set_color(c, (tt_color){ 255, 255, 255, 255 });
     tl_render_begin(s->L, c);
+    tl_render_set_alpha(s->L, alpha);
     if (tr_get_callback(s->L, s->module, "draw", &bad)) {
         lua_getfield(s->L, s->module, "gfx");
         ok = tr_docall(s->L, 1, 0);
@@ -136,7 +138,7 @@ int tr_run_frames(session *s, const options *o)
         if (!ok)
             break;
         double b = tr_now_s();
-        ok = draw_frame(s, c);
+        ok = draw_frame(s, c, 1.0);
         if (!ok)
             break;
         tt_result rr = tt_headless_render(hl, c);
@@ -539,7 +541,7 @@ int tr_run_window(session *s, const options *o)
             break;
         if (dw > 0 && dh > 0)
             tt_canvas_resize(c, dw, dh);
-        ok = draw_frame(s, c);
+        ok = draw_frame(s, c, tt_clock_alpha(&ws.clock));
         status_line(c, &ws.clock, fps, ws.d.active);
         frames++;
         bool last = o->frames > 0 && frames >= o->frames;

@@ -104,6 +104,7 @@ IS_VALID(tt_spring_is_valid, SK, FZ_S)
     }
 
 GET_OUT(tt_particle_get_position, PK, FZ_P, tt_vec2, fz_finite_vec(f, out, "a position"))
+GET_OUT(tt_particle_get_previous_position, PK, FZ_P, tt_vec2, fz_finite_vec(f, out, "a previous position"))
 GET_OUT(tt_particle_get_velocity, PK, FZ_P, tt_vec2, fz_finite_vec(f, out, "a velocity"))
 GET_OUT(tt_particle_get_mass, PK, FZ_P, double, fz_finite(f, out, "a mass"))
 GET_OUT(tt_particle_get_pinned, PK, FZ_P, bool, (void)out)
@@ -196,6 +197,20 @@ static void c_world_read_positions(fz *f)
     uint32_t n = tt_world_read_positions(w, xy, cap);
     fz_log_more(f, " -> %u", n);
     for (uint32_t i = 0; xy && i < 2 * n && i < 2 * cap; i++) fz_finite(f, xy[i], "a position");
+    free(xy);
+}
+
+static void c_world_read_previous_positions(fz *f)
+{
+    tt_world *w = fz_world_any(f);
+    uint32_t cap, live = w ? tt_world_particle_count(w) : 0;
+    double *xy = fz_buffer(f, &cap, live, 2 * sizeof *xy);
+    fz_log(f, "tt_world_read_previous_positions(%s, %s, %u)", fz_wn(f, w), xy ? "xy" : "NULL", cap);
+    FZ_HIT(f, tt_world_read_previous_positions);
+    uint32_t n = tt_world_read_previous_positions(w, xy, cap);
+    fz_log_more(f, " -> %u", n);
+    if (n > cap || n > live) fz_fail(f, "tt_world_read_previous_positions gave %u of %u (cap %u)", n, live, cap);
+    for (uint32_t i = 0; xy && i < 2 * n && i < 2 * cap; i++) fz_finite(f, xy[i], "a previous position");
     free(xy);
 }
 
@@ -302,6 +317,7 @@ const fz_entry fz_particle_entries[] = {
     { "tt_particle_is_valid", c_tt_particle_is_valid, 2 },
     { "tt_particle_get_position", c_tt_particle_get_position, 2 },
     { "tt_particle_set_position", c_particle_set_position, 4 },
+    { "tt_particle_get_previous_position", c_tt_particle_get_previous_position, 1 },
     { "tt_particle_get_velocity", c_tt_particle_get_velocity, 2 },
     { "tt_particle_set_velocity", c_tt_particle_set_velocity, 3 },
     { "tt_particle_get_mass", c_tt_particle_get_mass, 1 },
@@ -320,6 +336,7 @@ const fz_entry fz_particle_entries[] = {
     { "tt_world_particle_count", c_tt_world_particle_count, 1 },
     { "tt_world_list_particles", c_tt_world_list_particles, 3 },
     { "tt_world_read_positions", c_world_read_positions, 2 },
+    { "tt_world_read_previous_positions", c_world_read_previous_positions, 1 },
     { "tt_particles_get_positions", c_particles_get_positions, 2 },
     { "tt_particles_set_positions", c_particles_set_positions, 2 },
     { "tt_spring_def_default", c_spring_def_default, 1 },

@@ -76,7 +76,7 @@ static tt_world_def world_def(fz *f)
 {
     tt_world_def d = tt_world_def_default();
     for (unsigned k = fz_below(f, 4); k > 0; k--) {
-        switch (fz_below(f, 11)) {
+        switch (fz_below(f, 12)) {
         case 0: d.gravity = fz_vec(f, -20, 20); break;
         case 1: d.integrator = (tt_integrator)fz_enum(f, TT_INTEGRATOR_COUNT); break;
         case 2: d.damping = fz_real(f, 0, 2); break;
@@ -87,6 +87,11 @@ static tt_world_def world_def(fz *f)
         case 7: d.substeps = fz_count(f, 1, 8); break;
         case 8: d.iterations = fz_count(f, 1, 30); break;
         case 9: d.tolerance = fz_real(f, 0, 1e-3); break;
+        case 10: { /* fixed-point positions: a good quantum, a tiny range, a coarse one, one refused */
+            static const double q[] = { TT_FIXED_POINT_QUANTUM, 0x1p-50, 0x1p-4, 0.3 };
+            d.fixed_point = q[fz_below(f, 4)];
+            break;
+        }
         default: d.order = (tt_solver_order)fz_enum(f, 2); break;
         }
     }
@@ -101,9 +106,10 @@ static void c_world_create(fz *f)
     for (int i = 1; i < FZ_WORLDS && slot < 0; i++)
         if (!f->slots[i].w) slot = i;
     fz_log(f, "w%d = tt_world_create(%s) /* gravity %s, integrator %d, damping %s, wind %s, dt_hint %s, capacity %u, "
-              "max_particles %u, substeps %u, iterations %u, tolerance %s, order %d */",
+              "max_particles %u, substeps %u, iterations %u, tolerance %s, order %d, fixed_point %s */",
            f->names, null_def ? "NULL" : "&def", fz_v(d.gravity), (int)d.integrator, fz_d(d.damping), fz_v(d.wind),
-           fz_d(d.dt_hint), d.capacity, d.max_particles, d.substeps, d.iterations, fz_d(d.tolerance), (int)d.order);
+           fz_d(d.dt_hint), d.capacity, d.max_particles, d.substeps, d.iterations, fz_d(d.tolerance), (int)d.order,
+           fz_d(d.fixed_point));
     FZ_HIT(f, tt_world_create);
     tt_world *w = tt_world_create(null_def ? NULL : &d);
     fz_log_more(f, " -> %s", w ? "world" : "NULL");
@@ -248,7 +254,23 @@ GET_VAL(tt_world_get_integrator, if (w && (unsigned)tt_world_get_integrator(w) >
 GET_VAL(tt_world_get_substeps, if (w && (tt_world_get_substeps(w) - 1u) >= TT_MAX_SUBSTEPS) fz_fail(f, "bad substeps"))
 GET_VAL(tt_world_get_iterations, if (w && (tt_world_get_iterations(w) - 1u) >= TT_MAX_ITERATIONS) fz_fail(f, "bad iterations"))
 GET_VAL(tt_world_get_solver_order, if (w && (unsigned)tt_world_get_solver_order(w) > TT_JACOBI) fz_fail(f, "bad order"))
+GET_VAL(tt_world_get_fixed_point, if (w && tt_world_get_fixed_point(w) != 0.0 && (tt_world_get_fixed_point(w) < 0x1p-60 || tt_world_get_fixed_point(w) > 0.5)) fz_fail(f, "bad fixed-point quantum"))
+GET_VAL(tt_world_get_interpolation, if (!w && tt_world_get_interpolation(w)) fz_fail(f, "a NULL world keeps positions"))
 GET_VAL(tt_world_hash, if (tt_world_hash(w) != tt_world_hash(w)) fz_fail(f, "two hashes of one state differ"))
+
+/* Keeping the previous positions is not state: the hash must not move. */
+static void c_world_set_interpolation(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    bool on = fz_chance(f, 2);
+    fz_log(f, "tt_world_set_interpolation(%s, %s)", fz_wn(f, w), on ? "true" : "false");
+    FZ_HIT(f, tt_world_set_interpolation);
+    uint64_t h = w ? tt_world_hash(w) : 0;
+    tt_result r = tt_world_set_interpolation(w, on);
+    fz_res(f, r);
+    if (w && tt_world_hash(w) != h) fz_fail(f, "tt_world_set_interpolation changed the hash");
+    if (w && r == TT_OK && tt_world_get_interpolation(w) != on) fz_fail(f, "tt_world_get_interpolation disagrees");
+}
 
 static void c_world_set_damping(fz *f)
 {
@@ -392,6 +414,9 @@ const fz_entry fz_world_entries[] = {
     { "tt_world_get_damping", c_tt_world_get_damping, 1 },
     { "tt_world_set_integrator", c_tt_world_set_integrator, 5 },
     { "tt_world_get_integrator", c_tt_world_get_integrator, 1 },
+    { "tt_world_get_fixed_point", c_tt_world_get_fixed_point, 1 },
+    { "tt_world_set_interpolation", c_world_set_interpolation, 2 },
+    { "tt_world_get_interpolation", c_tt_world_get_interpolation, 1 },
     { "tt_world_set_substeps", c_tt_world_set_substeps, 4 },
     { "tt_world_get_substeps", c_tt_world_get_substeps, 1 },
     { "tt_world_set_iterations", c_tt_world_set_iterations, 4 },

@@ -82,6 +82,25 @@ local function inside_frame()
     end
     T.test("gfx is the argument of tether.draw", function() T.eq(gg, g, "g") end)
 
+    T.test("world:draw{alpha=} draws between the last two steps; alpha is checked", function()
+      local m = tether.world { gravity = { 0, 0 } }
+      m:particle(0, 0, { vx = 1 })
+      m:step(1 / 60)
+      T.eq(m:interpolation(), false, "off until asked")
+      T.noerror(m.draw, m) -- alpha 1 (the runner's headless frames): nothing kept
+      T.eq(m:interpolation(), false, "alpha 1 needs nothing kept")
+      T.noerror(m.draw, m, { alpha = 0.5 })
+      T.eq(m:interpolation(), true, "alpha < 1 keeps the previous positions from now on")
+      T.noerror(m.draw, m, { alpha = 0 })
+      for _, bad in ipairs { 0 / 0, -0.01, 1.5, math.huge } do
+        T.checkerror("bad option 'alpha'", m.draw, m, { alpha = bad })
+      end
+      T.checkerror("bad option 'alpha'", m.draw, m, { alpha = "half" })
+      m:set_interpolation(false)
+      T.eq(m:interpolation(), false, "off again")
+      T.checkerror("bad argument #2 to 'set_interpolation' (boolean expected", m.set_interpolation, m, 1)
+    end)
+
     T.test("size is --size", function()
       local W, H = gg.size()
       T.eq(W, 200, "width"); T.eq(H, 150, "height")

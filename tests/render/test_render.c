@@ -411,3 +411,138 @@ TEST(an_image_destroyed_while_a_canvas_holds_it_is_drawn_then_freed)
     tt_canvas_destroy(c);
     tt_headless_destroy(hl);
 }
+
+/* The x of the centroid of the red pixels of a frame of c, px from the left; -1 when none. */
+static double red_centroid_x(tt_headless *hl, const tt_canvas *c)
+{
+    if (tt_headless_render(hl, c) != TT_OK) return -1;
+    char path[512];
+    tmp_png(path, sizeof path);
+    if (tt_headless_write_png(hl, path) != TT_OK) return -1;
+    int pw = 0, ph = 0;
+    uint8_t *px = read_png(path, &pw, &ph);
+    remove(path);
+    if (!px) return -1;
+    double sx = 0, n = 0;
+    for (int i = 0; i < pw * ph; i++)
+        if (px[4 * i] > 127 && px[4 * i + 1] < 64) {
+            sx += i % pw + 0.5;
+            n++;
+        }
+    free(px);
+    return n > 0 ? sx / n : -1;
+}
+
+/* A particle moving at constant velocity, from x = −4 to x = 4 in one step,
+ * drawn at alpha 0, 0.5 and 1: at its start, halfway and where it is (the
+ * camera puts x = −4, 0, 4 at pixels 16, 32, 48). Alpha outside [0, 1]
+ * or NaN is refused, nothing drawn. */
+TEST(headless_frame_draws_between_the_last_two_steps_by_alpha)
+{
+    char err[256] = "";
+    tt_headless *hl = tt_headless_create(64, 48, err, sizeof err);
+    if (!hl) printf("    %s\n", err);
+    ENSURE(hl != NULL);
+    tt_canvas *c = tt_canvas_create(64, 48);
+    tt_world_def wd = tt_world_def_default();
+    wd.gravity = (tt_vec2){0, 0};
+    tt_world *w = tt_world_create(&wd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){-4, 0};
+    pd.velocity = (tt_vec2){480, 0};
+    pd.radius = 1;
+    tt_particle p = tt_particle_create(w, &pd);
+    ENSURE(p.gen != 0);
+    ENSURE_OK(tt_world_set_interpolation(w, true));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE_OK(tt_canvas_set_camera(c, (tt_vec2){0, 0}, 4));
+    tt_debug_draw dd = tt_debug_draw_default();
+    ENSURE(dd.alpha == 1.0);
+    dd.particle = (tt_color){255, 0, 0, 255};
+    const double alpha[3] = {0.0, 0.5, 1.0}, expect[3] = {16, 32, 48};
+    for (int k = 0; k < 3; k++) {
+        tt_canvas_clear(c, (tt_color){0, 0, 0, 255});
+        dd.alpha = alpha[k];
+        ENSURE_OK(tt_canvas_draw_world(c, w, &dd));
+        double x = red_centroid_x(hl, c);
+        printf("    alpha %.1f: drawn at pixel x %.2f (expected %.0f)\n", alpha[k], x, expect[k]);
+        ENSURE_NEAR(x, expect[k], 0.5);
+    }
+    const double bad[3] = {NAN, -0.01, 1.5};
+    for (int k = 0; k < 3; k++) {
+        tt_canvas_clear(c, (tt_color){0, 0, 0, 255});
+        dd.alpha = bad[k];
+        ENSURE(tt_canvas_draw_world(c, w, &dd) == TT_EINVAL);
+        ENSURE(strstr(tt_canvas_error(c), "alpha must be in [0, 1]") != NULL);
+        ENSURE(tt_canvas_primitive_count(c) == 0);
+    }
+    tt_world_destroy(w);
+    tt_canvas_destroy(c);
+    tt_headless_destroy(hl);
+}
+
+/* The x of the centroid of the lit pixels of row y of a frame of c; -1 when none. */
+static double lit_row_x(tt_headless *hl, const tt_canvas *c, int y)
+{
+    if (tt_headless_render(hl, c) != TT_OK) return -1;
+    char path[512];
+    tmp_png(path, sizeof path);
+    if (tt_headless_write_png(hl, path) != TT_OK) return -1;
+    int pw = 0, ph = 0;
+    uint8_t *px = read_png(path, &pw, &ph);
+    remove(path);
+    if (!px || y >= ph) { free(px); return -1; }
+    double sx = 0, n = 0;
+    for (int x = 0; x < pw; x++) {
+        const uint8_t *p = pixel(px, pw, x, y);
+        double lum = p[0] + p[1] + p[2];
+        sx += lum * (x + 0.5);
+        n += lum;
+    }
+    free(px);
+    return n > 0 ? sx / n : -1;
+}
+
+/* A spring from a pinned particle at (0, −4) to one moving from (−4, 4) to
+ * (4, 4) in one step: at alpha 0 it crosses y = 0 at x = −2 (pixel 24), at
+ * alpha 0.5 at x = 0 (pixel 32), at alpha 1 at x = 2 (pixel 40); row 24 is y = 0. */
+TEST(headless_frame_draws_springs_between_the_last_two_steps_by_alpha)
+{
+    char err[256] = "";
+    tt_headless *hl = tt_headless_create(64, 48, err, sizeof err);
+    if (!hl) printf("    %s\n", err);
+    ENSURE(hl != NULL);
+    tt_canvas *c = tt_canvas_create(64, 48);
+    tt_world_def wd = tt_world_def_default();
+    wd.gravity = (tt_vec2){0, 0};
+    tt_world *w = tt_world_create(&wd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){0, -4};
+    pd.pinned = true;
+    tt_particle a = tt_particle_create(w, &pd);
+    pd.pinned = false;
+    pd.position = (tt_vec2){-4, 4};
+    pd.velocity = (tt_vec2){480, 0};
+    tt_particle b = tt_particle_create(w, &pd);
+    tt_spring_def sd = tt_spring_def_default();
+    sd.a = a;
+    sd.b = b;
+    sd.stiffness = 0;
+    ENSURE(tt_spring_create(w, &sd).gen != 0);
+    ENSURE_OK(tt_world_set_interpolation(w, true));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE_OK(tt_canvas_set_camera(c, (tt_vec2){0, 0}, 4));
+    tt_debug_draw dd = tt_debug_draw_default();
+    const double alpha[3] = {0.0, 0.5, 1.0}, expect[3] = {24, 32, 40};
+    for (int k = 0; k < 3; k++) {
+        tt_canvas_clear(c, (tt_color){0, 0, 0, 255});
+        dd.alpha = alpha[k];
+        ENSURE_OK(tt_canvas_draw_world(c, w, &dd));
+        double x = lit_row_x(hl, c, 24);
+        printf("    alpha %.1f: the spring crosses row 24 at pixel x %.2f (expected %.0f)\n", alpha[k], x, expect[k]);
+        ENSURE_NEAR(x, expect[k], 0.75);
+    }
+    tt_world_destroy(w);
+    tt_canvas_destroy(c);
+    tt_headless_destroy(hl);
+}
