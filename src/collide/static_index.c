@@ -254,8 +254,14 @@ void tt__shapes_place_moved(const tt_world *w, tt__collide *c)
     c->nvert = nv;
 }
 
+/* After a step that carried moved shapes: their primitives' boxes still
+ * hold the whole path, and the index is built for them. The next step
+ * rebuilds it for where the shapes now rest, as a world loaded from a
+ * snapshot of this one does: the index decides the order shape contacts
+ * are found and solved in, so both must be the same. */
 void tt__shapes_arrived(tt__collide *c)
 {
+    c->dirty = true;
     for (uint32_t i = 0; i < c->spool.count; i++) {
         tt__shape *s = &c->shapes[i];
         s->from = s->def.position;
