@@ -277,6 +277,57 @@ TEST(terrain_raycast_and_events_see_the_terrain)
     tt_world_destroy(w);
 }
 
+/* A ball resting on the floor with every event kind on: the last step's
+ * records and events name the terrain, in a copy loaded from a snapshot as
+ * in the original, and the next steps' events match. */
+TEST(terrain_events_keep_their_terrain_through_a_snapshot)
+{
+    tt_world_def wd = tt_world_def_default();
+    tt_world *w = tt_world_create(&wd);
+    tt_mask *m = floor_mask();
+    tt_terrain t = add_terrain(w, m, 0.6);
+    tt_mask_destroy(m);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.events = TT_EVENT_BEGIN | TT_EVENT_PERSIST | TT_EVENT_END;
+    tt_world_set_collision(w, &cs);
+    ball(w, 5.0, -2.25, 0.2, 0.6);
+    for (int k = 0; k < 30; k++) tt_world_step(w, 1.0 / 60);
+    size_t size = 0;
+    tt_world_save(w, NULL, 0, &size);
+    void *buf = malloc(size);
+    ENSURE_OK(tt_world_save(w, buf, size, &size));
+    tt_world *c = tt_world_load(buf, size);
+    ENSURE(c != NULL);
+    for (int k = 0; k < 3 && c; k++) {
+        uint32_t nw, nc;
+        const tt_contact_event *ew = tt_world_get_contact_events(w, &nw), *ec = tt_world_get_contact_events(c, &nc);
+        ENSURE(nw == 1 && nc == 1 && ew[0].kind == TT_EVENT_PERSIST);
+        ENSURE(ew[0].terrain.index == t.index && ew[0].terrain.gen == t.gen);
+        ENSURE(ec[0].kind == ew[0].kind && ec[0].terrain.index == t.index && ec[0].terrain.gen == t.gen);
+        ENSURE(ec[0].shape.gen == 0 && ec[0].b.gen == 0);
+        if (k == 1) { /* lift the ball off: the END names the terrain too */
+            tt_particle p = {0, 0};
+            uint32_t np = 0;
+            tt_world_query_point(w, (tt_vec2){5.0, -2.3}, 0xFFFF, &p, 1, &np, NULL, 0, NULL);
+            tt_particle_set_position(w, p, (tt_vec2){5.0, 0.0}, TT_MOVE_RESET_VELOCITY);
+            tt_particle_set_position(c, p, (tt_vec2){5.0, 0.0}, TT_MOVE_RESET_VELOCITY);
+        }
+        tt_world_step(w, 1.0 / 60);
+        tt_world_step(c, 1.0 / 60);
+        if (k == 1) {
+            ew = tt_world_get_contact_events(w, &nw);
+            ec = tt_world_get_contact_events(c, &nc);
+            ENSURE(nw == 1 && nc == 1 && ew[0].kind == TT_EVENT_END && ec[0].kind == TT_EVENT_END);
+            ENSURE(ec[0].terrain.index == t.index && ec[0].terrain.gen == t.gen);
+            break;
+        }
+    }
+    ENSURE(c && tt_world_hash(c) == tt_world_hash(w));
+    tt_world_destroy(c);
+    free(buf);
+    tt_world_destroy(w);
+}
+
 TEST(terrain_pushes_a_buried_particle_out)
 {
     tt_world_def wd = tt_world_def_default();

@@ -21,7 +21,7 @@ local golden = {
   soft_bodies = { "53b95d0bf05b10d2", "7be9a3697b1b1bbf" },
   spring_net = { "2a61a51d9d763317", "23f95701ff040468" },
   terrain = { "3e396ac7473475ca", "9633655d12604942" },
-  worms = { "ff12d1e5b387dc6f", "47e3a05e8384504e" },
+  worms = { "ff12d1e5b387dc6f", "7f7409fa990c1c34" },
 }
 
 local function digest(h, xy)

@@ -60,6 +60,26 @@ T.test("raycast, events and distance see the terrain", function()
   T.ok(seen, "a begin event names the terrain")
 end)
 
+T.test("events restored from a snapshot keep their terrain", function()
+  local w = tether.world {}
+  local t = w:terrain(floor_mask())
+  w:set_collision { events = { "begin", "persist", "end" } }
+  local p = w:particle(5, -2.25, { radius = 0.2 })
+  w:step(1 / 60, 30)
+  local snap = w:snapshot()
+  w:set_position(p, 5, 0)
+  w:step(1 / 60, 5) -- off the floor: no contact now
+  T.eq(#w:contacts(), 0, "no contact before the restore")
+  T.ok(w:restore(snap), "the snapshot loads")
+  local ev = w:contacts()
+  T.eq(#ev, 1, "one contact")
+  T.ok(ev[1].terrain == t and ev[1].kind == "persist", "the restored event names the terrain")
+  w:set_position(p, 5, 0)
+  w:step(1 / 60)
+  ev = w:contacts()
+  T.ok(#ev == 1 and ev[1].kind == "end" and ev[1].terrain == t, "its end too")
+end)
+
 T.test("snapshot, carve, restore gives the terrain back", function()
   local w = tether.world {}
   local t = w:terrain(floor_mask())
