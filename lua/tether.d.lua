@@ -769,9 +769,11 @@ function world:set_pair_collision(a, b, enabled) end
 ---First hit along the segment, or nil.
 ---@return tether.ray_hit?
 function world:raycast(x1, y1, x2, y2, mask) end
----@return tether.particle[] particles, tether.shape[] shapes
+---Particles and shapes containing the point, and terrains with a solid pixel there.
+---@return tether.particle[] particles, tether.shape[] shapes, tether.terrain[] terrains
 function world:query_point(x, y, mask) end
----@return tether.particle[] particles, tether.shape[] shapes
+---Particles and shapes overlapping the box, and terrains with a solid pixel in it.
+---@return tether.particle[] particles, tether.shape[] shapes, tether.terrain[] terrains
 function world:query_aabb(x1, y1, x2, y2, mask) end
 ---Contact events of the last step.
 ---@return tether.contact[]

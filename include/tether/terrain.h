@@ -73,6 +73,11 @@ TT_API tt_result tt_terrain_get_user(const tt_world *w, tt_terrain t, uint64_t *
 TT_API tt_result tt_terrain_distance(const tt_world *w, tt_terrain t, tt_vec2 p, double *distance, tt_vec2 *normal);
 /// Whether world point p lies in a solid pixel.
 TT_API tt_result tt_terrain_is_solid(const tt_world *w, tt_terrain t, tt_vec2 p, bool *out);
+/// Terrains with a solid pixel meeting the box lo–hi (a point: lo = hi; pixels are closed squares) whose
+/// category is in mask, as tt_world_query_point / tt_world_query_aabb list particles and shapes. Writes up
+/// to cap (out may be NULL with cap 0); *n gets the full count. Costs the box's pixels / 64 a terrain.
+TT_API tt_result tt_world_query_terrains(const tt_world *w, tt_vec2 lo, tt_vec2 hi, uint16_t mask, tt_terrain *out,
+                                         uint32_t cap, uint32_t *n);
 
 #ifdef __cplusplus
 }

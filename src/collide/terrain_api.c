@@ -1,5 +1,6 @@
 /* tether — terrains' public calls: making and removing them, carving and
- * filling (circles, masks), materials, and reading them back. */
+ * filling (circles, masks), materials, reading them back, and the point and
+ * box query that lists them. */
 #include "terrain_internal.h"
 
 #include <stdlib.h>
@@ -294,5 +295,47 @@ tt_result tt_terrain_is_solid(const tt_world *w, tt_terrain t, tt_vec2 p, bool *
     if (!out) return tt__fail(w, TT_EINVAL, "tt_terrain_is_solid: out is NULL");
     const double u = floor((p.x - T->def.origin.x) * T->inv), v = floor((T->def.origin.y - p.y) * T->inv);
     *out = u >= 0 && v >= 0 && u < T->m->w && v < T->m->h && tt__mask_bit(T->m, (int)u, (int)v);
+    return TT_OK;
+}
+
+/* Whether a solid pixel of T (closed squares) meets the world box lo–hi. */
+static bool solid_in_box(const tt__terrain *T, tt_vec2 lo, tt_vec2 hi)
+{
+    const tt_mask *m = T->m;
+    /* pixel u's square [u, u + 1] meets [a, b] when ceil(a) − 1 ≤ u ≤ floor(b); clamped before any cast */
+    const double u0 = fmax(ceil((lo.x - T->def.origin.x) * T->inv) - 1.0, 0.0);
+    const double u1 = fmin(floor((hi.x - T->def.origin.x) * T->inv), m->w - 1.0);
+    const double v0 = fmax(ceil((T->def.origin.y - hi.y) * T->inv) - 1.0, 0.0);
+    const double v1 = fmin(floor((T->def.origin.y - lo.y) * T->inv), m->h - 1.0);
+    if (!(u0 <= u1 && v0 <= v1)) return false;
+    const int a = (int)u0, b = (int)u1;
+    for (int y = (int)v0; y <= (int)v1; y++) {
+        const uint64_t *row = tt__mask_row(m, y);
+        for (int j = a >> 6; j <= b >> 6; j++) {
+            const int s0 = j == a >> 6 ? a & 63 : 0, s1 = j == b >> 6 ? b & 63 : 63;
+            const uint64_t span = (s1 == 63 ? ~(uint64_t)0 : ((uint64_t)1 << (s1 + 1)) - 1) & ~(((uint64_t)1 << s0) - 1);
+            if (row[j] & span) return true;
+        }
+    }
+    return false;
+}
+
+tt_result tt_world_query_terrains(const tt_world *w, tt_vec2 lo, tt_vec2 hi, uint16_t mask, tt_terrain *out,
+                                  uint32_t cap, uint32_t *n)
+{
+    const char *fn = "tt_world_query_terrains";
+    if (!w) return tt__fail(NULL, TT_EINVAL, "%s: world is NULL", fn);
+    if (!tt__vec_ok(lo) || !tt__vec_ok(hi)) return tt__fail(w, TT_EINVAL, "%s: lo and hi must be finite, |x| <= %g", fn, TT_MAX_VALUE);
+    if (hi.x < lo.x || hi.y < lo.y) return tt__fail(w, TT_EINVAL, "%s: hi must be >= lo", fn);
+    if (cap && !out) return tt__fail(w, TT_EINVAL, "%s: out is NULL with a capacity > 0", fn);
+    const tt__collide *c = tt__collide_peek(w);
+    uint32_t count = 0;
+    for (uint32_t i = 0; c && c->terr && i < c->terr->pool.count; i++) {
+        const tt__terrain *T = &c->terr->t[i];
+        if (!T->alive || !(T->def.category & mask) || !solid_in_box(T, lo, hi)) continue;
+        if (count < cap) out[count] = (tt_terrain){i, c->terr->pool.gen[i]};
+        count++;
+    }
+    if (n) *n = count;
     return TT_OK;
 }

@@ -328,6 +328,39 @@ TEST(terrain_events_keep_their_terrain_through_a_snapshot)
     tt_world_destroy(w);
 }
 
+/* Point and box queries list the terrains with a solid pixel there. */
+TEST(terrain_point_and_box_queries_list_terrains)
+{
+    tt_world_def wd = tt_world_def_default();
+    tt_world *w = tt_world_create(&wd);
+    tt_mask *m = floor_mask(); /* solid from y = -2.5 to -3.0 m, x from 0 to 10 m */
+    tt_terrain t = add_terrain(w, m, 0.6);
+    tt_mask_destroy(m);
+    tt_terrain out[2] = {{0, 0}, {0, 0}};
+    uint32_t n = 99;
+    ENSURE_OK(tt_world_query_terrains(w, (tt_vec2){5.0, -2.75}, (tt_vec2){5.0, -2.75}, 0xFFFF, out, 2, &n));
+    ENSURE(n == 1 && out[0].index == t.index && out[0].gen == t.gen);
+    ENSURE_OK(tt_world_query_terrains(w, (tt_vec2){5.0, -2.4}, (tt_vec2){5.0, -2.4}, 0xFFFF, out, 2, &n));
+    ENSURE(n == 0); /* above the floor */
+    ENSURE_OK(tt_world_query_terrains(w, (tt_vec2){1.0, -2.45}, (tt_vec2){2.0, -2.0}, 0xFFFF, out, 2, &n));
+    ENSURE(n == 0); /* a box wholly above it */
+    ENSURE_OK(tt_world_query_terrains(w, (tt_vec2){1.0, -2.55}, (tt_vec2){2.0, -2.0}, 0xFFFF, NULL, 0, &n));
+    ENSURE(n == 1); /* one reaching into it, counted with no room */
+    ENSURE_OK(tt_world_query_terrains(w, (tt_vec2){-5.0, -9.0}, (tt_vec2){-1.0, 1.0}, 0xFFFF, out, 2, &n));
+    ENSURE(n == 0); /* beside it */
+    ENSURE_OK(tt_world_query_terrains(w, (tt_vec2){5.0, -2.75}, (tt_vec2){5.0, -2.75}, 0x0002, out, 2, &n));
+    ENSURE(n == 0); /* another layer */
+    ENSURE_OK(tt_terrain_paint_circle(w, t, (tt_vec2){5.0, -2.75}, 0.3, false));
+    ENSURE_OK(tt_world_query_terrains(w, (tt_vec2){5.0, -2.75}, (tt_vec2){5.0, -2.75}, 0xFFFF, out, 2, &n));
+    ENSURE(n == 0); /* carved */
+    const uint64_t h = tt_world_hash(w);
+    ENSURE(tt_world_query_terrains(w, (tt_vec2){2.0, 0.0}, (tt_vec2){1.0, 0.0}, 0xFFFF, out, 2, &n) == TT_EINVAL);
+    ENSURE(tt_world_query_terrains(w, (tt_vec2){NAN, 0.0}, (tt_vec2){1.0, 0.0}, 0xFFFF, out, 2, &n) == TT_EINVAL);
+    ENSURE(tt_world_query_terrains(w, (tt_vec2){0.0, 0.0}, (tt_vec2){1.0, 0.0}, 0xFFFF, NULL, 2, &n) == TT_EINVAL);
+    ENSURE(tt_world_hash(w) == h);
+    tt_world_destroy(w);
+}
+
 TEST(terrain_pushes_a_buried_particle_out)
 {
     tt_world_def wd = tt_world_def_default();
