@@ -788,7 +788,7 @@ function world:contacts() end
 ---@class tether.terrain_options
 ---@field origin? number[] {x, y}: pixel (0, 0)'s top-left corner, m; default {0, 0}
 ---@field pixel? number m per pixel, > 0; default 0.05
----@field band? integer distance band, 5…32 pixels; default 10 (radii up to band − 4 pixels)
+---@field band? integer distance band, 5…32 pixels; default 10 (radii up to band − 4 pixels are seen: give band ≥ radius / pixel + 4)
 ---@field restitution? number 0…1; default 0
 ---@field friction? number sets both frictions
 ---@field friction_static? number default 0.6
