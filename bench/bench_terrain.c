@@ -1,9 +1,12 @@
 /* tether — terrain benchmark: the cost of a carve in a big terrain (issue
- * 19: a radius-20-pixel crater in 2048 × 1024 pixels, target ≤ 50 µs), and
- * a pour onto a mask floor against the same floor as a chain shape, the
- * two worlds stepped in turn (A B A B) so the machine's load falls on both. */
+ * 19: a radius-20-pixel crater in 2048 × 1024 pixels, target ≤ 50 µs), a
+ * pour onto a mask floor against the same floor as a chain shape, the two
+ * worlds stepped in turn (A B A B) so the machine's load falls on both, and
+ * the reference pour (10 000 circles, 20 s) onto a mask bowl with its rest
+ * figures (src/scenes/scene_bowl.c, shared with the tests). */
 #include "bench.h"
 
+#include "scenes/scene.h"
 #include "tether.h"
 
 #include <math.h>
@@ -80,7 +83,7 @@ static void pour(FILE *csv)
 {
     enum { N = 2000, STEPS = 1200, CHUNK = 30 };
     tt_world *w[2] = {pour_world(false, N), pour_world(true, N)};
-    double ns[2] = {0, 0}, contacts[2] = {0, 0};
+    double ns[2] = {0, 0}, contacts[2] = {0, 0}, pairs[2] = {0, 0};
     for (int s = 0; s < STEPS; s += CHUNK)
         for (int k = 0; k < 2; k++)
             for (int j = 0; j < CHUNK; j++) {
@@ -90,6 +93,7 @@ static void pour(FILE *csv)
                 tt_collision_stats st;
                 tt_world_get_collision_stats(w[k], &st);
                 contacts[k] += st.shape_contacts;
+                pairs[k] += st.pair_contacts;
             }
     static const char *name[2] = {"chain floor", "mask floor"};
     for (int k = 0; k < 2; k++) {
@@ -105,7 +109,33 @@ static void pour(FILE *csv)
                 e.kinetic / N);
         tt_world_destroy(w[k]);
     }
-    printf("  mask / chain: %.2fx per step (target <= 1.1x per particle-contact)\n", ns[1] / ns[0]);
+    /* per particle-contact: the step's time over its contacts (pairs and the floor's) */
+    const double per[2] = {ns[0] / (contacts[0] + pairs[0]), ns[1] / (contacts[1] + pairs[1])};
+    printf("  mask / chain: %.2fx per step, %.2fx per particle-contact (%.1f against %.1f ns; target <= 1.1x)\n",
+           ns[1] / ns[0], per[1] / per[0], per[1], per[0]);
+    fprintf(csv, "per contact,%.3f,%.3f,%.4f,0\n", per[0], per[1], per[1] / per[0]);
+}
+
+/* The reference pour onto a mask bowl: 10 000 circles, 20 s. */
+static void bowl(FILE *csv)
+{
+    ts_bowl b;
+    const char *why = NULL;
+    if (ts_bowl_build(10000, 100, &b, &why) != TT_OK) {
+        printf("  bowl: %s\n", why ? why : "failed");
+        return;
+    }
+    const double a = bench_now_ns();
+    for (uint32_t s = 0; s < b.steps; s++) tt_world_step(b.t.world, 1.0 / 60);
+    const double ms = (bench_now_ns() - a) * 1e-6 / b.steps;
+    ts_bowl_figures f;
+    ts_bowl_measure(&b, &f);
+    printf("  reference pour (10 000 circles, 20 s) onto a mask bowl 100 m wide: %.2f ms/step; KE %.2e J/kg"
+           " (target <= 1e-3), centres in solid pixels %u (target 0), deepest into the bowl %.1f %% of a radius"
+           " (target <= 10 %%), circle overlap max %.1f %% mean %.2f %%\n",
+           ms, f.kinetic, f.inside, 100 * f.penetration, 100 * f.max_overlap, 100 * f.mean_overlap);
+    fprintf(csv, "bowl,%.4f,%.3e,%.5f,%.5f\n", ms, f.kinetic, f.penetration, f.max_overlap);
+    ts_bowl_free(&b);
 }
 
 void bench_terrain(const char *dir)
@@ -114,5 +144,6 @@ void bench_terrain(const char *dir)
     FILE *csv = bench_csv(dir, "terrain.csv", "what,a,b,c,d");
     carve(csv);
     pour(csv);
+    bowl(csv);
     fclose(csv);
 }

@@ -775,9 +775,11 @@ function world:set_pair_collision(a, b, enabled) end
 ---First hit along the segment, or nil.
 ---@return tether.ray_hit?
 function world:raycast(x1, y1, x2, y2, mask) end
----@return tether.particle[] particles, tether.shape[] shapes
+---Particles and shapes containing the point, and terrains with a solid pixel there.
+---@return tether.particle[] particles, tether.shape[] shapes, tether.terrain[] terrains
 function world:query_point(x, y, mask) end
----@return tether.particle[] particles, tether.shape[] shapes
+---Particles and shapes overlapping the box, and terrains with a solid pixel in it.
+---@return tether.particle[] particles, tether.shape[] shapes, tether.terrain[] terrains
 function world:query_aabb(x1, y1, x2, y2, mask) end
 ---Contact events of the last step.
 ---@return tether.contact[]
@@ -792,7 +794,7 @@ function world:contacts() end
 ---@class tether.terrain_options
 ---@field origin? number[] {x, y}: pixel (0, 0)'s top-left corner, m; default {0, 0}
 ---@field pixel? number m per pixel, > 0; default 0.05
----@field band? integer distance band, 5…32 pixels; default 10 (radii up to band − 4 pixels)
+---@field band? integer distance band, 5…32 pixels; default 10 (radii up to band − 4 pixels are seen: give band ≥ radius / pixel + 4)
 ---@field restitution? number 0…1; default 0
 ---@field friction? number sets both frictions
 ---@field friction_static? number default 0.6

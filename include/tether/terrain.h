@@ -11,13 +11,17 @@
  * world's y goes up). Outside its rectangle a terrain is empty.
  *
  * Contacts read a signed distance to the solid pixels' boundary kept per
- * pixel (clamped to ±band pixels) and sampled bilinearly; the normal is its
- * gradient over two pixels, the distances blurred over 7 × 7 pixels, so a
- * ball rolls down a pixel slope as down a straight one. A particle whose
- * radius is above band − 4 pixels collides as if it were band − 4 pixels
- * (the default band, 10, fits radii up to 6 pixels: 0.3 m at 0.05 m). Carves and fills update the bits and the
- * distances around the changed pixels only: their cost is in proportion to
- * the changed area (plus a border of 2·band + 8), not to the terrain's.
+ * pixel (the exact distance to the nearest pixel of the other state less
+ * half a pixel, clamped to ±band pixels) and sampled bilinearly; the normal
+ * is its gradient over two pixels, the distances blurred over 7 × 7 pixels,
+ * so a ball rolls down a pixel slope as down a straight one. A particle
+ * whose radius is above band − 4 pixels collides as if it were band − 4
+ * pixels (the default band, 10, fits radii up to 6 pixels: 0.3 m at
+ * 0.05 m): give a terrain band ≥ radius / pixel + 4 for its largest
+ * particle. Carves and fills update the bits and the distances around the
+ * changed pixels only (the changed box grown by band + 3, read grown by
+ * band again): their cost is in proportion to the changed area, not to the
+ * terrain's, and the result is what a rebuild would give.
  *
  * A world without terrains pays nothing for them and hashes as before. */
 #ifndef TETHER_TERRAIN_H
@@ -37,7 +41,8 @@ typedef struct tt_terrain_def {
     const tt_mask *solid;    ///< set pixels are solid ground (copied); required
     tt_vec2 origin;          ///< m, the top-left corner of pixel (0, 0); default (0, 0)
     double pixel;            ///< m per pixel, > 0; default 0.05
-    int band;                ///< pixels of distance kept each side of the surface, 5…TT_TERRAIN_MAX_BAND; default 10
+    int band;                ///< pixels of distance kept each side of the surface, 5…TT_TERRAIN_MAX_BAND; default 10;
+                             ///< radii above band − 4 pixels are seen as band − 4
     double restitution;      ///< bounce, 0…1; default 0
     double friction_static;  ///< μs ≥ 0; default 0.6
     double friction_kinetic; ///< μk ≥ 0; default 0.5
@@ -73,6 +78,11 @@ TT_API tt_result tt_terrain_get_user(const tt_world *w, tt_terrain t, uint64_t *
 TT_API tt_result tt_terrain_distance(const tt_world *w, tt_terrain t, tt_vec2 p, double *distance, tt_vec2 *normal);
 /// Whether world point p lies in a solid pixel.
 TT_API tt_result tt_terrain_is_solid(const tt_world *w, tt_terrain t, tt_vec2 p, bool *out);
+/// Terrains with a solid pixel meeting the box lo–hi (a point: lo = hi; pixels are closed squares) whose
+/// category is in mask, as tt_world_query_point / tt_world_query_aabb list particles and shapes. Writes up
+/// to cap (out may be NULL with cap 0); *n gets the full count. Costs the box's pixels / 64 a terrain.
+TT_API tt_result tt_world_query_terrains(const tt_world *w, tt_vec2 lo, tt_vec2 hi, uint16_t mask, tt_terrain *out,
+                                         uint32_t cap, uint32_t *n);
 
 #ifdef __cplusplus
 }

@@ -382,13 +382,24 @@ static bool load_records(tt_world *w, tt__collide *c, tt__source *s)
         uint64_t key = c->prev[k].key = tt__get_u64(s);
         if (!get_event(s, &c->prev[k].ev, true)) return false;
         uint32_t hi = (uint32_t)(key >> 32) & 0x7FFFFFFFu, lo = (uint32_t)key;
-        bool ok = (key >> 63) ? hi < c->spool.count && lo < w->ppool.count : hi < lo && lo < w->ppool.count;
+        /* a terrain's key (bits 63 and 62): its slot is checked with the terrains, loaded after */
+        bool ok = (key >> 62) == 3 ? lo < w->ppool.count
+                  : (key >> 63)    ? hi < c->spool.count && lo < w->ppool.count
+                                   : hi < lo && lo < w->ppool.count;
         if (!ok || (k && c->prev[k - 1].key >= key)) return tt__src_fail(s, "contact record %u", k);
     }
     c->nevents = c->evcap = tt__get_count(s, 69, "contact events");
     if (s->failed || !(c->events = malloc((size_t)(c->nevents ? c->nevents : 1) * sizeof *c->events))) return tt__src_fail(s, "out of memory");
     for (uint32_t k = 0; k < c->nevents; k++)
         if (!get_event(s, &c->events[k], false)) return false;
+    return true;
+}
+
+/* A stream without terrains has no record of a terrain contact. */
+static bool no_terrain_records(const tt__collide *c, tt__source *s)
+{
+    for (uint32_t k = 0; k < c->nprev; k++)
+        if ((c->prev[k].key >> 62) == 3) return tt__src_fail(s, "contact record %u: no terrains", k);
     return true;
 }
 
@@ -411,7 +422,7 @@ void *tt__contacts_load(tt_world *w, tt__source *s)
                        (set->restitution_threshold < 0 && set->restitution_threshold != -1.0)))
         tt__src_fail(s, "collision settings");
     if (!s->failed && load_shapes(w, c, s) && load_particle_data(w, c, s) && load_records(w, c, s) &&
-        (s->at == s->len || tt__terrains_load(w, c, s)))
+        (s->at == s->len ? no_terrain_records(c, s) : tt__terrains_load(w, c, s)))
         return c;
     tt__src_fail(s, "collisions");
     tt__contacts_destroy(w, c);

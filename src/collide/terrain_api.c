@@ -1,5 +1,6 @@
 /* tether — terrains' public calls: making and removing them, carving and
- * filling (circles, masks), materials, and reading them back. */
+ * filling (circles, masks), materials, reading them back, and the point and
+ * box query that lists them. */
 #include "terrain_internal.h"
 
 #include <stdlib.h>
@@ -146,6 +147,47 @@ static tt_result changed(tt_world *w, tt__collide *c, tt__terrain *T, int x0, in
     return TT_OK;
 }
 
+/* Whether pixel (x, y)'s centre lies in the circle (cu, cv, rp), in pixels. */
+static inline bool inside(double cu, double cv, double rp, int x, int y)
+{
+    const double dx = x + 0.5 - cu, dy = y + 0.5 - cv;
+    return !(dx * dx + dy * dy > rp * rp);
+}
+
+/* Row y's pixels in the circle, within [fx0, fx1]: [*a, *b], or false. The
+ * square root only guesses the ends; the test above decides them. */
+static bool span(double cu, double cv, double rp, int y, int fx0, int fx1, int *a, int *b)
+{
+    const double dy = y + 0.5 - cv, h2 = rp * rp - dy * dy;
+    const double h = h2 > 0.0 ? sqrt(h2) : 0.0;
+    int lo = (int)fmax(fmin(floor(cu - h - 0.5), fx1), fx0), hi = (int)fmax(fmin(ceil(cu + h - 0.5), fx1), fx0);
+    while (lo > fx0 && inside(cu, cv, rp, lo - 1, y)) lo--;
+    while (lo <= hi && !inside(cu, cv, rp, lo, y)) lo++;
+    while (hi < fx1 && inside(cu, cv, rp, hi + 1, y)) hi++;
+    while (hi >= lo && !inside(cu, cv, rp, hi, y)) hi--;
+    *a = lo;
+    *b = hi;
+    return lo <= hi;
+}
+
+/* Sets (solid) or clears pixels [a, b] of a row's words; the first and last
+ * that changed into *lo, *hi, or false when none did. */
+static bool put_span(uint64_t *row, int a, int b, bool solid, int *lo, int *hi)
+{
+    *lo = INT32_MAX;
+    *hi = -1;
+    for (int j = a >> 6; j <= b >> 6; j++) {
+        const int s0 = j == a >> 6 ? a & 63 : 0, s1 = j == b >> 6 ? b & 63 : 63;
+        const uint64_t mask = (s1 == 63 ? ~(uint64_t)0 : ((uint64_t)1 << (s1 + 1)) - 1) & ~(((uint64_t)1 << s0) - 1);
+        const uint64_t flip = mask & (solid ? ~row[j] : row[j]);
+        if (!flip) continue;
+        row[j] ^= flip;
+        if (*lo == INT32_MAX) *lo = 64 * j + __builtin_ctzll(flip);
+        *hi = 64 * j + 63 - __builtin_clzll(flip);
+    }
+    return *hi >= 0;
+}
+
 tt_result tt_terrain_paint_circle(tt_world *w, tt_terrain t, tt_vec2 centre, double radius, bool solid)
 {
     const char *fn = "tt_terrain_paint_circle";
@@ -164,14 +206,12 @@ tt_result tt_terrain_paint_circle(tt_world *w, tt_terrain t, tt_vec2 centre, dou
         if (!tt__terrain_reserve(c->terr, T, (int)fx0, (int)fy0, (int)fx1, (int)fy1))
             return tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
         for (int y = (int)fy0; y <= (int)fy1; y++) {
-            const double dy = y + 0.5 - cv;
-            for (int x = (int)fx0; x <= (int)fx1; x++) {
-                const double dx = x + 0.5 - cu;
-                if (dx * dx + dy * dy > rp * rp || tt__mask_bit(m, x, y) == (int)solid) continue;
-                tt__mask_put(m, x, y, solid);
-                x0 = x < x0 ? x : x0; x1 = x > x1 ? x : x1;
-                y0 = y < y0 ? y : y0; y1 = y > y1 ? y : y1;
-            }
+            int a, b;
+            if (!span(cu, cv, rp, y, (int)fx0, (int)fx1, &a, &b)) continue;
+            int lo, hi;
+            if (!put_span(tt__mask_row(m, y), a, b, solid, &lo, &hi)) continue;
+            x0 = lo < x0 ? lo : x0; x1 = hi > x1 ? hi : x1;
+            y0 = y < y0 ? y : y0; y1 = y > y1 ? y : y1;
         }
     }
     return changed(w, c, T, x0, y0, x1, y1, fn);
@@ -255,5 +295,47 @@ tt_result tt_terrain_is_solid(const tt_world *w, tt_terrain t, tt_vec2 p, bool *
     if (!out) return tt__fail(w, TT_EINVAL, "tt_terrain_is_solid: out is NULL");
     const double u = floor((p.x - T->def.origin.x) * T->inv), v = floor((T->def.origin.y - p.y) * T->inv);
     *out = u >= 0 && v >= 0 && u < T->m->w && v < T->m->h && tt__mask_bit(T->m, (int)u, (int)v);
+    return TT_OK;
+}
+
+/* Whether a solid pixel of T (closed squares) meets the world box lo–hi. */
+static bool solid_in_box(const tt__terrain *T, tt_vec2 lo, tt_vec2 hi)
+{
+    const tt_mask *m = T->m;
+    /* pixel u's square [u, u + 1] meets [a, b] when ceil(a) − 1 ≤ u ≤ floor(b); clamped before any cast */
+    const double u0 = fmax(ceil((lo.x - T->def.origin.x) * T->inv) - 1.0, 0.0);
+    const double u1 = fmin(floor((hi.x - T->def.origin.x) * T->inv), m->w - 1.0);
+    const double v0 = fmax(ceil((T->def.origin.y - hi.y) * T->inv) - 1.0, 0.0);
+    const double v1 = fmin(floor((T->def.origin.y - lo.y) * T->inv), m->h - 1.0);
+    if (!(u0 <= u1 && v0 <= v1)) return false;
+    const int a = (int)u0, b = (int)u1;
+    for (int y = (int)v0; y <= (int)v1; y++) {
+        const uint64_t *row = tt__mask_row(m, y);
+        for (int j = a >> 6; j <= b >> 6; j++) {
+            const int s0 = j == a >> 6 ? a & 63 : 0, s1 = j == b >> 6 ? b & 63 : 63;
+            const uint64_t span = (s1 == 63 ? ~(uint64_t)0 : ((uint64_t)1 << (s1 + 1)) - 1) & ~(((uint64_t)1 << s0) - 1);
+            if (row[j] & span) return true;
+        }
+    }
+    return false;
+}
+
+tt_result tt_world_query_terrains(const tt_world *w, tt_vec2 lo, tt_vec2 hi, uint16_t mask, tt_terrain *out,
+                                  uint32_t cap, uint32_t *n)
+{
+    const char *fn = "tt_world_query_terrains";
+    if (!w) return tt__fail(NULL, TT_EINVAL, "%s: world is NULL", fn);
+    if (!tt__vec_ok(lo) || !tt__vec_ok(hi)) return tt__fail(w, TT_EINVAL, "%s: lo and hi must be finite, |x| <= %g", fn, TT_MAX_VALUE);
+    if (hi.x < lo.x || hi.y < lo.y) return tt__fail(w, TT_EINVAL, "%s: hi must be >= lo", fn);
+    if (cap && !out) return tt__fail(w, TT_EINVAL, "%s: out is NULL with a capacity > 0", fn);
+    const tt__collide *c = tt__collide_peek(w);
+    uint32_t count = 0;
+    for (uint32_t i = 0; c && c->terr && i < c->terr->pool.count; i++) {
+        const tt__terrain *T = &c->terr->t[i];
+        if (!T->alive || !(T->def.category & mask) || !solid_in_box(T, lo, hi)) continue;
+        if (count < cap) out[count] = (tt_terrain){i, c->terr->pool.gen[i]};
+        count++;
+    }
+    if (n) *n = count;
     return TT_OK;
 }

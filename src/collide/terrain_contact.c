@@ -22,12 +22,31 @@ static inline double at(const tt__terrain *T, int x, int y)
  * never cast to an int it does not fit. */
 static inline int pix(double f, int n) { return f < -2.0 ? -2 : f > n + 1.0 ? n + 1 : (int)f; }
 
+/* floor(u), the same double, without the library call (x86-64 without
+ * SSE4.1 has no instruction for it): a conversion to an integer and back
+ * where u fits one, floor itself beyond. An integral u (−0 too) is u. */
+static inline double ffloor(double u)
+{
+    if (!(fabs(u) < 4.5e15)) return floor(u);
+    const double t = (double)(int64_t)u;
+    return t > u ? t - 1.0 : t == u ? u : t;
+}
+
 /* Bilinear in pixel-centre coordinates (u, v). */
 static double bilinear(const tt__terrain *T, double u, double v)
 {
-    const double fu = floor(u), fv = floor(v), a = u - fu, b = v - fv;
+    const double fu = ffloor(u), fv = ffloor(v), a = u - fu, b = v - fv;
     const int x = pix(fu, T->m->w), y = pix(fv, T->m->h);
     const double s00 = at(T, x, y), s10 = at(T, x + 1, y), s01 = at(T, x, y + 1), s11 = at(T, x + 1, y + 1);
+    return (s00 * (1.0 - a) + s10 * a) * (1.0 - b) + (s01 * (1.0 - a) + s11 * a) * b;
+}
+
+/* The same away from the border: every pixel it reads is inside. */
+static inline double bilinear_in(const tt__terrain *T, double u, double v)
+{
+    const double fu = ffloor(u), fv = ffloor(v), a = u - fu, b = v - fv;
+    const float *p = T->sdf + (size_t)fv * (size_t)T->m->w + (size_t)fu, *q = p + T->m->w;
+    const double s00 = p[0], s10 = p[1], s01 = q[0], s11 = q[1];
     return (s00 * (1.0 - a) + s10 * a) * (1.0 - b) + (s01 * (1.0 - a) + s11 * a) * b;
 }
 
@@ -37,9 +56,18 @@ double tt__terrain_sample(const tt__terrain *T, double x, double y, double *nx, 
     *nx = *ny = 0.0;
     if (!(x > T->lox - pad && x < T->hix + pad && y > T->loy - pad && y < T->hiy + pad)) return B * s;
     const double u = (x - T->def.origin.x) * T->inv - 0.5, v = (T->def.origin.y - y) * T->inv - 0.5;
-    const double d = bilinear(T, u, v);
-    const double gu = bilinear(T, u + 1.0, v) - bilinear(T, u - 1.0, v);
-    const double gv = bilinear(T, u, v + 1.0) - bilinear(T, u, v - 1.0);
+    double d, gu, gv;
+    /* the five samples read pixels within 2 of (u, v) (u ± 1 may round onto the next integer) */
+    const double fu = ffloor(u), fv = ffloor(v);
+    if (fu >= 2.0 && fu + 3.0 < T->m->w && fv >= 2.0 && fv + 3.0 < T->m->h) {
+        d = bilinear_in(T, u, v);
+        gu = bilinear_in(T, u + 1.0, v) - bilinear_in(T, u - 1.0, v);
+        gv = bilinear_in(T, u, v + 1.0) - bilinear_in(T, u, v - 1.0);
+    } else {
+        d = bilinear(T, u, v);
+        gu = bilinear(T, u + 1.0, v) - bilinear(T, u - 1.0, v);
+        gv = bilinear(T, u, v + 1.0) - bilinear(T, u, v - 1.0);
+    }
     const double g2 = gu * gu + gv * gv;
     if (g2 > 1e-12) {
         const double ig = 1.0 / sqrt(g2);
@@ -141,7 +169,7 @@ bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
                 continue;
             /* the band at the nearest pixel centre: within a pixel of the sample, whose slope is at most 1 */
             const double u = (x - T->def.origin.x) * T->inv, v = (T->def.origin.y - y) * T->inv;
-            if ((at(T, pix(floor(u), T->m->w), pix(floor(v), T->m->h)) - 1.0) * T->def.pixel > reach) continue;
+            if ((at(T, pix(ffloor(u), T->m->w), pix(ffloor(v), T->m->h)) - 1.0) * T->def.pixel > reach) continue;
             const uint32_t code = TT__PRIM_TERRAIN | k;
             if (c->ccd_prim && i < c->bulletcap && c->ccd_prim[i] == (int32_t)code) continue; /* the sweep has it */
             tt__hit hit;

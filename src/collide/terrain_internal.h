@@ -1,5 +1,5 @@
 /* tether — private side of terrains (terrain.c: storage, the public calls,
- * carving and the distance band; terrain_contact.c: what the contacts group
+ * carving; terrain_band.c: the distance band; terrain_contact.c: what the contacts group
  * and the queries ask of them; terrain_state.c: their part of the snapshot).
  * The contacts group (tt__collide) holds them as c->terr, NULL until the
  * world's first terrain: a world without terrains takes none of these
@@ -29,12 +29,13 @@ typedef struct tt__terrains {
     tt_pool pool;
     tt__terrain *t;
     uint32_t cap, alive;
-    /* scratch of the distance update: nearest-opposite vectors and states of the region read */
-    int16_t *vx, *vy;
-    uint8_t *st;
+    /* scratch of the distance update (terrain_band.c), and its table of
+     * raw distances by squared distance for the band it was made for */
+    unsigned char *scr;
     size_t scap;
-    float *fa, *fb; /* raw distances, and the blur's rows */
-    size_t fcap;
+    int32_t lut[(TT_TERRAIN_MAX_BAND + 1) * (TT_TERRAIN_MAX_BAND + 1) + 1];
+    int lut_band;
+    uint64_t spread8[256]; /* byte k: 0xFF where bit k of the index is set */
 } tt__terrains;
 
 bool tt__terrain_ok(const tt__collide *c, tt_terrain t);

@@ -3,14 +3,19 @@
  * a terrain, so a world without terrains writes (and hashes) what it always
  * did, and a stream written before terrains existed still loads. Each live
  * terrain writes its settings and its pixels, row words as the mask holds
- * them; the distance band is derived and rebuilt on load. */
+ * them; the distance band is derived and rebuilt on load. Then the terrain
+ * of each of the last step's contact records and events (the event record
+ * the contacts section writes has no field for it, and other worlds'
+ * streams stay as they were). */
 #include "terrain_internal.h"
 #include "core/stream.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#define VERSION 1u
+/* 2: the terrain handles of the last step's contact records and events
+ * follow the terrains (1 had none: its events load without them). */
+#define VERSION 2u
 
 void tt__terrains_save(const tt__collide *c, tt__sink *s)
 {
@@ -35,6 +40,14 @@ void tt__terrains_save(const tt__collide *c, tt__sink *s)
         tt__put_u32(s, (uint32_t)T->m->w);
         tt__put_u32(s, (uint32_t)T->m->h);
         tt__put(s, T->m->bits, (size_t)T->m->h * (size_t)T->m->stride * sizeof *T->m->bits);
+    }
+    for (uint32_t k = 0; k < c->nprev; k++) {
+        tt__put_u32(s, c->prev[k].ev.terrain.index);
+        tt__put_gen(s, c->prev[k].ev.terrain.gen);
+    }
+    for (uint32_t k = 0; k < c->nevents; k++) {
+        tt__put_u32(s, c->events[k].terrain.index);
+        tt__put_gen(s, c->events[k].terrain.gen);
     }
 }
 
@@ -87,10 +100,33 @@ static bool load_one(tt__terrains *ts, tt__terrain *T, tt__source *s)
     return true;
 }
 
+/* The terrains of the last step's records (each must name the live terrain
+ * its key names, or none when its key names no terrain) and events. */
+static bool load_handles(const tt__collide *c, tt__source *s)
+{
+    for (uint32_t k = 0; k < c->nprev; k++) {
+        tt_terrain *t = &c->prev[k].ev.terrain;
+        t->index = tt__get_u32(s);
+        t->gen = tt__get_u32(s);
+        const uint64_t key = c->prev[k].key;
+        const bool terr = (key >> 62) == 3;
+        const uint32_t slot = (uint32_t)(key >> 32) & 0x3FFFFFFFu;
+        if (s->failed) return false;
+        if (terr ? t->index != slot || !tt__terrain_ok(c, *t) : t->index || t->gen)
+            return tt__src_fail(s, "contact record %u: terrain %u", k, t->index);
+    }
+    for (uint32_t k = 0; k < c->nevents; k++) { /* published: may name a terrain removed since */
+        c->events[k].terrain.index = tt__get_u32(s);
+        c->events[k].terrain.gen = tt__get_u32(s);
+    }
+    return !s->failed;
+}
+
 bool tt__terrains_load(tt_world *w, tt__collide *c, tt__source *s)
 {
     if (tt__get_u32(s) != TT__ID('T', 'E', 'R', 'R')) return tt__src_fail(s, "terrains: bad marker");
-    if (tt__get_u32(s) != VERSION) return tt__src_fail(s, "terrains: unknown version");
+    const uint32_t version = tt__get_u32(s);
+    if (version != 1 && version != VERSION) return tt__src_fail(s, "terrains: unknown version");
     tt__terrains *ts = calloc(1, sizeof *ts);
     if (!ts) return tt__src_fail(s, "out of memory");
     c->terr = ts; /* freed with c on failure */
@@ -109,5 +145,12 @@ bool tt__terrains_load(tt_world *w, tt__collide *c, tt__source *s)
     /* a live slot must be out of the free list, a dead one in it or retired: the pool decides handles */
     for (uint32_t k = 0; k < ts->pool.free_count; k++)
         if (ts->t[ts->pool.free_list[k]].alive) return tt__src_fail(s, "terrains: a live slot is free");
+    if (version >= 2) return load_handles(c, s);
+    for (uint32_t k = 0; k < c->nprev; k++) /* version 1: the terrain a record's key names */
+        if ((c->prev[k].key >> 62) == 3) {
+            const uint32_t slot = (uint32_t)(c->prev[k].key >> 32) & 0x3FFFFFFFu;
+            if (slot >= n || !ts->t[slot].alive) return tt__src_fail(s, "contact record %u: terrain %u", k, slot);
+            c->prev[k].ev.terrain = (tt_terrain){slot, ts->pool.gen[slot]};
+        }
     return !s->failed;
 }

@@ -433,20 +433,25 @@ static int w_raycast(lua_State *L)
     return 1;
 }
 
-/* Runs a point/box query twice when the buffers were too small; pushes {particles}, {shapes}. */
+/* Runs a point/box query twice when the buffers were too small (all of it,
+ * into one scratch buffer, before any Lua value is made); pushes
+ * {particles}, {shapes}, {terrains}. */
 static int area(lua_State *L, tt_world *w, bool point, tt_vec2 lo, tt_vec2 hi, uint16_t mask)
 {
-    uint32_t np = 0, ns = 0, pcap = 64, scap = 16;
+    uint32_t np = 0, ns = 0, nt = 0, pcap = 64, scap = 16, tcap = 4;
     for (int round = 0; round < 2; round++) {
-        /* one buffer: the shapes after the particles, at a multiple of 16 bytes */
-        size_t at = ((size_t)pcap * sizeof(tt_particle) + 15) & ~(size_t)15;
-        char *buf = tl_scratch(L, at + (size_t)scap * sizeof(tt_shape) + 1);
+        /* one buffer: particles, then shapes, then terrains, each at a multiple of 16 bytes */
+        const size_t at = ((size_t)pcap * sizeof(tt_particle) + 15) & ~(size_t)15;
+        const size_t at2 = at + (((size_t)scap * sizeof(tt_shape) + 15) & ~(size_t)15);
+        char *buf = tl_scratch(L, at2 + (size_t)tcap * sizeof(tt_terrain) + 1);
         tt_particle *ps = (tt_particle *)buf;
         tt_shape *ss = (tt_shape *)(buf + at);
+        tt_terrain *ts = (tt_terrain *)(buf + at2);
         tt_result r = point ? tt_world_query_point(w, lo, mask, ps, pcap, &np, ss, scap, &ns)
                             : tt_world_query_aabb(w, lo, hi, mask, ps, pcap, &np, ss, scap, &ns);
         tl_check_result(L, w, r);
-        if (np <= pcap && ns <= scap) {
+        tl_check_result(L, w, tt_world_query_terrains(w, lo, hi, mask, ts, tcap, &nt));
+        if (np <= pcap && ns <= scap && nt <= tcap) {
             lua_createtable(L, (int)np, 0);
             for (uint32_t k = 0; k < np; k++) {
                 tl_push_particle(L, ps[k]);
@@ -457,15 +462,21 @@ static int area(lua_State *L, tt_world *w, bool point, tt_vec2 lo, tt_vec2 hi, u
                 tl_push_shape(L, ss[k]);
                 lua_rawseti(L, -2, k + 1);
             }
-            return 2;
+            lua_createtable(L, (int)nt, 0);
+            for (uint32_t k = 0; k < nt; k++) {
+                tl_push_terrain(L, ts[k]);
+                lua_rawseti(L, -2, k + 1);
+            }
+            return 3;
         }
-        pcap = np;
-        scap = ns;
+        pcap = np > pcap ? np : pcap;
+        scap = ns > scap ? ns : scap;
+        tcap = nt > tcap ? nt : tcap;
     }
     return tl_error(L, "the world changed during the query");
 }
 
-/* w:query_point(x, y [, mask]) → {particles}, {shapes} */
+/* w:query_point(x, y [, mask]) → {particles}, {shapes}, {terrains} */
 static int w_query_point(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -474,7 +485,7 @@ static int w_query_point(lua_State *L)
     return area(L, w, true, p, p, mask);
 }
 
-/* w:query_aabb(x1, y1, x2, y2 [, mask]) → {particles}, {shapes} */
+/* w:query_aabb(x1, y1, x2, y2 [, mask]) → {particles}, {shapes}, {terrains} */
 static int w_query_aabb(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);

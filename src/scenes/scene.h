@@ -152,4 +152,27 @@ tt_result ts_tether_state(const ts_tether *t, uint32_t body, ts_state *out);
 /* Kinetic energy per kg of the dynamic bodies, J/kg. */
 double ts_tether_kinetic_per_kg(const ts_tether *t);
 
+/* --- the reference pour onto a mask bowl (scene_bowl.c) ------------------- */
+
+typedef struct ts_bowl {
+    ts_tether t;                        /* the world and its circles */
+    tt_terrain terrain;                 /* the bowl: 0.1 m pixels, an arc of radius 0.8 × width between walls */
+    double radius;                      /* m, of the circles */
+    uint32_t steps;                     /* 20 s */
+} ts_bowl;
+
+typedef struct ts_bowl_figures {
+    double kinetic;                     /* J/kg of the circles */
+    double penetration;                 /* deepest of a circle into the bowl, fraction of a radius (≤ 0: none) */
+    double max_overlap, mean_overlap;   /* of two circles, fraction of a radius (ts_pile_measure) */
+    uint32_t inside;                    /* circles whose centre lies in a solid pixel */
+} ts_bowl_figures;
+
+/* The reference pour's n circles (ts_scene_pour(n, width): grid, radius,
+ * friction 0.3, g = 10, dt = 1/60), lifted clear of the rim, above a mask
+ * bowl as wide as its box; TT_OK, or an error with the reason in *why. */
+tt_result ts_bowl_build(uint32_t n, double width, ts_bowl *b, const char **why);
+void ts_bowl_free(ts_bowl *b);
+void ts_bowl_measure(const ts_bowl *b, ts_bowl_figures *out);
+
 #endif

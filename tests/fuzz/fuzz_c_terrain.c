@@ -125,6 +125,25 @@ static void c_terrain_distance(fz *f)
     fz_finite_vec(f, n, "a terrain normal");
 }
 
+static void c_world_query_terrains(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    f->readonly = true;
+    tt_vec2 lo = fz_chance(f, 80) ? fz_vec(f, -30, 30) : fz_point(f), hi = lo;
+    if (fz_chance(f, 60)) hi = fz_chance(f, 80) ? (tt_vec2){lo.x + fz_real(f, 0, 20), lo.y + fz_real(f, 0, 20)} : fz_point(f);
+    uint16_t mask = fz_bits16(f);
+    uint32_t cap, n = 0;
+    tt_terrain *out = fz_buffer(f, &cap, 4, sizeof *out);
+    bool null_n = fz_chance(f, 4);
+    fz_log(f, "tt_world_query_terrains(%s, %s, %s, %#x, %s, %u, %s)", fz_wn(f, w), fz_v(lo), fz_v(hi), mask,
+           out ? "out" : "NULL", cap, null_n ? "NULL" : "&n");
+    FZ_HIT(f, tt_world_query_terrains);
+    fz_res(f, tt_world_query_terrains(w, lo, hi, mask, out, cap, null_n ? NULL : &n));
+    for (uint32_t i = 0; !f->failed && out && !null_n && i < n && i < cap; i++)
+        if (!tt_terrain_is_valid(w, out[i])) fz_fail(f, "tt_world_query_terrains listed a stale terrain");
+    free(out);
+}
+
 static void c_terrain_paint_mask(fz *f)
 {
     tt_world *w = fz_world_pick(f);
@@ -153,5 +172,6 @@ const fz_entry fz_terrain_entries[] = {
     { "tt_terrain_get_user", c_tt_terrain_get_user, 1 },
     { "tt_terrain_distance", c_terrain_distance, 1 },
     { "tt_terrain_is_solid", c_tt_terrain_is_solid, 1 },
+    { "tt_world_query_terrains", c_world_query_terrains, 1 },
     { NULL, NULL, 0 },
 };

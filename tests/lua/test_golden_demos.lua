@@ -21,7 +21,7 @@ local golden = {
   soft_bodies = { "53b95d0bf05b10d2", "7be9a3697b1b1bbf" },
   spring_net = { "2a61a51d9d763317", "23f95701ff040468" },
   terrain = { "06cc662cfae0adc4", "a8faa1348f33a5c7" },
-  worms = { "4e68fa6104715743", "0f8d4be85da5bbcf" },
+  worms = { "59c16f0720da8417", "5f2ea84f24227871" },
 }
 
 local function digest(h, xy)

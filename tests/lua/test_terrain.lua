@@ -60,6 +60,44 @@ T.test("raycast, events and distance see the terrain", function()
   T.ok(seen, "a begin event names the terrain")
 end)
 
+T.test("events restored from a snapshot keep their terrain", function()
+  local w = tether.world {}
+  local t = w:terrain(floor_mask())
+  w:set_collision { events = { "begin", "persist", "end" } }
+  local p = w:particle(5, -2.25, { radius = 0.2 })
+  w:step(1 / 60, 30)
+  local snap = w:snapshot()
+  w:set_position(p, 5, 0)
+  w:step(1 / 60, 5) -- off the floor: no contact now
+  T.eq(#w:contacts(), 0, "no contact before the restore")
+  T.ok(w:restore(snap), "the snapshot loads")
+  local ev = w:contacts()
+  T.eq(#ev, 1, "one contact")
+  T.ok(ev[1].terrain == t and ev[1].kind == "persist", "the restored event names the terrain")
+  w:set_position(p, 5, 0)
+  w:step(1 / 60)
+  ev = w:contacts()
+  T.ok(#ev == 1 and ev[1].kind == "end" and ev[1].terrain == t, "its end too")
+end)
+
+T.test("point and box queries list the terrain", function()
+  local w = tether.world {}
+  local t = w:terrain(floor_mask()) -- solid from y = -2.5 to -3 m, x from 0 to 10 m
+  local ps, ss, ts = w:query_point(5, -2.75)
+  T.ok(#ps == 0 and #ss == 0 and #ts == 1 and ts[1] == t, "a point in the floor")
+  _, _, ts = w:query_point(5, -2.4)
+  T.eq(#ts, 0, "a point above it")
+  _, _, ts = w:query_aabb(1, -2.55, 2, -2)
+  T.ok(#ts == 1 and ts[1] == t, "a box reaching into it")
+  _, _, ts = w:query_aabb(1, -2.45, 2, -2)
+  T.eq(#ts, 0, "a box above it")
+  _, _, ts = w:query_point(5, -2.75, 2)
+  T.eq(#ts, 0, "another layer")
+  w:carve(t, 5, -2.75, 0.3)
+  _, _, ts = w:query_point(5, -2.75)
+  T.eq(#ts, 0, "carved")
+end)
+
 T.test("snapshot, carve, restore gives the terrain back", function()
   local w = tether.world {}
   local t = w:terrain(floor_mask())
