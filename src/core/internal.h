@@ -83,6 +83,11 @@ typedef struct tt__group_ops {
      * as absent, which it is equivalent to, so reading a world never
      * changes its hash */
     bool (*idle)(const tt_world *w, const void *self);
+    /* optional, per substep after begin: true when begin found nothing to
+     * relax (no contact), so its sweeps, sweeps_done and end would move
+     * nothing and change no world state; a Verlet substep whose groups are
+     * all quiet skips them (tt__solve) */
+    bool (*quiet)(const tt_world *w, const void *self);
     size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
     void (*destroy)(tt_world *w, void *self);
 } tt__group_ops;
