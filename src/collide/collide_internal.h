@@ -318,6 +318,10 @@ static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, ui
 
 /* Grid (grid.c). */
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell);
+/* Whether some particle among the first n has a radius other than +0: a
+ * pair needs one (two radius-0 particles never collide), so a world of
+ * points skips its grid. About half an instruction a particle. */
+bool tt__grid_any_radius(const tt_world *w, uint32_t n);
 /* Room for a build over n particles, whatever their spread (the cells are
  * bounded by tt__grid_max_cells); false on no memory. */
 bool tt__grid_reserve(tt__grid *g, uint32_t n);

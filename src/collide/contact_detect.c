@@ -165,7 +165,10 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
         c->bp_step = w->stats.steps;
         c->bp_ms = 0.0;
     }
-    if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
+    if (!tt__grid_any_radius(w, n)) { /* points only: no pair, whatever the broadphase */
+        ok = true;
+        c->grid.epoch = UINT64_MAX; /* not built: a query builds its own */
+    } else if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
         ok = tt__brute_pairs(w, c);
         c->grid.epoch = UINT64_MAX;
     } else {
@@ -286,11 +289,17 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (!pairs && !c->nbullets && !c->terr && w->group_count == 1 && w->integrator == TT_VERLET &&
         shapes_out_of_reach(w, c, n))
         return;
-    substep_start(w, c, h, n);
+    /* The velocities the substep starts from are read only where there are
+     * contacts: Verlet takes them after detection (which moves nothing) and
+     * only then; bullets' sweeps move particles, and the other integrators
+     * keep the start positions for the next substep, so those take them first. */
+    const bool start_first = w->integrator != TT_VERLET || c->nbullets;
+    if (start_first) substep_start(w, c, h, n);
     if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts (some were skipped)");
+    if (!start_first && (c->npairs || c->nsc)) substep_start(w, c, h, n);
     if (c->npairs > c->pair_peak) c->pair_peak = c->npairs;
     if (c->nsc > c->sc_peak) c->sc_peak = c->nsc;
 }

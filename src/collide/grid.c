@@ -102,6 +102,30 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     }
 }
 
+bool tt__grid_any_radius(const tt_world *w, uint32_t n)
+{
+    /* on bits, sixteen radii a round in the compiler's generic vectors: +0 is the one float of all-zero bits */
+    typedef uint32_t v4u __attribute__((vector_size(16)));
+    const float *rad = w->radius;
+    v4u acc = {0, 0, 0, 0};
+    uint32_t i = 0;
+    for (; i + 16 <= n; i += 16) {
+        v4u a, b, c, d;
+        memcpy(&a, rad + i, sizeof a);
+        memcpy(&b, rad + i + 4, sizeof b);
+        memcpy(&c, rad + i + 8, sizeof c);
+        memcpy(&d, rad + i + 12, sizeof d);
+        acc |= (a | b) | (c | d);
+    }
+    uint32_t any = acc[0] | acc[1] | acc[2] | acc[3];
+    for (; i < n; i++) {
+        uint32_t b;
+        memcpy(&b, rad + i, sizeof b);
+        any |= b;
+    }
+    return any != 0;
+}
+
 /* The most cells a build over n particles can use (the limit below). */
 static uint32_t max_cells(uint32_t n) { return (uint32_t)fmin(4.0 * n + 1024.0, TT__GRID_MAX_CELLS); }
 
