@@ -251,6 +251,7 @@ typedef struct tt__collide {
     uint32_t nevents, evcap;
     uint32_t rec_peak, ev_peak; /* the last step's records (before merging) and events: reserve makes room for more */
     uint32_t cells_used;
+    uint8_t reach_side;   /* the side of the static shapes the particles last lay on (contact_reach.c) */
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
 
@@ -317,6 +318,9 @@ static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, ui
 }
 
 /* Grid (grid.c). */
+/* No particle (removed ones too: conservative), grown by the largest radius
+ * and the margin, can reach a static primitive this substep. */
+bool tt__shapes_out_of_reach(const tt_world *w, tt__collide *c, uint32_t n);
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell);
 /* Whether some particle among the first n has a radius other than +0: a
  * pair needs one (two radius-0 particles never collide), so a world of

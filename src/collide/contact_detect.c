@@ -7,9 +7,6 @@
 
 #include <stdlib.h>
 #include <string.h>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 typedef struct detect_ctx {
     tt_world *w;
@@ -218,47 +215,6 @@ static void detect_shapes(tt_world *w, tt__collide *c, uint32_t n, bool grid_bui
     }
 }
 
-/* No particle can reach a shape this substep: the box round every
- * particle (removed ones too: conservative), grown by the largest radius
- * and the margin, meets no primitive's. With SSE2 (every x86-64) about
- * three instructions a particle, against some fifty for the per-particle
- * test it spares. A NaN position cannot touch anything: ignored. */
-static bool shapes_out_of_reach(const tt_world *w, const tt__collide *c, uint32_t n)
-{
-    if (n == 0) return true;
-    double lox = INFINITY, loy = INFINITY, hix = -INFINITY, hiy = -INFINITY;
-    float rmax = 0.0f;
-    uint32_t i = 0, k = 0;
-#ifdef __SSE2__
-    __m128d lx = _mm_set1_pd(INFINITY), hx = _mm_set1_pd(-INFINITY), ly = lx, hy = hx;
-    for (; i + 2 <= n; i += 2) {
-        const __m128d x = _mm_loadu_pd(w->px + i), y = _mm_loadu_pd(w->py + i);
-        lx = _mm_min_pd(x, lx);
-        hx = _mm_max_pd(x, hx);
-        ly = _mm_min_pd(y, ly);
-        hy = _mm_max_pd(y, hy);
-    }
-    double t[2];
-    _mm_storeu_pd(t, lx), lox = fmin(t[0], t[1]);
-    _mm_storeu_pd(t, hx), hix = fmax(t[0], t[1]);
-    _mm_storeu_pd(t, ly), loy = fmin(t[0], t[1]);
-    _mm_storeu_pd(t, hy), hiy = fmax(t[0], t[1]);
-    __m128 r4 = _mm_setzero_ps();
-    for (; k + 4 <= n; k += 4) r4 = _mm_max_ps(_mm_loadu_ps(w->radius + k), r4);
-    float r[4];
-    _mm_storeu_ps(r, r4);
-    rmax = fmaxf(fmaxf(r[0], r[1]), fmaxf(r[2], r[3]));
-#endif
-    for (; i < n; i++) {
-        lox = fmin(lox, w->px[i]); hix = fmax(hix, w->px[i]);
-        loy = fmin(loy, w->py[i]); hiy = fmax(hiy, w->py[i]);
-    }
-    for (; k < n; k++) rmax = fmaxf(rmax, w->radius[k]);
-    const double m = rmax * (1.0 + TT__CONTACT_MARGIN);
-    if (!(lox <= hix && loy <= hiy)) return true; /* every position NaN */
-    return !tt__sgrid_near(c, lox - m, loy - m, hix + m, hiy + m);
-}
-
 /* Whether some particle can move: one that can makes every pair and shape
  * contact; a world all pinned or asleep (a settled pile) makes none, and
  * finds its first movable particle at once when it has any. */
@@ -287,7 +243,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
      * so nothing to prepare. (Verlet: the others keep the substep's start
      * positions for the next, whether in contact or not.) */
     if (!pairs && !c->nbullets && !c->terr && w->group_count == 1 && w->integrator == TT_VERLET &&
-        shapes_out_of_reach(w, c, n))
+        tt__shapes_out_of_reach(w, c, n))
         return;
     /* The velocities the substep starts from are read only where there are
      * contacts: Verlet takes them after detection (which moves nothing) and
