@@ -150,6 +150,7 @@ struct tt_world {
     tt_pool spool;
     tt__spring *springs;
     uint32_t scap, springs_alive;
+    uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */
     /* Removing a particle reaches its springs through this (set by
      * tt_world_create), so particles.c does not depend on springs.c. */
     void (*springs_detach)(tt_world *w, uint32_t particle);
@@ -292,6 +293,9 @@ uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex);
 bool tt__has_forces(const tt_world *w);
 void tt__eval_accel(tt_world *w, const double *x, const double *y, const double *vx, const double *vy,
                     double *ax, double *ay);
+/* The springs' share of tt__eval_accel, added into (ax, ay). */
+void tt__springs_accel(const tt_world *w, const double *x, const double *y, const double *vx, const double *vy,
+                       double *ax, double *ay);
 void tt__integrate(tt_world *w, double dt);
 /* Point attractors (attractor.c): add their pull at (x, y) to (ax, ay); their potential, J. */
 void tt__attractors_accel(const tt_world *w, const double *x, const double *y, double *ax, double *ay);
