@@ -18,37 +18,48 @@
 enum { SIDE_LEFT, SIDE_RIGHT, SIDE_BELOW, SIDE_ABOVE }; /* where the particles lie, seen from the shapes */
 
 #ifdef TT_SIMD_X86
-/* Largest (hi) or smallest of v[0..n), eight at a time; *done says how far. */
+/* Largest (hi) or smallest of v[0..n), sixteen at a time; *done says how far. */
 TT_AVX2 static double extreme_avx2(const double *v, uint32_t n, bool hi, uint32_t *done)
 {
-    __m256d a = _mm256_set1_pd(hi ? -INFINITY : INFINITY), b = a;
+    __m256d a = _mm256_set1_pd(hi ? -INFINITY : INFINITY), b = a, c = a, d = a;
     uint32_t i = 0;
     if (hi)
-        for (; i + 8 <= n; i += 8) {
-            a = _mm256_max_pd(_mm256_loadu_pd(v + i), a); /* a NaN in the first operand gives the second */
+        for (; i + 16 <= n; i += 16) { /* a NaN in the first operand gives the second */
+            a = _mm256_max_pd(_mm256_loadu_pd(v + i), a);
             b = _mm256_max_pd(_mm256_loadu_pd(v + i + 4), b);
+            c = _mm256_max_pd(_mm256_loadu_pd(v + i + 8), c);
+            d = _mm256_max_pd(_mm256_loadu_pd(v + i + 12), d);
         }
     else
-        for (; i + 8 <= n; i += 8) {
+        for (; i + 16 <= n; i += 16) {
             a = _mm256_min_pd(_mm256_loadu_pd(v + i), a);
             b = _mm256_min_pd(_mm256_loadu_pd(v + i + 4), b);
+            c = _mm256_min_pd(_mm256_loadu_pd(v + i + 8), c);
+            d = _mm256_min_pd(_mm256_loadu_pd(v + i + 12), d);
         }
-    double t[8];
+    double t[16];
     _mm256_storeu_pd(t, a);
     _mm256_storeu_pd(t + 4, b);
+    _mm256_storeu_pd(t + 8, c);
+    _mm256_storeu_pd(t + 12, d);
     double e = t[0];
-    for (int k = 1; k < 8; k++) e = hi ? fmax(e, t[k]) : fmin(e, t[k]);
+    for (int k = 1; k < 16; k++) e = hi ? fmax(e, t[k]) : fmin(e, t[k]);
     *done = i;
     return e;
 }
 
 TT_AVX2 static float max_radius_avx2(const float *r, uint32_t n, uint32_t *done)
 {
-    __m256 a = _mm256_setzero_ps();
+    __m256 a = _mm256_setzero_ps(), b = a, c = a, d = a;
     uint32_t i = 0;
-    for (; i + 8 <= n; i += 8) a = _mm256_max_ps(_mm256_loadu_ps(r + i), a);
+    for (; i + 32 <= n; i += 32) {
+        a = _mm256_max_ps(_mm256_loadu_ps(r + i), a);
+        b = _mm256_max_ps(_mm256_loadu_ps(r + i + 8), b);
+        c = _mm256_max_ps(_mm256_loadu_ps(r + i + 16), c);
+        d = _mm256_max_ps(_mm256_loadu_ps(r + i + 24), d);
+    }
     float t[8];
-    _mm256_storeu_ps(t, a);
+    _mm256_storeu_ps(t, _mm256_max_ps(_mm256_max_ps(a, b), _mm256_max_ps(c, d)));
     float m = 0.0f;
     for (int k = 0; k < 8; k++) m = fmaxf(m, t[k]);
     *done = i;
