@@ -150,6 +150,22 @@ static void substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
     }
 }
 
+/* Whether this substep provably has no pair (contact_skip.c): the bound
+ * holds, or a probe with cells twice as wide finds no two particles
+ * (filters aside) within reach plus the ordinary cell. */
+static bool no_pair_near(tt_world *w, tt__collide *c, uint32_t n)
+{
+    const tt__pair_plan plan = tt__pairs_skip(w, c, n);
+    if (plan != TT__PAIRS_PROBE) return plan == TT__PAIRS_NONE;
+    tt__grid *g = &c->grid;
+    if (!tt__grid_build_wide(w, g, c->set.cell_size, 2.0)) return false;
+    g->epoch = UINT64_MAX; /* a grid for no query */
+    const double gap = g->cs0;
+    const bool clear = g->ncell == 0 || (g->rmax > 0.0 && gap > 0.0 && g->cs >= 2.0 * gap && !tt__grid_any_near(g, gap));
+    tt__pairs_probed(w, c, clear, clear && g->ncell != 0, gap, g->extent);
+    return clear;
+}
+
 /* The broadphase: the substep's particle pairs, planned into batches when
  * they are solved from them. True when the particle grid was built. */
 static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
@@ -165,6 +181,9 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
     if (!tt__grid_any_radius(w, n)) { /* points only: no pair, whatever the broadphase */
         ok = true;
         c->grid.epoch = UINT64_MAX; /* not built: a query builds its own */
+    } else if (no_pair_near(w, c, n)) { /* no two particles near enough: no pair, as the build would find */
+        ok = true;
+        c->grid.epoch = UINT64_MAX;
     } else if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
         ok = tt__brute_pairs(w, c);
         c->grid.epoch = UINT64_MAX;
@@ -235,9 +254,13 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     tt__shapes_place_moved(w, c);
     bool pairs = c->set.particles;
+    c->clear_ok &= pairs; /* contact_skip.c: a substep without the scan ends the bound */
     if (!pairs && c->nprim == 0 && !c->terr) return;
     const uint32_t n = w->ppool.count;
-    if (!c->nbullets && !any_movable(w, n)) return; /* nothing to detect: not even a grid to build */
+    if (!c->nbullets && !any_movable(w, n)) { /* nothing to detect: not even a grid to build */
+        c->clear_ok = false;
+        return;
+    }
     /* Shapes alone, far from every particle: no contact, and no other group
      * to carry a particle into a shape during the sweeps (the guard's job),
      * so nothing to prepare. (Verlet: the others keep the substep's start
@@ -256,6 +279,8 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts (some were skipped)");
     if (!start_first && (c->npairs || c->nsc)) substep_start(w, c, h, n);
+    c->quiet_last = c->npairs == 0 && c->nsc == 0;
+    if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->npairs > c->pair_peak) c->pair_peak = c->npairs;
     if (c->nsc > c->sc_peak) c->sc_peak = c->nsc;
 }
