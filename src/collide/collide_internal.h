@@ -259,6 +259,9 @@ typedef struct tt__collide {
     uint64_t clear_epoch;         /* the world epoch the bound holds for */
     uint32_t probe_wait, probe_fails;
     uint8_t reach_side;   /* the side of the static shapes the particles last lay on (contact_reach.c) */
+    float reach_rmax;     /* contact_reach.c: the largest radius, read at reach_epoch over reach_n particles */
+    uint32_t reach_n;
+    uint64_t reach_epoch;
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
 

@@ -162,7 +162,12 @@ bool tt__shapes_out_of_reach(const tt_world *w, tt__collide *c, uint32_t n)
     if (n == 0) return true;
     double sb[4];
     if (!static_box(c, &sb[0], &sb[1], &sb[2], &sb[3])) return true;
-    const double m = max_radius(w->radius, n) * (1.0 + TT__CONTACT_MARGIN);
+    if (c->reach_epoch != w->epoch || c->reach_n != n) { /* radii change only between steps, and bump the epoch */
+        c->reach_rmax = max_radius(w->radius, n);
+        c->reach_epoch = w->epoch;
+        c->reach_n = n;
+    }
+    const double m = c->reach_rmax * (1.0 + TT__CONTACT_MARGIN);
     const int s = c->reach_side;
     const double *v = s == SIDE_LEFT || s == SIDE_RIGHT ? w->px : w->py;
     if (clear_of(s, extreme(v, n, s == SIDE_LEFT || s == SIDE_BELOW), m, sb)) return true;
