@@ -107,7 +107,7 @@ B2_LUAJIT_MOD := $(BUILD)/luajit/tether_box2d.so
 TEST_B2  := $(BUILD)/test_box2d
 BENCH   := $(BUILD)/bench
 
-.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-love crosscheck atlas install uninstall clean
+.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-payonly bench-love crosscheck atlas install uninstall clean
 all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD) $(B2_LUAJIT_MOD)
 luajit: deps $(LUAJIT_MOD) $(B2_LUAJIT_MOD)
 
@@ -310,6 +310,7 @@ fuzz: all $(FUZZ_C) $(FUZZ_PNG) $(TEST_C)
 bench: deps $(BENCH) $(RUNNER) $(LUA_MOD)
 	@mkdir -p $(BUILD)/bench-out
 	$(BENCH) $(BUILD)/bench-out
+	@sh bench/payonly_cg.sh $(BENCH) $(BUILD)/bench-out/payonly-cg
 	@if ! /usr/bin/python3 -c 'import pygame' >/dev/null 2>&1; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
 	    echo "bench: installing python3-pygame (pygame.mask, the comparison)"; \
@@ -324,6 +325,13 @@ bench: deps $(BENCH) $(RUNNER) $(LUA_MOD)
 	  echo "plots: $(BUILD)/bench-out/*.png"; \
 	else echo "gnuplot not installed: no plots (CSV in $(BUILD)/bench-out)"; fi
 	@$(MAKE) --no-print-directory bench-love
+
+# `make bench-payonly`: the pay-only table alone (unused features against a
+# plain world of 100 000 particles), wall clock and callgrind instructions.
+bench-payonly: deps $(BENCH)
+	@mkdir -p $(BUILD)/bench-out
+	$(BENCH) $(BUILD)/bench-out payonly
+	@sh bench/payonly_cg.sh $(BENCH) $(BUILD)/bench-out/payonly-cg
 
 # `make bench-love`: love.physics (Box2D) and tether pour 2 000 and 10 000
 # circles into one box in one LÖVE process (bench/love/; no display needed):

@@ -58,6 +58,7 @@ tt_result tt_world_set_collision(tt_world *w, const tt_collision_settings *s)
     tt__collide *c = tt__collide_get(w, true, fn);
     if (!c) return TT_ENOMEM;
     c->set = *s;
+    c->clear_ok = false; /* contact_skip.c: the cell and reach may have changed */
     c->set.restitution_threshold = s->restitution_threshold < 0.0 ? -1.0 : s->restitution_threshold;
     if (!s->events) c->nprev = 0;
     return TT_OK;

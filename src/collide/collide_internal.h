@@ -77,6 +77,7 @@ enum {
 };
 typedef struct tt__grid {
     double ox, oy, cs, inv, rmax;
+    double cs0, extent;           /* the cell a build asked for before widening; the largest |coordinate| */
     int32_t nx, ny;
     uint32_t ncell, n;            /* cells, particles sorted */
     uint32_t npinned;             /* of them with inverse mass 0 (pinned or asleep) */
@@ -251,6 +252,16 @@ typedef struct tt__collide {
     uint32_t nevents, evcap;
     uint32_t rec_peak, ev_peak; /* the last step's records (before merging) and events: reserve makes room for more */
     uint32_t cells_used;
+    /* contact_skip.c: after a probe found no two particles within reach + clear_gap, the relative
+     * displacement since (clear_used) bounds how near they can have come */
+    bool clear_ok, quiet_last;    /* quiet_last: the last substep had no contact */
+    double clear_gap, clear_used, clear_scale;
+    uint64_t clear_epoch;         /* the world epoch the bound holds for */
+    uint32_t probe_wait, probe_fails;
+    uint8_t reach_side;   /* the side of the static shapes the particles last lay on (contact_reach.c) */
+    float reach_rmax;     /* contact_reach.c: the largest radius, read at reach_epoch over reach_n particles */
+    uint32_t reach_n;
+    uint64_t reach_epoch;
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
 
@@ -317,7 +328,26 @@ static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, ui
 }
 
 /* Grid (grid.c). */
+/* No particle (removed ones too: conservative), grown by the largest radius
+ * and the margin, can reach a static primitive this substep. */
+bool tt__shapes_out_of_reach(const tt_world *w, tt__collide *c, uint32_t n);
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell);
+/* As tt__grid_build with cells wide times as wide (contact_skip.c's probe). */
+bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide);
+/* After a build: whether two particles (filters aside) are nearer than their
+ * contact reach plus gap, for gap up to the widening's extra width. */
+bool tt__grid_any_near(const tt__grid *g, double gap);
+/* Particle pairs on and none near for a while (contact_skip.c): whether
+ * this substep provably has no pair (no grid built), should probe for that
+ * (a grid twice as wide, tt__grid_any_near; the outcome told to
+ * tt__pairs_probed: clear, and whether it bounds anything), or builds. */
+typedef enum { TT__PAIRS_BUILD, TT__PAIRS_NONE, TT__PAIRS_PROBE } tt__pair_plan;
+tt__pair_plan tt__pairs_skip(tt_world *w, tt__collide *c, uint32_t n);
+void tt__pairs_probed(tt_world *w, tt__collide *c, bool clear, bool bound, double gap, double scale);
+/* Whether some particle among the first n has a radius other than +0: a
+ * pair needs one (two radius-0 particles never collide), so a world of
+ * points skips its grid. About half an instruction a particle. */
+bool tt__grid_any_radius(const tt_world *w, uint32_t n);
 /* Room for a build over n particles, whatever their spread (the cells are
  * bounded by tt__grid_max_cells); false on no memory. */
 bool tt__grid_reserve(tt__grid *g, uint32_t n);

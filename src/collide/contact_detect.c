@@ -7,9 +7,6 @@
 
 #include <stdlib.h>
 #include <string.h>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 typedef struct detect_ctx {
     tt_world *w;
@@ -153,6 +150,22 @@ static void substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
     }
 }
 
+/* Whether this substep provably has no pair (contact_skip.c): the bound
+ * holds, or a probe with cells twice as wide finds no two particles
+ * (filters aside) within reach plus the ordinary cell. */
+static bool no_pair_near(tt_world *w, tt__collide *c, uint32_t n)
+{
+    const tt__pair_plan plan = tt__pairs_skip(w, c, n);
+    if (plan != TT__PAIRS_PROBE) return plan == TT__PAIRS_NONE;
+    tt__grid *g = &c->grid;
+    if (!tt__grid_build_wide(w, g, c->set.cell_size, 2.0)) return false;
+    g->epoch = UINT64_MAX; /* a grid for no query */
+    const double gap = g->cs0;
+    const bool clear = g->ncell == 0 || (g->rmax > 0.0 && gap > 0.0 && g->cs >= 2.0 * gap && !tt__grid_any_near(g, gap));
+    tt__pairs_probed(w, c, clear, clear && g->ncell != 0, gap, g->extent);
+    return clear;
+}
+
 /* The broadphase: the substep's particle pairs, planned into batches when
  * they are solved from them. True when the particle grid was built. */
 static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
@@ -165,7 +178,13 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
         c->bp_step = w->stats.steps;
         c->bp_ms = 0.0;
     }
-    if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
+    if (!tt__grid_any_radius(w, n)) { /* points only: no pair, whatever the broadphase */
+        ok = true;
+        c->grid.epoch = UINT64_MAX; /* not built: a query builds its own */
+    } else if (no_pair_near(w, c, n)) { /* no two particles near enough: no pair, as the build would find */
+        ok = true;
+        c->grid.epoch = UINT64_MAX;
+    } else if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
         ok = tt__brute_pairs(w, c);
         c->grid.epoch = UINT64_MAX;
     } else {
@@ -215,47 +234,6 @@ static void detect_shapes(tt_world *w, tt__collide *c, uint32_t n, bool grid_bui
     }
 }
 
-/* No particle can reach a shape this substep: the box round every
- * particle (removed ones too: conservative), grown by the largest radius
- * and the margin, meets no primitive's. With SSE2 (every x86-64) about
- * three instructions a particle, against some fifty for the per-particle
- * test it spares. A NaN position cannot touch anything: ignored. */
-static bool shapes_out_of_reach(const tt_world *w, const tt__collide *c, uint32_t n)
-{
-    if (n == 0) return true;
-    double lox = INFINITY, loy = INFINITY, hix = -INFINITY, hiy = -INFINITY;
-    float rmax = 0.0f;
-    uint32_t i = 0, k = 0;
-#ifdef __SSE2__
-    __m128d lx = _mm_set1_pd(INFINITY), hx = _mm_set1_pd(-INFINITY), ly = lx, hy = hx;
-    for (; i + 2 <= n; i += 2) {
-        const __m128d x = _mm_loadu_pd(w->px + i), y = _mm_loadu_pd(w->py + i);
-        lx = _mm_min_pd(x, lx);
-        hx = _mm_max_pd(x, hx);
-        ly = _mm_min_pd(y, ly);
-        hy = _mm_max_pd(y, hy);
-    }
-    double t[2];
-    _mm_storeu_pd(t, lx), lox = fmin(t[0], t[1]);
-    _mm_storeu_pd(t, hx), hix = fmax(t[0], t[1]);
-    _mm_storeu_pd(t, ly), loy = fmin(t[0], t[1]);
-    _mm_storeu_pd(t, hy), hiy = fmax(t[0], t[1]);
-    __m128 r4 = _mm_setzero_ps();
-    for (; k + 4 <= n; k += 4) r4 = _mm_max_ps(_mm_loadu_ps(w->radius + k), r4);
-    float r[4];
-    _mm_storeu_ps(r, r4);
-    rmax = fmaxf(fmaxf(r[0], r[1]), fmaxf(r[2], r[3]));
-#endif
-    for (; i < n; i++) {
-        lox = fmin(lox, w->px[i]); hix = fmax(hix, w->px[i]);
-        loy = fmin(loy, w->py[i]); hiy = fmax(hiy, w->py[i]);
-    }
-    for (; k < n; k++) rmax = fmaxf(rmax, w->radius[k]);
-    const double m = rmax * (1.0 + TT__CONTACT_MARGIN);
-    if (!(lox <= hix && loy <= hiy)) return true; /* every position NaN */
-    return !tt__sgrid_near(c, lox - m, loy - m, hix + m, hiy + m);
-}
-
 /* Whether some particle can move: one that can makes every pair and shape
  * contact; a world all pinned or asleep (a settled pile) makes none, and
  * finds its first movable particle at once when it has any. */
@@ -276,21 +254,33 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     tt__shapes_place_moved(w, c);
     bool pairs = c->set.particles;
+    c->clear_ok &= pairs; /* contact_skip.c: a substep without the scan ends the bound */
     if (!pairs && c->nprim == 0 && !c->terr) return;
     const uint32_t n = w->ppool.count;
-    if (!c->nbullets && !any_movable(w, n)) return; /* nothing to detect: not even a grid to build */
+    if (!c->nbullets && !any_movable(w, n)) { /* nothing to detect: not even a grid to build */
+        c->clear_ok = false;
+        return;
+    }
     /* Shapes alone, far from every particle: no contact, and no other group
      * to carry a particle into a shape during the sweeps (the guard's job),
      * so nothing to prepare. (Verlet: the others keep the substep's start
      * positions for the next, whether in contact or not.) */
     if (!pairs && !c->nbullets && !c->terr && w->group_count == 1 && w->integrator == TT_VERLET &&
-        shapes_out_of_reach(w, c, n))
+        tt__shapes_out_of_reach(w, c, n))
         return;
-    substep_start(w, c, h, n);
+    /* The velocities the substep starts from are read only where there are
+     * contacts: Verlet takes them after detection (which moves nothing) and
+     * only then; bullets' sweeps move particles, and the other integrators
+     * keep the start positions for the next substep, so those take them first. */
+    const bool start_first = w->integrator != TT_VERLET || c->nbullets;
+    if (start_first) substep_start(w, c, h, n);
     if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts (some were skipped)");
+    if (!start_first && (c->npairs || c->nsc)) substep_start(w, c, h, n);
+    c->quiet_last = c->npairs == 0 && c->nsc == 0;
+    if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->npairs > c->pair_peak) c->pair_peak = c->npairs;
     if (c->nsc > c->sc_peak) c->sc_peak = c->nsc;
 }

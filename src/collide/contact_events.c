@@ -56,6 +56,8 @@ void tt__contacts_after_step(tt_world *w, void *self)
     if (c->any_moved) tt__shapes_arrived(c);
     /* the step bumps the epoch once after this: end positions stay valid through it, not through a teleport */
     if (c->s_epoch == w->epoch) c->s_epoch = w->epoch + 1;
+    if (c->clear_ok && c->clear_epoch == w->epoch) c->clear_epoch = w->epoch + 1; /* contact_skip.c's bound, likewise */
+    if (c->reach_epoch == w->epoch) c->reach_epoch = w->epoch + 1; /* and contact_reach.c's largest radius */
     c->nevents = 0;
     if (!c->set.events) {
         c->nrec = 0;

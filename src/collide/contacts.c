@@ -59,6 +59,15 @@ static bool idle(const tt_world *w, const void *self)
            c->nevents == 0 && !c->terr;
 }
 
+/* This substep's detection found no contact: relax, sweeps_done and end
+ * have nothing to act on (events of sensors were recorded in begin). */
+static bool quiet(const tt_world *w, const void *self)
+{
+    (void)w;
+    const tt__collide *c = self;
+    return c->npairs == 0 && c->nsc == 0;
+}
+
 size_t tt__contacts_memory(const tt_world *w, const void *self)
 {
     (void)w;
@@ -106,6 +115,7 @@ const tt__group_ops tt__contacts_ops = {
     .id = TT__ID('C', 'O', 'L', 'L'),
     .save = tt__contacts_save,
     .idle = idle,
+    .quiet = quiet,
     .load = tt__contacts_load,
 };
 

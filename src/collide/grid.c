@@ -102,6 +102,30 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     }
 }
 
+bool tt__grid_any_radius(const tt_world *w, uint32_t n)
+{
+    /* on bits, sixteen radii a round in the compiler's generic vectors: +0 is the one float of all-zero bits */
+    typedef uint32_t v4u __attribute__((vector_size(16)));
+    const float *rad = w->radius;
+    v4u acc = {0, 0, 0, 0};
+    uint32_t i = 0;
+    for (; i + 16 <= n; i += 16) {
+        v4u a, b, c, d;
+        memcpy(&a, rad + i, sizeof a);
+        memcpy(&b, rad + i + 4, sizeof b);
+        memcpy(&c, rad + i + 8, sizeof c);
+        memcpy(&d, rad + i + 12, sizeof d);
+        acc |= (a | b) | (c | d);
+    }
+    uint32_t any = acc[0] | acc[1] | acc[2] | acc[3];
+    for (; i < n; i++) {
+        uint32_t b;
+        memcpy(&b, rad + i, sizeof b);
+        any |= b;
+    }
+    return any != 0;
+}
+
 /* The most cells a build over n particles can use (the limit below). */
 static uint32_t max_cells(uint32_t n) { return (uint32_t)fmin(4.0 * n + 1024.0, TT__GRID_MAX_CELLS); }
 
@@ -112,7 +136,9 @@ bool tt__grid_reserve(tt__grid *g, uint32_t n)
 
 uint32_t tt__grid_max_cells(uint32_t n) { return max_cells(n); }
 
-bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
+bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell) { return tt__grid_build_wide(w, g, min_cell, 1.0); }
+
+bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
 {
     const uint32_t n = w->ppool.count;
     g->epoch = UINT64_MAX;
@@ -147,6 +173,9 @@ bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell)
     double cs = fmax(min_cell, 2.0 * rmax * (1.0 + TT__CONTACT_MARGIN));
     if (!(cs > 0.0)) cs = fmax(sqrt(fmax(ex * ey, ex * ex + ey * ey) / m), 1e-6); /* points only: about one per cell */
     cs = fmax(cs, DBL_MIN); /* 1 / 4.9e-324 is inf, and inf · 0 a NaN cell */
+    g->cs0 = cs;
+    g->extent = fmax(fmax(fabs(lox), fabs(hix)), fmax(fabs(loy), fabs(hiy)));
+    if (wide != 1.0 && cs * wide < TT_MAX_VALUE) cs *= wide;
     /* The bound keeps nx·ny, and ncell + 1, inside a uint32_t whatever m is. */
     const double limit = max_cells(m);
     g->cs = cs;
@@ -338,6 +367,35 @@ bool tt__grid_pairs(tt_world *w, tt__collide *c)
     if (tt__simd_kind(TT__SIMD_AUTO) != TT__SIMD_SCALAR) return plain ? walk_plain_avx2(w, c, g) : walk_full_avx2(w, c, g);
 #endif
     return plain ? walk_plain(w, c, g) : walk_full(w, c, g);
+}
+
+/* Whether sorted particle k and some j in [j0, j1) are nearer than their
+ * contact reach plus gap (a NaN distance is near). */
+static bool near_range(const tt__grid *g, uint32_t k, uint32_t j0, uint32_t j1, double gap)
+{
+    const double x = g->sx[k], y = g->sy[k], r = g->sr[k];
+    for (uint32_t j = j0; j < j1; j++) {
+        const double dx = x - g->sx[j], dy = y - g->sy[j], reach = (r + g->sr[j]) * (1.0 + TT__CONTACT_MARGIN) + gap;
+        if (!(dx * dx + dy * dy >= reach * reach)) return true;
+    }
+    return false;
+}
+
+bool tt__grid_any_near(const tt__grid *g, double gap)
+{
+    const int32_t nx = g->nx, ny = g->ny;
+    const uint32_t *st = g->start;
+    for (int32_t y = 0; y < ny; y++)
+        for (int32_t x = 0; x < nx; x++) { /* the walk's neighbourhood: the rest of the cell, E, then NW, N, NE */
+            const uint32_t cell = (uint32_t)y * (uint32_t)nx + (uint32_t)x, k0 = st[cell], k1 = st[cell + 1];
+            if (k0 == k1) continue;
+            const uint32_t e1 = x + 1 < nx ? st[cell + 2] : k1, up = cell + (uint32_t)nx;
+            const uint32_t u0 = y + 1 < ny ? st[x > 0 ? up - 1 : up] : 0;
+            const uint32_t u1 = y + 1 < ny ? st[(x + 1 < nx ? up + 1 : up) + 1] : 0;
+            for (uint32_t k = k0; k < k1; k++)
+                if (near_range(g, k, k + 1, e1, gap) || near_range(g, k, u0, u1, gap)) return true;
+        }
+    return false;
 }
 
 void tt__grid_free(tt__grid *g)

@@ -177,5 +177,8 @@ void tt__springs_free(tt_world *w)
 {
     free(w->springs);
     w->springs = NULL;
+    free(w->ends);
+    w->ends = NULL;
+    w->ends_cap = 0;
     tt_pool_destroy(&w->spool);
 }

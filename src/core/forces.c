@@ -31,6 +31,16 @@ void tt__eval_accel(tt_world *w, const double *x, const double *y, const double 
         ay[i] = gy + inv[i] * fy;
     }
     if (w->attractors_used) tt__attractors_accel(w, x, y, ax, ay);
+    tt__springs_accel(w, x, y, vx, vy, ax, ay);
+    w->stats.force_evaluations++;
+    w->stats.stage_ms[TT_STAGE_FORCES] += tt__now_ms() - t0;
+}
+
+/* Every spring's pull added to the accelerations of its two ends, in slot order. */
+void tt__springs_accel(const tt_world *w, const double *x, const double *y, const double *vx, const double *vy,
+                       double *ax, double *ay)
+{
+    const double *inv = w->inv_mass;
     const double inv_dt = 1.0 / w->dt_prev;
     for (uint32_t s = 0; s < w->spool.count; s++) {
         const tt__spring *sp = &w->springs[s];
@@ -57,6 +67,4 @@ void tt__eval_accel(tt_world *w, const double *x, const double *y, const double 
         ax[b] -= inv[b] * f * nx;
         ay[b] -= inv[b] * f * ny;
     }
-    w->stats.force_evaluations++;
-    w->stats.stage_ms[TT_STAGE_FORCES] += tt__now_ms() - t0;
 }

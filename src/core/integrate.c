@@ -4,6 +4,8 @@
  * TT_DIVERGED is stopped where it was, so no Inf or NaN ever enters a world. */
 #include "internal.h"
 
+#include <stdlib.h>
+
 static inline bool too_big(double a, double b) { return !(fabs(a) <= TT_DIVERGED && fabs(b) <= TT_DIVERGED); }
 
 static double damping_factor(const tt_world *w, double dt)
@@ -76,8 +78,114 @@ static uint32_t verlet_fixed(tt_world *w, double dt, const double *ax, const dou
     return bad;
 }
 
+
+/* --- Verlet when few particles feel a force --------------------------------
+ * The only forces are springs, between a few particles (a rope elsewhere in
+ * a world of debris): everyone else is integrated with gravity alone, as in
+ * a world without springs, and the springs' ends one by one. Bit for bit
+ * what the general loop gives: a particle no spring reaches has
+ * acceleration g + w·wind with the wind ±0, which is g + wind exactly for
+ * an inverse mass w > 0, and the general loop's ×r and ×f are exact when
+ * they are 1. */
+
+static bool few_forces(const tt_world *w)
+{
+    return w->integrator == TT_VERLET && w->fixed_point == 0.0 && w->springs_alive > 0 && !w->attractors_used && !w->forces_pending &&
+           w->wind.x == 0.0 && w->wind.y == 0.0 && (uint64_t)w->springs_alive * 64 <= w->ppool.count;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* The springs' ends, sorted, each once; their accelerations into ax, ay,
+ * as tt__eval_accel makes them. Returns how many. */
+static uint32_t ends_accel(tt_world *w, double *ax, double *ay)
+{
+    double t0 = tt__now_ms();
+    uint32_t k = 0;
+    for (uint32_t s = 0; s < w->spool.count; s++)
+        if (w->springs[s].alive) w->ends[k++] = w->springs[s].a, w->ends[k++] = w->springs[s].b;
+    qsort(w->ends, k, sizeof *w->ends, cmp_u32);
+    uint32_t m = 0;
+    for (uint32_t j = 0; j < k; j++)
+        if (m == 0 || w->ends[j] != w->ends[m - 1]) w->ends[m++] = w->ends[j];
+    const double *inv = w->inv_mass;
+    for (uint32_t j = 0; j < m; j++) {
+        const uint32_t i = w->ends[j];
+        if (inv[i] == 0.0) ax[i] = ay[i] = 0.0;
+        else ax[i] = w->gravity.x + inv[i] * w->wind.x, ay[i] = w->gravity.y + inv[i] * w->wind.y;
+    }
+    tt__springs_accel(w, w->px, w->py, NULL, NULL, ax, ay);
+    w->stats.force_evaluations++;
+    w->stats.stage_ms[TT_STAGE_FORCES] += tt__now_ms() - t0;
+    return m;
+}
+
+/* Whether |dx/dt| or |dy/dt| passes the guard, dividing only near it (lo: half the limit times dt). */
+static inline bool too_fast(double dx, double dy, double dt, double lo)
+{
+    return !(fabs(dx) <= lo && fabs(dy) <= lo) && too_big(dx / dt, dy / dt);
+}
+
+/* Particles [i0, i1) under the constant acceleration (cx, cy)·dt2 = (gx, gy). */
+static uint32_t verlet_span(tt_world *w, uint32_t i0, uint32_t i1, double gx, double gy, double r, double f, double dt)
+{
+    double *px = w->px, *py = w->py, *qx = w->qx, *qy = w->qy;
+    const double *inv = w->inv_mass;
+    const double lo = 0.5 * TT_DIVERGED * dt;
+    uint32_t bad = 0;
+#define TT__SPAN(DX, DY)                                                                     \
+    for (uint32_t i = i0; i < i1; i++) {                                                     \
+        if (inv[i] == 0.0) continue;                                                         \
+        double x = px[i], y = py[i];                                                         \
+        double dx = DX, dy = DY, nx = x + dx, ny = y + dy;                                   \
+        qx[i] = x;                                                                           \
+        qy[i] = y;                                                                           \
+        if (TT_UNLIKELY(too_big(nx, ny) || too_fast(dx, dy, dt, lo))) { bad++; continue; }   \
+        px[i] = nx;                                                                          \
+        py[i] = ny;                                                                          \
+    }
+    if (r == 1.0 && f == 1.0) TT__SPAN((x - qx[i]) + gx, (y - qy[i]) + gy) /* constant dt, no damping */
+    else TT__SPAN(((x - qx[i]) * r + gx) * f, ((y - qy[i]) * r + gy) * f)
+#undef TT__SPAN
+    return bad;
+}
+
+static uint32_t verlet_few(tt_world *w, double dt)
+{
+    double *ax = tt__scratch(w, TT_SCRATCH_AX), *ay = tt__scratch(w, TT_SCRATCH_AY);
+    if (!ax || !ay) return 0; /* reserved before the step: not reached */
+    const uint32_t m = ends_accel(w, ax, ay), *ends = w->ends;
+    const double *inv = w->inv_mass;
+    const double cx = w->gravity.x + w->wind.x, cy = w->gravity.y + w->wind.y;
+    for (uint32_t k = 0; k < w->fresh_count; k++) { /* as in verlet() */
+        uint32_t i = w->fresh[k];
+        if (!(w->flags[i] & TT_PF_FRESH)) continue;
+        w->flags[i] &= (uint16_t)~TT_PF_FRESH;
+        if (inv[i] == 0.0) continue;
+        const bool end = bsearch(&i, ends, m, sizeof *ends, cmp_u32) != NULL;
+        double h = 0.5 * w->dt_prev * w->dt_prev;
+        w->qx[i] += (end ? ax[i] : cx) * h;
+        w->qy[i] += (end ? ay[i] : cy) * h;
+    }
+    w->fresh_count = 0;
+    const double r = dt / w->dt_prev, f = damping_factor(w, dt), dt2 = 0.5 * dt * (dt + w->dt_prev);
+    uint32_t bad = 0, from = 0;
+    for (uint32_t j = 0; j < m; j++) {
+        const uint32_t i = ends[j];
+        bad += verlet_span(w, from, i, cx * dt2, cy * dt2, r, f, dt);
+        bad += verlet_span(w, i, i + 1, ax[i] * dt2, ay[i] * dt2, r, f, dt);
+        from = i + 1;
+    }
+    return bad + verlet_span(w, from, w->ppool.count, cx * dt2, cy * dt2, r, f, dt);
+}
+
 static uint32_t verlet(tt_world *w, double dt, bool forces)
 {
+    if (forces && few_forces(w) && w->ends_cap >= 2 * w->springs_alive) return verlet_few(w, dt);
     const uint32_t n = w->ppool.count;
     double *px = w->px, *py = w->py, *qx = w->qx, *qy = w->qy;
     const double *inv = w->inv_mass;
@@ -290,6 +398,12 @@ bool tt__integrate_reserve(tt_world *w)
 {
     if (!tt__has_forces(w)) return true; /* gravity alone needs no arrays */
     if (w->ppool.count == 0) return true; /* nothing to integrate: no arrays (tt__scratch gives NULL for none) */
+    if (few_forces(w) && w->ends_cap < 2 * w->springs_alive) {
+        uint32_t *e = realloc(w->ends, (size_t)w->spool.count * 2 * sizeof *e);
+        if (!e) return false;
+        w->ends = e;
+        w->ends_cap = 2 * w->spool.count;
+    }
     const int stages = w->integrator == TT_RK4 ? 8 : w->integrator == TT_LEAPFROG ? 2 : 0;
     if (!tt__scratch(w, TT_SCRATCH_AX) || !tt__scratch(w, TT_SCRATCH_AY)) return false;
     for (int k = 0; k < stages; k++)

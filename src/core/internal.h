@@ -83,6 +83,11 @@ typedef struct tt__group_ops {
      * as absent, which it is equivalent to, so reading a world never
      * changes its hash */
     bool (*idle)(const tt_world *w, const void *self);
+    /* optional, per substep after begin: true when begin found nothing to
+     * relax (no contact), so its sweeps, sweeps_done and end would move
+     * nothing and change no world state; a Verlet substep whose groups are
+     * all quiet skips them (tt__solve) */
+    bool (*quiet)(const tt_world *w, const void *self);
     size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
     void (*destroy)(tt_world *w, void *self);
 } tt__group_ops;
@@ -147,6 +152,7 @@ struct tt_world {
     tt_pool spool;
     tt__spring *springs;
     uint32_t scap, springs_alive;
+    uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */
     /* Removing a particle reaches its springs through this (set by
      * tt_world_create), so particles.c does not depend on springs.c. */
     void (*springs_detach)(tt_world *w, uint32_t particle);
@@ -312,6 +318,9 @@ bool tt__fixed_loaded_ok(const tt_world *w);
 bool tt__has_forces(const tt_world *w);
 void tt__eval_accel(tt_world *w, const double *x, const double *y, const double *vx, const double *vy,
                     double *ax, double *ay);
+/* The springs' share of tt__eval_accel, added into (ax, ay). */
+void tt__springs_accel(const tt_world *w, const double *x, const double *y, const double *vx, const double *vy,
+                       double *ax, double *ay);
 void tt__integrate(tt_world *w, double dt);
 /* Point attractors (attractor.c): add their pull at (x, y) to (ax, ay); their potential, J. */
 void tt__attractors_accel(const tt_world *w, const double *x, const double *y, double *ax, double *ay);

@@ -334,7 +334,7 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
     size_t particles = per * w->pcap + tt_pool_bytes(&w->ppool);
     size_t total = sizeof *w + particles;
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);
-    total += (size_t)w->fresh_cap * sizeof(uint32_t);
+    total += (size_t)w->fresh_cap * sizeof(uint32_t) + (size_t)w->ends_cap * sizeof(uint32_t);
     total += (size_t)w->scap * sizeof(tt__spring) + tt_pool_bytes(&w->spool);
     total += tt__solver_memory(w);
     out->total = total;

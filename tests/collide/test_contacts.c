@@ -752,3 +752,30 @@ TEST(shapes_out_of_reach_cost_nothing_and_change_nothing)
         ENSURE(memcmp(&end[0], &end[1], sizeof end[0]) == 0);
     }
 }
+
+/* The reach test keeps the largest radius from one step to the next
+ * (contact_reach.c): a particle grown between steps must still meet the
+ * floor it now overlaps, and be pushed out at once. */
+TEST(a_particle_grown_between_steps_meets_the_shape_it_now_reaches)
+{
+    tt_world_def d = tt_world_def_default();
+    d.gravity = (tt_vec2){0, 0};
+    tt_world *w = tt_world_create(&d);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.a = (tt_vec2){-10, 0};
+    sd.b = (tt_vec2){10, 0};
+    ENSURE(tt_shape_is_valid(w, tt_shape_create(w, &sd)));
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){0, 1};
+    pd.radius = 0.1;
+    tt_particle p = tt_particle_create(w, &pd);
+    for (int s = 0; s < 5; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60)); /* out of reach: nothing moves */
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    ENSURE(x.y == 1.0);
+    ENSURE_OK(tt_particle_set_radius(w, p, 1.5));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    tt_particle_get_position(w, p, &x);
+    ENSURE_NEAR(x.y, 1.5, 1e-9);
+    tt_world_destroy(w);
+}
