@@ -19,6 +19,7 @@
 #   5. $BUILD/tether --headless --steps 60 demos/*.lua   smoke test of each demo
 #   6. the renderer: tests/lua/test_render.lua inside frames, every demo as
 #      headless PNG frames, and the window under Xvfb (SDL_VIDEODRIVER=x11)
+#   7. the checkout: no new untracked file outside build/ (tests/untracked.sh)
 # Every test program ends with a line "N passed, M failed"; a non-zero exit
 # or a missing line counts as a failure. One line per part, then the total
 # "N passed, M failed" as the very last line; exit status 1 if anything failed.
@@ -37,7 +38,11 @@ total_pass=0
 total_fail=0
 tmp=$(mktemp "${TMPDIR:-/tmp}/tether-test.XXXXXX") || exit 1
 tmp2=$(mktemp "${TMPDIR:-/tmp}/tether-test.XXXXXX") || exit 1
-trap 'rm -f "$tmp" "$tmp2"' EXIT INT TERM
+# 7. what is untracked at the start, to compare with the end (tests/untracked.sh)
+. tests/untracked.sh
+before=$(mktemp "${TMPDIR:-/tmp}/tether-test.XXXXXX") || exit 1
+untracked_now >"$before"
+trap 'rm -f "$tmp" "$tmp2" "$before"' EXIT INT TERM
 
 add() { # add PASSED FAILED
     total_pass=$((total_pass + $1))
@@ -240,7 +245,7 @@ done
 
 # 6. The renderer.
 frames=$(mktemp -d "${TMPDIR:-/tmp}/tether-frames.XXXXXX") || exit 1
-trap 'rm -f "$tmp" "$tmp2"; rm -rf "$frames"' EXIT INT TERM
+trap 'rm -f "$tmp" "$tmp2" "$before"; rm -rf "$frames"' EXIT INT TERM
 run_counted "lua: tests/lua/test_render.lua (inside frames)" \
     "$RUNNER" --headless --frames 2 --size 200x150 --out "$frames/lua" tests/lua/test_render.lua
 run_counted "lua: tests/lua/auto_view.lua (no tether.draw: every world shown)" \
@@ -308,6 +313,17 @@ if command -v xvfb-run >/dev/null 2>&1; then
     fi
 else
     echo "window under Xvfb: skipped: xvfb-run is not installed (apt-get install xvfb xauth)"
+fi
+
+# 7. The checkout as it was: no new file outside the build folders.
+untracked_new "$before" >"$tmp"
+if [ -s "$tmp" ]; then
+    echo "checkout: FAILED: the tests left new files outside build/ (write scratch files to \$TMPDIR or \$BUILD):"
+    sed 's/^/    | /' "$tmp"
+    add 0 1
+else
+    echo "checkout: ok: no new untracked file outside build/"
+    add 1 0
 fi
 
 echo "$total_pass passed, $total_fail failed"

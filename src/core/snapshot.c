@@ -246,18 +246,21 @@ static void get_array(tt__source *s, void *dst, size_t bytes)
     if (p) tt__copy(dst, p, bytes);
 }
 
-/* Slot i against the rules every public call keeps. */
+/* Slot i against the rules every public call keeps. The velocity is held
+ * to TT_DIVERGED as tt_particle_get_velocity computes it (Verlet: from
+ * x_old and dt_prev, read before the particles), the bound no step leaves:
+ * a bound on x_old alone let a crafted stream carry |v| far past it. */
 static bool particle_valid(const tt_world *w, uint32_t i)
 {
-    const double xmax = TT_DIVERGED, qmax = 1e3 * TT_DIVERGED;
+    const double xmax = TT_DIVERGED;
     uint16_t f = w->flags[i];
     if (f & ~(TT_PF_ALIVE | TT_PF_PINNED | TT_PF_FRESH | TT_PF_ASLEEP)) return false;
     if ((f & TT_PF_PINNED) && (f & TT_PF_ASLEEP)) return false; /* sleep.c never puts a pinned particle to sleep */
     if (!(f & TT_PF_ALIVE))
         return f == 0 && w->px[i] == 0 && w->py[i] == 0 && w->qx[i] == 0 && w->qy[i] == 0 && w->inv_mass[i] == 0 &&
                w->mass[i] == 0 && w->radius[i] == 0 && w->category[i] == 0 && w->mask[i] == 0;
-    if (!(fabs(w->px[i]) <= xmax && fabs(w->py[i]) <= xmax && fabs(w->qx[i]) <= qmax && fabs(w->qy[i]) <= qmax))
-        return false;
+    const tt_vec2 v = tt__velocity(w, i);
+    if (!(fabs(w->px[i]) <= xmax && fabs(w->py[i]) <= xmax && fabs(v.x) <= xmax && fabs(v.y) <= xmax)) return false;
     if (!(w->mass[i] >= TT_MIN_MASS && w->mass[i] <= TT_MAX_MASS)) return false;
     if (w->inv_mass[i] != ((f & (TT_PF_PINNED | TT_PF_ASLEEP)) ? 0.0 : 1.0 / w->mass[i])) return false;
     return w->radius[i] >= 0.0f && w->radius[i] <= (float)TT_MAX_VALUE;

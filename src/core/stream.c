@@ -276,6 +276,15 @@ bool tt__get_pool(tt__source *s, tt_pool *p, uint32_t max, uint32_t tag, const c
         tt_pool_destroy(p);
         return tt__src_fail(s, "%s: a free list entry is out of range or repeated", what);
     }
+    /* Every generation one the pool could have handed out: the world's tag
+     * above a reuse count of 1 or more (tt_pool_alloc, tt_pool_free). A
+     * live slot of generation 0 would list the null handle. */
+    for (uint32_t i = 0; i < n; i++)
+        if (p->gen[i] >> TT_POOL_TAG_SHIFT != tag || (p->gen[i] & TT_POOL_GEN_MASK) == 0) {
+            uint32_t g = p->gen[i];
+            tt_pool_destroy(p);
+            return tt__src_fail(s, "%s: slot %u has generation 0x%x, not one of tag %u", what, i, g, tag);
+        }
     return true;
 }
 

@@ -6,6 +6,7 @@
 #include "core/scenes.h"
 #include "core/stream.h" /* tt__hash_bytes: to forge valid checksums */
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -332,6 +333,84 @@ TEST(snapshot_refuses_a_negative_moving_length)
     } else {
         ENSURE(tt_world_hash(w) == h);
     }
+    free(s);
+    tt_world_destroy(w);
+}
+
+/* The loader held x_old to 1e3·TT_DIVERGED, not the velocity it stands
+ * for, so a crafted stream could put |v| far past TT_DIVERGED (the guard's
+ * bound, which no step ever leaves) into a world. One particle, its x_old
+ * (Verlet: v = (x − x_old)/dt_prev) or its velocity (the other
+ * integrators) rewritten to |v| ≥ 1e17 yet |x_old| ≤ 1e3·TT_DIVERGED: the
+ * stream is refused and the world is unchanged. */
+TEST(snapshot_refuses_a_velocity_past_the_divergence_guard)
+{
+    static const tt_integrator kinds[] = {TT_VERLET, TT_SYMPLECTIC_EULER};
+    for (int k = 0; k < 2; k++) {
+        tt_world *w = tt_world_create(NULL);
+        ENSURE(w);
+        ENSURE_OK(tt_world_set_integrator(w, kinds[k]));
+        tt_particle_def pd = tt_particle_def_default();
+        pd.position = (tt_vec2){0.3671875, 0.6171875}; /* bit patterns found once in the stream */
+        pd.velocity = (tt_vec2){0.1875, 0};
+        tt_particle p = tt_particle_create(w, &pd);
+        ENSURE(p.gen);
+        size_t n;
+        unsigned char *s = save(w, &n);
+        ENSURE(s);
+        unsigned char *px = NULL; /* one particle: px, py, then qx */
+        for (size_t i = 32; i + 24 <= n && !px; i++)
+            if (memcmp(s + i, &pd.position.x, 8) == 0 && memcmp(s + i + 8, &pd.position.y, 8) == 0) px = s + i;
+        ENSURE(px);
+        const double q = kinds[k] == TT_VERLET ? -1e16 : 1e17; /* Verlet: v = (0.37 + 1e16)·60 */
+        memcpy(px + 16, &q, 8);
+        reseal(s, n);
+        const uint64_t h = tt_world_hash(w);
+        ENSURE(tt_world_restore(w, s, n) == TT_EINVAL);
+        ENSURE(tt_world_hash(w) == h);
+        ENSURE(tt_world_load(s, n) == NULL);
+        tt_vec2 v;
+        ENSURE_OK(tt_particle_get_velocity(w, p, &v));
+        ENSURE(fabs(v.x - 0.1875) < 1e-9);
+        free(s);
+        tt_world_destroy(w);
+    }
+}
+
+/* Found by the stream reader's fuzzer once it read every restored particle
+ * back through its listed handle (seed 7, stream 257): the pools' slot
+ * generations were taken as they came, so a stream could give a live slot
+ * generation 0 (its listed handle is the null handle, refused as stale),
+ * another world's tag, or a reuse count of 0, none of which a pool hands
+ * out. Each is refused, the world unchanged. */
+TEST(snapshot_refuses_a_slot_generation_no_pool_hands_out)
+{
+    tt_world *w = tt_world_create(NULL);
+    ENSURE(w);
+    tt_particle_def pd = tt_particle_def_default();
+    tt_particle a = tt_particle_create(w, &pd), b = tt_particle_create(w, &pd);
+    ENSURE(a.gen && b.gen);
+    const uint32_t tag = b.gen >> TT_HANDLE_GEN_BITS;
+    const uint32_t bad[] = {0, ((tag % 1000) + 1) << TT_HANDLE_GEN_BITS | 1u, tag << TT_HANDLE_GEN_BITS};
+    size_t n;
+    unsigned char *s = save(w, &n);
+    ENSURE(s);
+    const uint32_t pool[5] = {2, a.gen, b.gen, 0, tag}; /* count, generations, free count, tag */
+    unsigned char *at = NULL;
+    for (size_t i = 32; i + sizeof pool <= n && !at; i++)
+        if (memcmp(s + i, pool, sizeof pool) == 0) at = s + i;
+    ENSURE(at);
+    const uint64_t h = tt_world_hash(w);
+    for (int k = 0; k < 3; k++) {
+        memcpy(at + 8, &bad[k], 4);
+        reseal(s, n);
+        if (tt_world_restore(w, s, n) != TT_EINVAL || tt_world_load(s, n) != NULL) {
+            tt_test_fail(__FILE__, __LINE__, "generation 0x%x accepted", bad[k]);
+            break;
+        }
+        ENSURE(tt_world_hash(w) == h);
+    }
+    ENSURE(tt_particle_get_mass(w, b, &(double){0}) == TT_OK);
     free(s);
     tt_world_destroy(w);
 }

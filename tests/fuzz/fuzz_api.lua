@@ -2,8 +2,9 @@
 -- runner with PNG frames so drawing is fuzzed inside tether.draw:
 --   build/tether --headless --frames 1000000 --every 20 --size 96x72 --out DIR tests/fuzz/fuzz_api.lua
 -- Environment: FUZZ_SEED (default: the clock), FUZZ_SECONDS (default 10),
--- FUZZ_CALLS (stop after this many calls), FUZZ_SKIP (comma-separated call
--- numbers made but not called: the minimiser's knob), FUZZ_REPLAY (where
+-- FUZZ_CALLS (stop after this many calls), FUZZ_SKIP (call numbers drawn
+-- but not called, "12,40-97" or "@FILE" holding such a list: the
+-- minimiser's knob), FUZZ_REPLAY (where
 -- the replay script goes; default DIR/replay.lua).
 -- Under a plain host (LUA_CPATH='build/luajit/?.so' luajit tests/fuzz/fuzz_api.lua,
 -- or lua5.4) it runs the update phase alone, the same calls for a seed.
@@ -26,7 +27,17 @@ local max_calls = tonumber(os.getenv("FUZZ_CALLS") or "") or math.huge
 local keep_going = os.getenv("FUZZ_KEEP_GOING") == "1"
 local found = {}
 local skip = {}
-for k in (os.getenv("FUZZ_SKIP") or ""):gmatch("%d+") do skip[tonumber(k)] = true end
+do -- "12,40-97", or "@FILE" holding such a list (minimise.lua skips thousands)
+  local list = os.getenv("FUZZ_SKIP") or ""
+  if list:sub(1, 1) == "@" then
+    local fh = assert(io.open(list:sub(2)))
+    list = fh:read("*a")
+    fh:close()
+  end
+  for a, b in list:gmatch("(%d+)%-?(%d*)") do
+    for k = tonumber(a), tonumber(b ~= "" and b or a) do skip[k] = true end
+  end
+end
 local out_dir = tether.runner and tether.runner.out or "."
 local replay_path = os.getenv("FUZZ_REPLAY") or (out_dir .. "/replay.lua")
 

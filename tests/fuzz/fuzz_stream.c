@@ -4,8 +4,9 @@
  * repeated, spliced from another stream, cut short), then mostly resealed
  * with a matching length and checksum so the mutation reaches the section
  * readers. Each stream must be refused with the target world unchanged, or
- * be a valid world: it steps, saves, and its stream loads again to the same
- * hash.
+ * be a valid world: every position and velocity finite and within
+ * TT_DIVERGED (as restored and after stepping), it steps, saves, and its
+ * stream loads again to the same hash.
  *
  *   build/test_c fuzz_stream_reader                      (make test: 300 streams, seed 1)
  *   FUZZ_STREAM_SECONDS=60 FUZZ_SEED=n build/test_c fuzz_stream_reader   (make fuzz)
@@ -14,6 +15,7 @@
 #include "core/scenes.h"
 #include "core/stream.h" /* tt__hash_bytes: to forge valid checksums */
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -100,12 +102,40 @@ static buf mutate(const buf *base, const buf *other)
     return b;
 }
 
-/* An accepted world is a world: it steps (kept short), saves, and loads again alike. */
-static bool check_accepted(tt_world *w)
+/* Every position and velocity finite and within TT_DIVERGED, the bound no
+ * step leaves (the loader once held x_old to 1e3·TT_DIVERGED instead, so a
+ * stream could carry |v| past it). */
+static bool bounded(tt_world *w, unsigned long it, const char *when)
 {
+    uint32_t n = tt_world_particle_count(w);
+    tt_particle *ids = malloc((n ? n : 1) * sizeof *ids);
+    double *xy = malloc(2 * (size_t)(n ? n : 1) * sizeof *xy);
+    bool ok = ids && xy && tt_world_list_particles(w, ids, n) == n && tt_world_read_positions(w, xy, n) == n;
+    for (uint32_t i = 0; ok && i < n; i++) {
+        tt_vec2 v = {0, 0};
+        tt_result r = tt_particle_get_velocity(w, ids[i], &v);
+        if (r != TT_OK) tt_test_fail(__FILE__, __LINE__, "stream %lu, %s: particle %u (index %u, generation %u) listed, yet refused: %s",
+                                     it, when, i, ids[i].index, ids[i].gen, tt_last_error(w));
+        ok = r == TT_OK && fabs(xy[2 * i]) <= TT_DIVERGED &&
+             fabs(xy[2 * i + 1]) <= TT_DIVERGED && fabs(v.x) <= TT_DIVERGED && fabs(v.y) <= TT_DIVERGED;
+        if (!ok)
+            tt_test_fail(__FILE__, __LINE__, "stream %lu, %s: particle %u at (%g, %g), v (%g, %g): past TT_DIVERGED or not finite",
+                         it, when, i, xy[2 * i], xy[2 * i + 1], v.x, v.y);
+    }
+    free(ids);
+    free(xy);
+    return ok;
+}
+
+/* An accepted world is a world: its particles are within the guard, it
+ * steps (kept short), saves, and loads again alike. */
+static bool check_accepted(tt_world *w, unsigned long it)
+{
+    if (!bounded(w, it, "as restored")) return false;
     if (tt_world_get_substeps(w) > 4) tt_world_set_substeps(w, 4);
     if (tt_world_get_iterations(w) > 20) tt_world_set_iterations(w, 20);
     for (int s = 0; s < 3; s++) tt_world_step(w, 1.0 / 60);
+    if (!bounded(w, it, "after 3 steps")) return false;
     buf again = save(w);
     if (!again.p) return false;
     tt_world *c = tt_world_load(again.p, again.n);
@@ -122,7 +152,7 @@ static bool one_stream(const buf *corpus, int ncorpus, tt_world **targets, unsig
     bool ok = true;
     if (tt_world_restore(targets[k], m.p, m.n) == TT_OK) {
         (*accepted)++;
-        ok = check_accepted(targets[k]);
+        ok = check_accepted(targets[k], it);
         if (ok) ok = tt_world_restore(targets[k], corpus[k].p, corpus[k].n) == TT_OK;
     } else {
         buf now = save(targets[k]);
@@ -131,7 +161,7 @@ static bool one_stream(const buf *corpus, int ncorpus, tt_world **targets, unsig
         if (!ok) tt_test_fail(__FILE__, __LINE__, "stream %lu: refused, yet the world changed", it);
     }
     tt_world *fresh = tt_world_load(m.p, m.n);
-    if (fresh && ok) ok = check_accepted(fresh);
+    if (fresh && ok) ok = check_accepted(fresh, it);
     tt_world_destroy(fresh);
     free(m.p);
     if (!ok) tt_test_fail(__FILE__, __LINE__, "stream %lu: an accepted stream is not a valid world", it);

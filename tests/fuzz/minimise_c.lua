@@ -2,37 +2,22 @@
 -- of the C API fuzzer (build/fuzz_c) as minimise.lua does the Lua one's (run
 -- with stock lua5.4). Each call of fuzz_c draws from its own stream (seed and
 -- call number), and FUZZ_SKIP makes it pass over a call without making it, so
--- the minimiser removes chunks of calls (halves, quarters, … single calls)
--- and keeps a removal when the run still fails the same way. Budget:
--- FUZZ_MIN_SECONDS (default 120). Leaves OUTDIR/minimal-skip.txt (the calls
--- skipped) and OUTDIR/minimal.txt (the trace of the shortest failing run).
+-- the minimiser skips calls and keeps a removal when the run still fails the
+-- same way (tests/fuzz/minimise_lib.lua: other worlds' calls first, then
+-- chunks). Budget: FUZZ_MIN_SECONDS (default 120). Leaves
+-- OUTDIR/minimal-skip.txt (the calls skipped) and OUTDIR/minimal.txt (the
+-- trace of the shortest failing run).
+package.path = "tests/fuzz/?.lua;" .. package.path
+local R = require "minimise_lib"
 local bin, seed, ncalls, out = arg[1], arg[2], tonumber(arg[3]), arg[4]
 assert(bin and seed and seed:match("^%d+$") and ncalls and out, "usage: minimise_c.lua FUZZ_C SEED CALLS OUTDIR")
 local budget = tonumber(os.getenv("FUZZ_MIN_SECONDS") or "") or 120
 local t0 = os.time()
 
--- The skipped calls as merged ranges ("3-9,12"), written to a file: a long
--- list would not fit in the environment.
-local function write_skip(skip, path)
-  local list = {}
-  for k in pairs(skip) do list[#list + 1] = k end
-  table.sort(list)
-  local parts, i = {}, 1
-  while i <= #list do
-    local j = i
-    while j < #list and list[j + 1] == list[j] + 1 do j = j + 1 end
-    parts[#parts + 1] = i == j and tostring(list[i]) or (list[i] .. "-" .. list[j])
-    i = j + 1
-  end
-  local fh = assert(io.open(path, "w"))
-  fh:write(table.concat(parts, ","), "\n")
-  fh:close()
-end
-
 -- What kind of failure a run ended with: its first failure line, numbers and
 -- addresses blanked, so another instance of the same bug still matches.
 local function run(skip)
-  write_skip(skip, out .. "/try-skip.txt")
+  R.write_skip(skip, out .. "/try-skip.txt")
   local cmd = string.format("FUZZ_SEED=%s FUZZ_CALLS=%d FUZZ_TRACE=1 FUZZ_SKIP=@%s/try-skip.txt %s >%s/try.txt 2>&1",
                             seed, ncalls, out, bin, out)
   os.execute(cmd)
@@ -56,25 +41,25 @@ end
 print("minimise_c: failure: " .. want)
 keep()
 
-local skip, kept = {}, ncalls
-local chunk = ncalls // 2
-while chunk >= 1 and os.time() - t0 < budget do
-  local start = 1
-  while start <= ncalls - 1 and os.time() - t0 < budget do -- the last call, the failing one, stays
-    local trial, removed = {}, 0
-    for k in pairs(skip) do trial[k] = true end
-    for k = start, math.min(start + chunk - 1, ncalls - 1) do
-      if not trial[k] then trial[k] = true; removed = removed + 1 end
-    end
-    if removed > 0 and run(trial) == want then
-      skip, kept = trial, kept - removed
-      keep()
-      print(string.format("minimise_c: %d calls left", kept))
-    end
-    start = start + chunk
+-- The worlds each call names, from the trace: "#N ..." and its indented
+-- lines name worlds w<k> (k counts the worlds made); "w<k> = tt_world_..."
+-- makes one.
+local worlds, makes, c = {}, {}, nil
+for line in io.lines(out .. "/minimal.txt") do
+  local n, rest = line:match("^#(%d+) (.*)")
+  if n then c = tonumber(n); worlds[c] = worlds[c] or {} end
+  if c then
+    for k in (rest or line):gmatch("%f[%w_]w(%d+)%f[^%w_]") do table.insert(worlds[c], tonumber(k)) end
+    if rest and rest:match("^w%d+ = tt_world_") then makes[c] = true end
   end
-  chunk = chunk // 2
 end
-print(string.format("minimise_c: %d of %d calls left (%d s): the trace in %s/minimal.txt; replay:", kept, ncalls,
-                    os.time() - t0, out))
+
+local _, kept, tried = R.reduce {
+  ncalls = ncalls, worlds = worlds, makes = makes, keep = keep,
+  fails = function(skip) return run(skip) == want end,
+  over = function() return os.time() - t0 >= budget end,
+  say = function(msg) print("minimise_c: " .. msg) end,
+}
+print(string.format("minimise_c: %d of %d calls left (%d runs, %d s): the trace in %s/minimal.txt; replay:", kept, ncalls,
+                    tried + 1, os.time() - t0, out))
 print(string.format("    FUZZ_SEED=%s FUZZ_CALLS=%d FUZZ_TRACE=1 FUZZ_SKIP=@%s/minimal-skip.txt %s", seed, ncalls, out, bin))

@@ -5,9 +5,12 @@
 # 1 if any failed. A failed target prints its seed, the failing call and how
 # to replay it.
 # Environment: BUILD (build or build-san), SANITIZE (1: ASan preloaded into
-# luajit), FUZZ_TARGETS (names to run,
+# luajit), FUZZ_OUT (where each target's logs, replays and files go:
+# FUZZ_OUT/NAME; default BUILD/fuzz), FUZZ_TARGETS (names to run,
 # default all), FUZZ_MIN_SECONDS (each minimiser's budget, default 120;
 # 0 skips it; tests/fuzz/minimise.lua and minimise_c.lua), FUZZ_CALLS (replay: stop after this call; with one target).
+# A run that leaves a new file in the checkout outside build/ fails
+# (tests/untracked.sh), counted as one more failed target.
 #
 # Proof that the C fuzzer finds things, finding 5 of issue 14 (a step of dt
 # 1e-320 put NaN into positions and velocities; fixed by refusing dt below
@@ -26,7 +29,7 @@ TARGETS="lua_api:2 luajit:1 c_api:2 png:1 stream:1"
 BUILD=${BUILD:-build}
 SECONDS_=${FUZZ_SECONDS:-60}
 SEED=${FUZZ_SEED:-$(date +%s)}
-OUT="$BUILD/fuzz"
+OUT=${FUZZ_OUT:-$BUILD/fuzz}
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 export UBSAN_OPTIONS LSAN_OPTIONS
@@ -114,7 +117,7 @@ target_stream() {
     FUZZ_SEED=$seed FUZZ_STREAM_SECONDS=$secs "$BUILD/test_c" fuzz_stream_reader >"$dir/log.txt" 2>&1
     rc=$?
     if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
-        echo "fuzz stream: $(grep 'fuzz_stream' "$dir/log.txt" | tail -n 1)"
+        echo "fuzz stream: $(grep '^ *fuzz_stream: ' "$dir/log.txt" | tail -n 1 | sed 's/^ *fuzz_stream: //') ($secs s)"
         return 0
     fi
     echo "fuzz stream: FAILED (exit $rc), seed $seed"
@@ -152,6 +155,13 @@ for t in $TARGETS; do
     total_weight=$((total_weight + ${t#*:}))
 done
 echo "fuzz: seed $SEED, $SECONDS_ s over:$(for t in $selected; do printf ' %s' "${t%%:*}"; done)"
+# The checkout as it was at the end (tests/untracked.sh): a fuzz run once
+# wrote files named nan, rk4, 42 … into the repository root.
+. tests/untracked.sh
+before=$(mktemp "${TMPDIR:-/tmp}/tether-fuzz.XXXXXX") || exit 1
+after=$(mktemp "${TMPDIR:-/tmp}/tether-fuzz.XXXXXX") || exit 1
+trap 'rm -f "$before" "$after"' EXIT INT TERM
+untracked_now >"$before"
 pass=0
 fail=0
 for t in $selected; do
@@ -162,5 +172,11 @@ for t in $selected; do
     mkdir -p "$OUT/$name"
     if "target_$name" "$share" "$SEED" "$OUT/$name"; then pass=$((pass + 1)); else fail=$((fail + 1)); fi
 done
+untracked_new "$before" >"$after"
+if [ -s "$after" ]; then
+    echo "fuzz checkout: FAILED: the run left new files outside build/ (fuzzers write under FUZZ_OUT):"
+    sed 's/^/    | /' "$after"
+    fail=$((fail + 1))
+fi
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
