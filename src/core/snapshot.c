@@ -397,18 +397,26 @@ static tt_world *parse(const void *data, size_t size, uint64_t epoch, char *why,
     return NULL;
 }
 
+void tt__world_take(tt_world *w, tt_world *fresh)
+{
+    /* the world keeps its address (scripts and the binding hold it); what it held goes with the husk */
+    tt_world old = *w;
+    *w = *fresh;
+    memcpy(w->error, old.error, sizeof w->error);
+    w->journal = old.journal; /* a journal records the change, and goes on */
+    w->journal_hooks = old.journal_hooks;
+    *fresh = old;
+    fresh->journal = NULL;
+    tt_world_destroy(fresh);
+}
+
 tt_result tt_world_restore(tt_world *w, const void *data, size_t size)
 {
     TT_CHECK_WORLD(w, "tt_world_restore");
     char why[200];
     tt_world *fresh = parse(data, size, w->epoch + 1, why, sizeof why);
     if (!fresh) return tt__fail(w, TT_EINVAL, "tt_world_restore: %s; the world is unchanged", why);
-    /* the world keeps its address (scripts and the binding hold it); what it held goes with the husk */
-    tt_world old = *w;
-    *w = *fresh;
-    memcpy(w->error, old.error, sizeof w->error);
-    *fresh = old;
-    tt_world_destroy(fresh);
+    tt__world_take(w, fresh);
     return TT_OK;
 }
 

@@ -120,6 +120,7 @@ tt_world *tt_world_create(const tt_world_def *def)
 void tt_world_destroy(tt_world *w)
 {
     if (!w) return;
+    if (w->journal) w->journal_hooks->gone(w->journal);
     tt__solver_free(w);
     tt__particles_free(w);
     tt__springs_free(w);
@@ -137,6 +138,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
     w->step_oom = NULL;
+    if (w->journal) w->journal_hooks->before(w->journal, w);
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
@@ -163,6 +165,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     w->stats.time += dt;
     w->epoch++;
     w->stats.step_ms = tt__now_ms() - t0;
+    if (w->journal) w->journal_hooks->after(w->journal, w, dt);
     if (w->step_oom)
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory for %s; the step ran without it", w->step_oom);
     if (w->stats.diverged)
