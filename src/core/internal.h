@@ -98,7 +98,7 @@ enum { TT_MAX_GROUPS = 8 };
  * through these, so that the world's code does not depend on the
  * journal's (which steps worlds to replay them). */
 typedef struct tt__journal_hooks {
-    void (*before)(tt_journal *j, const tt_world *w);           /* at a step's start, after its checks */
+    void (*before)(tt_journal *j, tt_world *w);                 /* at a step's start, after its checks */
     void (*after)(tt_journal *j, const tt_world *w, double dt); /* at its end */
     void (*gone)(tt_journal *j);                                /* the world is being destroyed */
 } tt__journal_hooks;
@@ -172,6 +172,11 @@ struct tt_world {
     char error[256];
 };
 
+/* A new world from a stream (snapshot.c), its epoch given: a world that is
+ * to take another's place (tt__world_take) needs a later epoch than that
+ * one's, set before its sections load (they key caches on it); NULL with
+ * the reason in why. */
+tt_world *tt__world_parse(const void *data, size_t size, uint64_t epoch, char *why, size_t whylen);
 /* w becomes fresh (a world of its own, freed here), in place: w keeps its
  * address, its error message and its journal (snapshot.c). */
 void tt__world_take(tt_world *w, tt_world *fresh);

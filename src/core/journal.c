@@ -85,13 +85,34 @@ static void halt(tt_journal *j)
     detach(j);
 }
 
-static void on_before(tt_journal *j, const tt_world *w)
+/* A change recorded, the world steps from that stream loaded, as the
+ * replay will: what the calls left outside the stream (state a snapshot
+ * does not yet hold, an engine bug wherever it matters) cannot make the
+ * recording and the replay differ. Memory short: recording stops. */
+static void rebase(tt_journal *j, tt_world *w)
 {
+    char why[200];
+    tt_world *fresh = tt__world_parse(j->cur, j->cur_n, w->epoch + 1, why, sizeof why);
+    if (!fresh) {
+        halt(j);
+        return;
+    }
+    tt__world_take(w, fresh);
+}
+
+static void on_before(tt_journal *j, tt_world *w)
+{
+    /* a step refused for want of memory after this hook ran left its coding here */
+    free(j->delta);
+    j->delta = NULL;
+    j->delta_n = 0;
+    j->pending = false;
     if (!tt__journal_save_world(w, &j->cur, &j->cur_n, &j->cur_cap)) { halt(j); return; }
     if (j->cur_n == j->ref_n && memcmp(j->cur, j->ref, j->cur_n) == 0) return;
     if (!tt__delta_encode(j->cur, j->cur_n, j->ref, j->ref_n, &j->delta, &j->delta_n)) { halt(j); return; }
     j->pending = true;
     if (j->cur_n > j->max_stream) j->max_stream = j->cur_n;
+    rebase(j, w);
 }
 
 /* Appends the step's entry; false when it does not fit in max_bytes or memory. */

@@ -64,15 +64,12 @@ static tt_result changed_world(tt_journal *j, tt_world *w, const tt__jentry *e, 
     if (!tt__delta_decode(e->delta, e->delta_n, j->ref, j->ref_n, j->cur, n))
         return tt__fail(w, TT_ENOMEM, "%s: step %llu: out of memory decoding the recorded change; the world is unchanged", fn, step);
     j->cur_n = n;
-    *out = tt_world_load(j->cur, n);
-    if (!*out) {
-        char why[sizeof w->error];
-        snprintf(why, sizeof why, "%s", tt_last_error(NULL));
+    char why[200];
+    *out = tt__world_parse(j->cur, n, w->epoch + 1, why, sizeof why); /* as tt_world_restore does */
+    if (!*out)
         return tt__fail(w, strstr(why, "out of memory") ? TT_ENOMEM : TT_EINVAL,
                         "%s: step %llu: the recorded change does not apply to this world (it is not where the "
                         "journal was: an earlier desync, or another world): %s", fn, step, why);
-    }
-    (*out)->epoch = w->epoch + 1; /* as a restore: caches keyed on the epoch start again */
     return TT_OK;
 }
 

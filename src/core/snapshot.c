@@ -368,7 +368,7 @@ static void load_sections(tt_world *w, tt__source *s)
 }
 
 /* A new world holding the stream's state, or NULL with the reason in why. */
-static tt_world *parse(const void *data, size_t size, uint64_t epoch, char *why, size_t whylen)
+tt_world *tt__world_parse(const void *data, size_t size, uint64_t epoch, char *why, size_t whylen)
 {
     const unsigned char *b = data;
     uint32_t v[3];
@@ -414,7 +414,7 @@ tt_result tt_world_restore(tt_world *w, const void *data, size_t size)
 {
     TT_CHECK_WORLD(w, "tt_world_restore");
     char why[200];
-    tt_world *fresh = parse(data, size, w->epoch + 1, why, sizeof why);
+    tt_world *fresh = tt__world_parse(data, size, w->epoch + 1, why, sizeof why);
     if (!fresh) return tt__fail(w, TT_EINVAL, "tt_world_restore: %s; the world is unchanged", why);
     tt__world_take(w, fresh);
     return TT_OK;
@@ -423,7 +423,7 @@ tt_result tt_world_restore(tt_world *w, const void *data, size_t size)
 tt_world *tt_world_load(const void *data, size_t size)
 {
     char why[200];
-    tt_world *w = parse(data, size, 1, why, sizeof why);
+    tt_world *w = tt__world_parse(data, size, 1, why, sizeof why);
     if (!w) tt__fail(NULL, TT_EINVAL, "tt_world_load: %s", why);
     return w;
 }

@@ -134,11 +134,12 @@ tt_result tt_world_step(tt_world *w, double dt)
     TT_CHECK_WORLD(w, "tt_world_step");
     tt_result r = check_dt(w, dt, "tt_world_step");
     if (r != TT_OK) return r;
+    /* the world as the calls left it, before the step's own preparations touch it */
+    if (w->journal) w->journal_hooks->before(w->journal, w);
     /* Everything the step's counts call for, before anything changes. */
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
     w->step_oom = NULL;
-    if (w->journal) w->journal_hooks->before(w->journal, w);
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
