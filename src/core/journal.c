@@ -111,7 +111,6 @@ static void on_before(tt_journal *j, tt_world *w)
     if (j->cur_n == j->ref_n && memcmp(j->cur, j->ref, j->cur_n) == 0) return;
     if (!tt__delta_encode(j->cur, j->cur_n, j->ref, j->ref_n, &j->delta, &j->delta_n)) { halt(j); return; }
     j->pending = true;
-    if (j->cur_n > j->max_stream) j->max_stream = j->cur_n;
     rebase(j, w);
 }
 
@@ -141,6 +140,7 @@ static bool append(tt_journal *j, double dt, uint64_t hash)
         memcpy(j->rec + j->rec_n, j->delta, j->delta_n);
         j->rec_n += j->delta_n;
         j->changed++;
+        if (j->cur_n > j->max_stream) j->max_stream = j->cur_n; /* only what the record holds: the reader checks it */
     }
     j->steps++;
     j->last_dt = dt;
