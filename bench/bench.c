@@ -201,6 +201,7 @@ static const struct {
     {"snapshot", bench_snapshot},
     {"terrain", bench_terrain},
     {"rewind", bench_rewind},
+    {"journal", bench_journal},
     {"sleep", bench_sleep},
 };
 

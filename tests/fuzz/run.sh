@@ -129,7 +129,7 @@ target_journal() {
     FUZZ_SEED=$seed FUZZ_JOURNAL_SECONDS=$secs "$BUILD/test_c" fuzz_journal_reader >"$dir/log.txt" 2>&1
     rc=$?
     if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
-        echo "fuzz journal: $(grep 'fuzz_journal' "$dir/log.txt" | tail -n 1)"
+        echo "fuzz journal: $(grep 'fuzz_journal: ' "$dir/log.txt" | tail -n 1 | sed 's/^ *fuzz_journal: //')"
         return 0
     fi
     echo "fuzz journal: FAILED (exit $rc), seed $seed"
