@@ -257,6 +257,7 @@ local METHODS = {
   { "snapshot" },
   { "restore", "snap" },
   { "reverse" },
+  { "journal", "opttable" },
   { "particles", "opttable" },
   { "positions", "opttable" },
   { "set_positions", "handles", "xy", "mode" },
