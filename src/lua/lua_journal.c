@@ -44,6 +44,18 @@ static void push_journal(lua_State *L, tt_journal *j)
     u->j = j;
 }
 
+/* The journal's world (the value at idx) kept as its user value, inside a
+ * table: LuaJIT's user value (an environment) must be a table. */
+static void keep_world(lua_State *L, int journal, int idx)
+{
+    idx = lua_absindex(L, idx);
+    journal = lua_absindex(L, journal);
+    lua_createtable(L, 1, 0);
+    lua_pushvalue(L, idx);
+    lua_rawseti(L, -2, 1);
+    lua_setiuservalue(L, journal, 1);
+}
+
 static const char *const journal_opts[] = {"max_bytes", NULL};
 static const tl_range R_BYTES = {1024, 1e15, false};
 
@@ -59,8 +71,7 @@ static int w_journal(lua_State *L)
     tt_journal *j = tt_journal_start(w, &def);
     if (!j) tl_check_result(L, w, TT_EINVAL);
     ((tl_journal *)lua_touserdata(L, -1))->j = j;
-    lua_pushvalue(L, 1);
-    lua_setiuservalue(L, -2, 1);
+    keep_world(L, -1, 1);
     return 1;
 }
 
@@ -172,8 +183,7 @@ static int j_replay(lua_State *L)
     tt_journal *j = check_journal(L, 1);
     tt_world *w = tl_check_world(L, 2);
     tl_check_result(L, w, tt_journal_replay_begin(j, w));
-    lua_pushvalue(L, 2);
-    lua_setiuservalue(L, 1, 1);
+    keep_world(L, 1, 2);
     return 0;
 }
 
@@ -183,8 +193,12 @@ static tt_world *replay_world(lua_State *L, tt_journal *j)
     tt_journal_info i;
     tt_journal_get_info(j, &i);
     if (i.recording) tl_error(L, "the journal is recording (j:stop() it first)");
-    lua_getiuservalue(L, 1, 1);
-    tt_world *w = tl_toworld(L, -1);
+    tt_world *w = NULL;
+    if (lua_getiuservalue(L, 1, 1) == LUA_TTABLE) {
+        lua_rawgeti(L, -1, 1);
+        w = tl_toworld(L, -1);
+        lua_pop(L, 1);
+    }
     lua_pop(L, 1);
     if (!w) tl_error(L, "no replay begun (j:replay(w)), or its world was destroyed");
     return w;
