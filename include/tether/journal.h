@@ -23,7 +23,7 @@
  *
  * Cost: paid only while a world is journaled (two saves, a compare and a
  * hash per step; a load more when calls changed the world); a world that never
- * journals has one NULL check per step and keeps every hash. Memory: the
+ * journals has two NULL checks per step and keeps every hash. Memory: the
  * snapshot, two streams of work space, and per step about 10 bytes when no
  * call changed anything (a flag byte, the hash, the dt when it changed)
  * plus the delta when one did; bounded by max_bytes, where recording stops
