@@ -80,9 +80,11 @@ RENDER_CFLAGS = $(call lazy,RENDER_CFLAGS,$(call PC_CFLAGS,sdl2 libpng))
 # OSMesa exports the gl* functions itself: never add -lGL (SDL loads libGL at run time).
 RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
 # tests/fuzz/ holds fuzzers with their own main, built on their own; the
-# snapshot stream reader's fuzzer is a test of test_c (make test runs 300 streams).
+# snapshot stream reader's and the replay journal reader's fuzzers are tests of
+# test_c (make test runs 300 streams and 200 journals).
 # tests/box2d/ links Box2D: a program of its own.
-TEST_SRC := $(filter-out tests/fuzz/% tests/box2d/% tests/crossbuild/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c
+TEST_SRC := $(filter-out tests/fuzz/% tests/box2d/% tests/crossbuild/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c \
+            tests/fuzz/fuzz_journal.c
 FUZZ_C_SRC := $(wildcard tests/fuzz/fuzz_c*.c)
 FUZZ_C_OBJ := $(FUZZ_C_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
 TEST_OBJ := $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)
@@ -300,7 +302,7 @@ memcheck: all $(TEST_C)
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_SEED=n] [SANITIZE=1]`: every fuzz target
 # of tests/fuzz/run.sh (the Lua API fuzzer under the runner and under
-# LuaJIT, the C API fuzzer, the PNG loader's, the snapshot stream reader's),
+# LuaJIT, the C API fuzzer, the PNG loader's, the snapshot stream reader's, the replay journal reader's),
 # each for its share of FUZZ_SECONDS; on a failure each prints its seed and replay.
 fuzz: all $(FUZZ_C) $(FUZZ_PNG) $(TEST_C)
 	@BUILD=$(BUILD) SANITIZE=$(SANITIZE) FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) sh tests/fuzz/run.sh

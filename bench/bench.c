@@ -202,6 +202,7 @@ static const struct {
     {"snapshot", bench_snapshot},
     {"terrain", bench_terrain},
     {"rewind", bench_rewind},
+    {"journal", bench_journal},
     {"sleep", bench_sleep},
     {"payonly", bench_payonly},
 };

@@ -17,6 +17,7 @@
 #include "tether/collide.h"
 #include "tether/clock.h"
 #include "tether/rewind.h"
+#include "tether/journal.h"
 #include "tether/mask.h"
 #include "tether/terrain.h"
 

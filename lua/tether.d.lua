@@ -163,6 +163,79 @@ function world:fixed_point() end
 ---@return tether.rewind
 function tether.rewind(opts) end
 
+---A replay journal (tether/journal.h): a snapshot of the world when recording
+---began, then per step the dt, the changes calls made since the step before
+---(found by comparing the world's stream with the one kept at the end of the
+---step before, so no call can be missed) and the hash after the step. Replay it
+---into the same or a new world, in this process or another (j:save, tether.load_journal),
+---one step per call or to the end, with desync detection. User values are not in it.
+---@class tether.journal
+local journal = {}
+---Stops recording (nothing when it was not); what it holds stays.
+function journal:stop() end
+---@return boolean
+function journal:recording() end
+---Steps recorded.
+---@return integer
+function journal:steps() end
+---Bytes held now (snapshot, per-step record, work space).
+---@return integer
+function journal:size() end
+---@class tether.journal_info
+---@field steps integer steps recorded
+---@field changed integer of them, steps that calls changed the world before
+---@field bytes integer memory held
+---@field record_bytes integer of it, the per-step record (bytes per step = record_bytes / steps)
+---@field snapshot_bytes integer of it, the first snapshot
+---@field recording boolean
+---@field full boolean recording stopped at max_bytes (or for want of memory)
+---@field replayed integer steps the replay has played
+---@field desync integer the first replayed step whose hash was not the recorded one; 0: none
+---@return tether.journal_info
+function journal:info() end
+---The first desync: its step (1 = the journal's first), the recorded hash and the
+---hash the replay got (hex, as w:hash()); nil when none.
+---@return integer|nil step
+---@return string? expected
+---@return string? got
+function journal:desync() end
+---Writes the journal to a file (the snapshot files' header and checksum).
+---@param path string
+---@return true|nil ok
+---@return string? err
+function journal:save(path) end
+---Begins a replay: w becomes the recorded start (its user values stay as they are).
+---Raises while the journal records.
+---@param w tether.world
+function journal:replay(w) end
+---Plays the next step into the replay's world: "sync" (the recorded hash),
+---"desync" (another: j:desync() says where) or "end" (nothing left). Raises when
+---a recorded change no longer applies (after a desync, or the world was changed).
+---@return "sync"|"desync"|"end"
+function journal:step() end
+---Plays to the end or the first desync (call again to play on).
+---@return "end"|"desync" where
+---@return integer played steps played by this call
+function journal:run() end
+---Stops recording and frees the journal now; safe to repeat.
+function journal:destroy() end
+
+---@class tether.journal_options
+---@field max_bytes? number memory bound, >= 1024, default 256 MB: recording stops there (the world steps on)
+
+---Starts journaling the world: every step from now on, with the changes calls make
+---between steps. One journal per world.
+---@param opts? tether.journal_options
+---@return tether.journal
+function world:journal(opts) end
+
+---A replay journal saved by j:save, or nil and the reason (a missing, truncated,
+---corrupted, foreign or other-version file).
+---@param path string
+---@return tether.journal|nil
+---@return string? err
+function tether.load_journal(path) end
+
 return tether.world
 function tether.world(opts) end
 

@@ -268,7 +268,8 @@ tt_result tt_shape_get_aabb(const tt_world *w, tt_shape s, tt_vec2 *lo, tt_vec2 
 
 void tt__shapes_free(tt__collide *c)
 {
-    for (uint32_t i = 0; i < c->spool.count; i++) free(c->shapes[i].pts);
+    /* a load that ran out of memory may leave the pool read and the array not made */
+    for (uint32_t i = 0; c->shapes && i < c->spool.count; i++) free(c->shapes[i].pts);
     free(c->shapes);
     tt_pool_destroy(&c->spool);
     free(c->prims); free(c->verts); free(c->norms);

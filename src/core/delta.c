@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static size_t put_leb(unsigned char *p, uint64_t v)
+size_t tt__leb_put(unsigned char *p, uint64_t v)
 {
     size_t n = 0;
     do {
@@ -30,7 +30,7 @@ static size_t put_leb(unsigned char *p, uint64_t v)
     return n;
 }
 
-static bool get_leb(const unsigned char *d, size_t dn, size_t *at, uint64_t *v)
+bool tt__leb_get(const unsigned char *d, size_t dn, size_t *at, uint64_t *v)
 {
     *v = 0;
     for (int shift = 0; shift < 64; shift += 7) {
@@ -60,15 +60,15 @@ bool tt__delta_encode(const unsigned char *t, size_t tn, const unsigned char *r,
     memcpy(x + body, o + body, tn - body);
     size_t n = 0;
     memcpy(o, "TTD1", 4);
-    n = 4 + put_leb(o + 4, tn);
+    n = 4 + tt__leb_put(o + 4, tn);
     for (size_t i = 0; i < tn;) {
         size_t z = i;
         while (z < tn && x[z] == 0) z++;
         /* a literal run ends at the first 3 zeros in a row (shorter zero runs cost more as runs) */
         size_t l = z;
         while (l < tn && !(x[l] == 0 && l + 2 < tn && x[l + 1] == 0 && x[l + 2] == 0)) l++;
-        n += put_leb(o + n, z - i);
-        n += put_leb(o + n, l - z);
+        n += tt__leb_put(o + n, z - i);
+        n += tt__leb_put(o + n, l - z);
         memcpy(o + n, x + z, l - z);
         n += l - z;
         i = l;
@@ -84,7 +84,7 @@ size_t tt__delta_length(const unsigned char *d, size_t dn)
 {
     size_t at = 4;
     uint64_t tn;
-    if (dn < 5 || memcmp(d, "TTD1", 4) != 0 || !get_leb(d, dn, &at, &tn) || tn > SIZE_MAX) return 0;
+    if (dn < 5 || memcmp(d, "TTD1", 4) != 0 || !tt__leb_get(d, dn, &at, &tn) || tn > SIZE_MAX) return 0;
     return (size_t)tn;
 }
 
@@ -92,14 +92,14 @@ bool tt__delta_decode(const unsigned char *d, size_t dn, const unsigned char *r,
 {
     size_t at = 4;
     uint64_t len;
-    if (dn < 5 || memcmp(d, "TTD1", 4) != 0 || !get_leb(d, dn, &at, &len) || len != tn) return false;
+    if (dn < 5 || memcmp(d, "TTD1", 4) != 0 || !tt__leb_get(d, dn, &at, &len) || len != tn) return false;
     unsigned char *x = malloc(tn ? tn : 1);
     if (!x) return false;
     size_t i = 0;
     bool ok = true;
     while (ok && i < tn) {
         uint64_t z, l;
-        ok = get_leb(d, dn, &at, &z) && get_leb(d, dn, &at, &l) && z <= tn - i && l <= tn - i - z && l <= dn - at &&
+        ok = tt__leb_get(d, dn, &at, &z) && tt__leb_get(d, dn, &at, &l) && z <= tn - i && l <= tn - i - z && l <= dn - at &&
              (z | l) != 0;
         if (!ok) break;
         memset(x + i, 0, (size_t)z);
@@ -117,4 +117,22 @@ bool tt__delta_decode(const unsigned char *d, size_t dn, const unsigned char *r,
     }
     free(x);
     return ok && at == dn;
+}
+
+size_t tt__delta_check(const unsigned char *d, size_t dn, size_t max)
+{
+    const size_t tn = tt__delta_length(d, dn);
+    if (tn == 0 || tn > max) return 0;
+    size_t at = 4, i = 0;
+    uint64_t len;
+    tt__leb_get(d, dn, &at, &len);
+    while (i < tn) {
+        uint64_t z, l;
+        if (!tt__leb_get(d, dn, &at, &z) || !tt__leb_get(d, dn, &at, &l) || z > tn - i || l > tn - i - z ||
+            l > dn - at || (z | l) == 0)
+            return 0;
+        at += (size_t)l;
+        i += (size_t)(z + l);
+    }
+    return at == dn ? tn : 0;
 }

@@ -99,6 +99,15 @@ typedef struct tt__group {
 
 enum { TT_MAX_GROUPS = 8 };
 
+/* A replay journal recording a world (journal.c): the step calls it
+ * through these, so that the world's code does not depend on the
+ * journal's (which steps worlds to replay them). */
+typedef struct tt__journal_hooks {
+    void (*before)(tt_journal *j, tt_world *w);                 /* at a step's start, after its checks */
+    void (*after)(tt_journal *j, const tt_world *w, double dt); /* at its end */
+    void (*gone)(tt_journal *j);                                /* the world is being destroyed */
+} tt__journal_hooks;
+
 /* What of a world is state (saved, restored, hashed) and what is per-step
  * scratch (rebuilt) is decided in one place per part: snapshot.c's
  * save_settings/save_particles/save_springs for this struct, each group's
@@ -161,10 +170,24 @@ struct tt_world {
     tt_attractor attractors[TT_MAX_ATTRACTORS];
     uint32_t attractors_used; /* slots in use: the force loop skips them all at 0 */
 
+    /* the journal recording this world (NULL: none, the usual case); not
+     * state: a restore keeps it, and it is in no stream */
+    tt_journal *journal;
+    const tt__journal_hooks *journal_hooks;
+
     tt_stats stats;
     uint64_t epoch;       /* bumped when particles appear, move or change radius outside a step, and by each step (query caches) */
     char error[256];
 };
+
+/* A new world from a stream (snapshot.c), its epoch given: a world that is
+ * to take another's place (tt__world_take) needs a later epoch than that
+ * one's, set before its sections load (they key caches on it); NULL with
+ * the reason in why. */
+tt_world *tt__world_parse(const void *data, size_t size, uint64_t epoch, char *why, size_t whylen);
+/* w becomes fresh (a world of its own, freed here), in place: w keeps its
+ * address, its error message and its journal (snapshot.c). */
+void tt__world_take(tt_world *w, tt_world *fresh);
 
 /* Errors: set the message, return the code. */
 tt_result tt__fail(const tt_world *w, tt_result code, const char *fmt, ...) TT_PRINTF(3, 4);

@@ -148,6 +148,10 @@ const unsigned char *tt__file_stream(const unsigned char *payload, unsigned kind
         *size = n;
         return payload;
     }
+    if (kind == TT__FILE_JOURNAL) {
+        snprintf(why, whylen, "it holds a replay journal, not a snapshot (tt_journal_load_file)");
+        return NULL;
+    }
     if (kind != TT__FILE_LUA || n < 16 || memcmp(payload, "TTLU", 4) != 0 || le_get(payload + 8, 8) > n - 16) {
         snprintf(why, whylen, "the file holds no snapshot");
         return NULL;

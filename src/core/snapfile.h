@@ -13,7 +13,8 @@
 enum {
     TT__FILE_STREAM = 0,  /* tt_world_save's stream */
     TT__FILE_LUA = 1,     /* the Lua binding's envelope: "TTLU", u32 version, u64 stream length, stream, user values */
-    TT__FILE_KINDS = 2
+    TT__FILE_JOURNAL = 2, /* a replay journal's bytes (journal_file.c) */
+    TT__FILE_KINDS = 3
 };
 
 /* Writes payload[0..n) of the kind to path (through path.tmp and a rename).

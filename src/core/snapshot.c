@@ -398,7 +398,7 @@ static void load_sections(tt_world *w, tt__source *s)
 }
 
 /* A new world holding the stream's state, or NULL with the reason in why. */
-static tt_world *parse(const void *data, size_t size, uint64_t epoch, char *why, size_t whylen)
+tt_world *tt__world_parse(const void *data, size_t size, uint64_t epoch, char *why, size_t whylen)
 {
     const unsigned char *b = data;
     uint32_t v[3];
@@ -427,30 +427,38 @@ static tt_world *parse(const void *data, size_t size, uint64_t epoch, char *why,
     return NULL;
 }
 
+void tt__world_take(tt_world *w, tt_world *fresh)
+{
+    /* the world keeps its address (scripts and the binding hold it); what it held goes with the husk */
+    tt_world old = *w;
+    *w = *fresh;
+    memcpy(w->error, old.error, sizeof w->error);
+    w->journal = old.journal; /* a journal records the change, and goes on */
+    w->journal_hooks = old.journal_hooks;
+    *fresh = old;
+    fresh->journal = NULL;
+    tt_world_destroy(fresh);
+}
+
 tt_result tt_world_restore(tt_world *w, const void *data, size_t size)
 {
     TT_CHECK_WORLD(w, "tt_world_restore");
     char why[200];
-    tt_world *fresh = parse(data, size, w->epoch + 1, why, sizeof why);
+    tt_world *fresh = tt__world_parse(data, size, w->epoch + 1, why, sizeof why);
     if (!fresh) return tt__fail(w, TT_EINVAL, "tt_world_restore: %s; the world is unchanged", why);
     /* drawing between steps goes on, from the restored positions (a jump has nothing to draw between) */
     if (w->ox && !tt__interp_start(fresh)) {
         tt_world_destroy(fresh);
         return tt__fail(w, TT_ENOMEM, "tt_world_restore: out of memory; the world is unchanged");
     }
-    /* the world keeps its address (scripts and the binding hold it); what it held goes with the husk */
-    tt_world old = *w;
-    *w = *fresh;
-    memcpy(w->error, old.error, sizeof w->error);
-    *fresh = old;
-    tt_world_destroy(fresh);
+    tt__world_take(w, fresh);
     return TT_OK;
 }
 
 tt_world *tt_world_load(const void *data, size_t size)
 {
     char why[200];
-    tt_world *w = parse(data, size, 1, why, sizeof why);
+    tt_world *w = tt__world_parse(data, size, 1, why, sizeof why);
     if (!w) tt__fail(NULL, TT_EINVAL, "tt_world_load: %s", why);
     return w;
 }

@@ -123,6 +123,7 @@ tt_world *tt_world_create(const tt_world_def *def)
 void tt_world_destroy(tt_world *w)
 {
     if (!w) return;
+    if (w->journal) w->journal_hooks->gone(w->journal);
     tt__solver_free(w);
     tt__particles_free(w);
     tt__springs_free(w);
@@ -136,6 +137,8 @@ tt_result tt_world_step(tt_world *w, double dt)
     TT_CHECK_WORLD(w, "tt_world_step");
     tt_result r = check_dt(w, dt, "tt_world_step");
     if (r != TT_OK) return r;
+    /* the world as the calls left it, before the step's own preparations touch it */
+    if (w->journal) w->journal_hooks->before(w->journal, w);
     /* Everything the step's counts call for, before anything changes. */
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
@@ -168,6 +171,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     w->stats.time += dt;
     w->epoch++;
     w->stats.step_ms = tt__now_ms() - t0;
+    if (w->journal) w->journal_hooks->after(w->journal, w, dt);
     if (w->step_oom)
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory for %s; the step ran without it", w->step_oom);
     if (w->stats.diverged)

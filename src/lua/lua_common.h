@@ -257,6 +257,7 @@ tt_world *tl_toworld(lua_State *L, int idx);
 void tl_particles_register(lua_State *L);   /* lua_particles.c */
 void tl_clock_register(lua_State *L);       /* lua_clock.c: tether.clock into the module table on top */
 void tl_rewind_register(lua_State *L);      /* lua_rewind.c: tether.rewind into the module table on top */
+void tl_journal_register(lua_State *L);     /* lua_journal.c: tether.load_journal into the module table on top, w:journal */
 void tl_springs_register(lua_State *L);     /* lua_springs.c */
 void tl_stepping_register(lua_State *L);    /* lua_stepping.c */
 void tl_stats_register(lua_State *L);       /* lua_stats.c */

@@ -5,6 +5,7 @@
  *   tether.world(opts)  a new world (lua_world.c), its methods added below by
  *                       the lua_<concept>.c files
  *   tether.clock(opts)  a fixed-step clock (lua_clock.c)
+ *   tether.load_journal(path)  a replay journal from a file (lua_journal.c)
  *
  * Built into build/tether.so for stock lua5.4 and linked into the runner. */
 #include "lua_common.h"
@@ -40,6 +41,7 @@ TT_API int luaopen_tether(lua_State *L)
     lua_setfield(L, -2, "integrators");
     tl_clock_register(L);
     tl_rewind_register(L);
+    tl_journal_register(L);
     tl_render_register(L);
     tl_mask_register(L);
     tl_mask_ops_register(L);

@@ -184,7 +184,7 @@ static void gather(void)
 {
     const fz_entry *tables[] = { fz_world_entries, fz_particle_entries, fz_constraint_entries,
                                  fz_composite_entries, fz_collide_entries, fz_scene_entries, fz_stream_entries,
-                                 fz_terrain_entries, fz_rewind_entries, fz_mask_entries, fz_mask2_entries,
+                                 fz_terrain_entries, fz_rewind_entries, fz_journal_entries, fz_mask_entries, fz_mask2_entries,
                                  fz_mask3_entries, fz_clock_entries };
     for (unsigned t = 0; t < sizeof tables / sizeof tables[0]; t++)
         for (const fz_entry *e = tables[t]; e->name; e++) {

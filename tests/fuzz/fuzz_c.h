@@ -143,6 +143,7 @@ extern const fz_entry fz_scene_entries[];
 extern const fz_entry fz_stream_entries[]; /* fuzz_c_stream.c */
 extern const fz_entry fz_terrain_entries[]; /* fuzz_c_terrain.c */
 extern const fz_entry fz_rewind_entries[]; /* fuzz_c_rewind.c */
+extern const fz_entry fz_journal_entries[]; /* fuzz_c_journal.c */
 extern const fz_entry fz_mask_entries[];   /* fuzz_c_mask.c */
 extern const fz_entry fz_mask2_entries[];  /* fuzz_c_mask_px.c */
 extern const fz_entry fz_mask3_entries[];  /* fuzz_c_mask_shape.c */

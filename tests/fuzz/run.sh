@@ -24,7 +24,7 @@
 #
 # Adding a target: a function target_NAME taking (SECONDS SEED DIR) that
 # prints one line and returns 0 when it passed, and NAME:WEIGHT in TARGETS.
-TARGETS="lua_api:2 luajit:1 c_api:2 png:1 stream:1"
+TARGETS="lua_api:2 luajit:1 c_api:2 png:1 stream:1 journal:1"
 
 BUILD=${BUILD:-build}
 SECONDS_=${FUZZ_SECONDS:-60}
@@ -63,7 +63,7 @@ target_lua_api() {
 # is checked against the headers first (the static inline handle helpers
 # included), so a new function without one fails here.
 c_api_names() {
-    for h in base world particle spring constraint composite collide terrain rewind clock mask; do
+    for h in base world particle spring constraint composite collide terrain rewind journal clock mask; do
         sed -n 's/^TT_API[^(]*[ *]\(tt_[a-z0-9_]*\)(.*/\1/p' "include/tether/$h.h"
     done
     grep -q 'static inline tt_kind tt_handle_kind' include/tether/base.h && echo tt_handle_kind
@@ -122,6 +122,21 @@ target_stream() {
     fi
     echo "fuzz stream: FAILED (exit $rc), seed $seed"
     echo "    replay: FUZZ_SEED=$seed FUZZ_STREAM_SECONDS=$secs $BUILD/test_c fuzz_stream_reader"
+    tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
+    return 1
+}
+
+# --- the replay journal reader (tests/fuzz/fuzz_journal.c, a test in test_c) -----------
+target_journal() {
+    secs=$1 seed=$2 dir=$3
+    FUZZ_SEED=$seed FUZZ_JOURNAL_SECONDS=$secs "$BUILD/test_c" fuzz_journal_reader >"$dir/log.txt" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
+        echo "fuzz journal: $(grep 'fuzz_journal: ' "$dir/log.txt" | tail -n 1 | sed 's/^ *fuzz_journal: //')"
+        return 0
+    fi
+    echo "fuzz journal: FAILED (exit $rc), seed $seed"
+    echo "    replay: FUZZ_SEED=$seed FUZZ_JOURNAL_SECONDS=$secs $BUILD/test_c fuzz_journal_reader"
     tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
     return 1
 }

@@ -260,6 +260,7 @@ local METHODS = {
   { "fixed_point" },
   { "set_interpolation", "bool" },
   { "interpolation" },
+  { "journal", "opttable" },
   { "particles", "opttable" },
   { "positions", "opttable" },
   { "set_positions", "handles", "xy", "mode" },
