@@ -16,13 +16,12 @@
  * missed: what is not in the snapshot stream is not world state. The dt
  * is the step's only input besides the world; substeps, iterations and
  * every other setting are in the stream, so their changes are in the delta.
- * When a change is recorded, the recording world then steps from that
- * stream loaded, exactly as the replay will: state that calls leave outside
- * the stream (which should not exist, but the random-call test found some:
- * README "Replay") cannot make the recording and its replay differ.
+ * The recording world steps on as it would unrecorded: a world and a copy
+ * loaded from its stream step alike (the random-call test of
+ * tests/lua/test_journal.lua holds the engine to that).
  *
  * Cost: paid only while a world is journaled (two saves, a compare and a
- * hash per step; a load more when calls changed the world); a world that never
+ * hash per step, and the delta when calls changed the world); a world that never
  * journals has two NULL checks per step and keeps every hash. Memory: the
  * snapshot, two streams of work space, and per step about 10 bytes when no
  * call changed anything (a flag byte, the hash, the dt when it changed)

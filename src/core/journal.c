@@ -85,21 +85,6 @@ static void halt(tt_journal *j)
     detach(j);
 }
 
-/* A change recorded, the world steps from that stream loaded, as the
- * replay will: what the calls left outside the stream (state a snapshot
- * does not yet hold, an engine bug wherever it matters) cannot make the
- * recording and the replay differ. Memory short: recording stops. */
-static void rebase(tt_journal *j, tt_world *w)
-{
-    char why[200];
-    tt_world *fresh = tt__world_parse(j->cur, j->cur_n, w->epoch + 1, why, sizeof why);
-    if (!fresh) {
-        halt(j);
-        return;
-    }
-    tt__world_take(w, fresh);
-}
-
 static void on_before(tt_journal *j, tt_world *w)
 {
     /* a step refused for want of memory after this hook ran left its coding here */
@@ -111,7 +96,6 @@ static void on_before(tt_journal *j, tt_world *w)
     if (j->cur_n == j->ref_n && memcmp(j->cur, j->ref, j->cur_n) == 0) return;
     if (!tt__delta_encode(j->cur, j->cur_n, j->ref, j->ref_n, &j->delta, &j->delta_n)) { halt(j); return; }
     j->pending = true;
-    rebase(j, w);
 }
 
 /* Appends the step's entry; false when it does not fit in max_bytes or memory. */
