@@ -198,7 +198,7 @@ typedef struct tt__record {  /* one contact of the step, for events */
 typedef struct tt__collide {
     tt_collision_settings set;
     /* shapes */
-    tt_pool spool;
+    tt__pool spool;
     tt__shape *shapes;
     uint32_t shcap, shapes_alive;
     bool dirty;

@@ -355,7 +355,7 @@ static bool load_particle_data(tt_world *w, tt__collide *c, tt__source *s)
         tt__get(s, c->bullet, n);
         for (uint32_t i = 0; i < cap; i++) {
             c->ccd_prim[i] = -1;
-            if (c->bullet[i] > 1 || (c->bullet[i] && !(w->flags[i] & TT_PF_ALIVE))) return tt__src_fail(s, "bullet %u", i);
+            if (c->bullet[i] > 1 || (c->bullet[i] && !(w->flags[i] & TT__PF_ALIVE))) return tt__src_fail(s, "bullet %u", i);
             c->nbullets += c->bullet[i];
         }
     }

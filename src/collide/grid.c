@@ -67,7 +67,7 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     const double ox = g->ox, oy = g->oy, inv = g->inv;
     const int32_t nx = g->nx, ny = g->ny;
     for (uint32_t i = 0; i < n; i++) {
-        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        if (!(flags[i] & TT__PF_ALIVE)) continue;
         int32_t cx = tt__cell_coord(px[i], ox, inv), cy = tt__cell_coord(py[i], oy, inv);
         bool out = cx < 0 || cy < 0 || cx >= nx || cy >= ny;
         if (TT_UNLIKELY(out)) {
@@ -86,7 +86,7 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     /* scatter backwards, so each cell fills from its end and keeps slot order
      * (stable, deterministic); start[c] ends at cell c's beginning */
     for (uint32_t i = n; i-- > 0;) {
-        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        if (!(flags[i] & TT__PF_ALIVE)) continue;
         uint32_t c = cell[i] & 0x7FFFFFFFu, k = --start[c];
         idx[k] = i;
         sx[k] = px[i];
@@ -150,7 +150,7 @@ bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
     uint32_t m = 0;
     uint16_t cat_or = 0, cat_and = 0xFFFF, mask_or = 0, mask_and = 0xFFFF;
     for (uint32_t i = 0; i < n; i++) {
-        if (!(flags[i] & TT_PF_ALIVE)) continue;
+        if (!(flags[i] & TT__PF_ALIVE)) continue;
         double x = px[i], y = py[i];
         double r = rad[i];
         cat_or |= cat[i]; cat_and &= cat[i];
@@ -183,7 +183,7 @@ bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
     if ((double)g->nx * g->ny > limit) { /* a few particles far away: a second pass for the spread */
         double sx = 0, sy = 0, sxx = 0, syy = 0;
         for (uint32_t i = 0; i < n; i++) {
-            if (!(flags[i] & TT_PF_ALIVE)) continue;
+            if (!(flags[i] & TT__PF_ALIVE)) continue;
             double x = px[i], y = py[i];
             sx += x; sy += y; sxx += x * x; syy += y * y;
         }

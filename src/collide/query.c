@@ -126,7 +126,7 @@ static bool ray_shape_cell(void *ctx, int32_t cx, int32_t cy, double te)
 static void ray_particle(ray_ctx *r, uint32_t i)
 {
     const tt_world *w = r->w;
-    if (!(w->flags[i] & TT_PF_ALIVE) || !(w->category[i] & r->mask)) return;
+    if (!(w->flags[i] & TT__PF_ALIVE) || !(w->category[i] & r->mask)) return;
     double t, nx, ny;
     if (!tt__ray_vs_circle(r->ox, r->oy, r->dx, r->dy, w->px[i], w->py[i], w->radius[i], r->best->fraction, &t, &nx, &ny)) return;
     if (r->best->hit && (t > r->best->fraction || (t == r->best->fraction && r->best->particle.gen && i > r->best->particle.index))) return;
@@ -216,7 +216,7 @@ static void area_prim(void *ctx, uint32_t k)
 
 static bool particle_in(const tt_world *w, uint32_t i, const area_ctx *a)
 {
-    if (!(w->flags[i] & TT_PF_ALIVE) || !(w->category[i] & a->mask)) return false;
+    if (!(w->flags[i] & TT__PF_ALIVE) || !(w->category[i] & a->mask)) return false;
     double x = w->px[i], y = w->py[i], r = w->radius[i];
     double dx = x < a->lox ? a->lox - x : x > a->hix ? x - a->hix : 0.0;
     double dy = y < a->loy ? a->loy - y : y > a->hiy ? y - a->hiy : 0.0;

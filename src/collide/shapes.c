@@ -129,7 +129,7 @@ tt_shape tt_shape_create(tt_world *w, const tt_shape_def *def)
     bool grew;
     uint32_t need = c->spool.free_count ? c->spool.count : c->spool.count + 1;
     uint32_t i = tt__grow((void **)&c->shapes, &c->shcap, need, sizeof *c->shapes)
-                     ? tt_pool_alloc(&c->spool, TT_MAX_SHAPES, &grew) : UINT32_MAX;
+                     ? tt__pool_alloc(&c->spool, TT_MAX_SHAPES, &grew) : UINT32_MAX;
     if (i == UINT32_MAX) {
         free(pts);
         if (!had) tt__group_remove(w, &tt__contacts_ops);
@@ -164,7 +164,7 @@ tt_result tt_shape_destroy(tt_world *w, tt_shape s)
     free(sh->pts);
     sh->pts = NULL;
     sh->alive = false;
-    tt_pool_free(&c->spool, s.index);
+    tt__pool_free(&c->spool, s.index);
     c->shapes_alive--;
     c->dirty = true;
     /* its contacts of the last step will never END: drop them (key: bit 63 shape, bits 32..62 shape slot) */
@@ -271,7 +271,7 @@ void tt__shapes_free(tt__collide *c)
     /* a load that ran out of memory may leave the pool read and the array not made */
     for (uint32_t i = 0; c->shapes && i < c->spool.count; i++) free(c->shapes[i].pts);
     free(c->shapes);
-    tt_pool_destroy(&c->spool);
+    tt__pool_destroy(&c->spool);
     free(c->prims); free(c->verts); free(c->norms);
     free(c->sgrid.start); free(c->sgrid.items); free(c->sgrid.big);
     free(c->pstamp); free(c->sstamp);
@@ -279,7 +279,7 @@ void tt__shapes_free(tt__collide *c)
 
 size_t tt__shapes_bytes(const tt__collide *c)
 {
-    size_t b = (size_t)c->shcap * sizeof(tt__shape) + tt_pool_bytes(&c->spool);
+    size_t b = (size_t)c->shcap * sizeof(tt__shape) + tt__pool_bytes(&c->spool);
     for (uint32_t i = 0; i < c->spool.count; i++)
         if (c->shapes[i].alive) b += (size_t)c->shapes[i].def.count * sizeof(tt_vec2);
     b += (size_t)c->primcap * sizeof(tt__prim) + ((size_t)c->vertcap + c->normcap) * sizeof(tt_vec2);

@@ -82,10 +82,10 @@ tt_terrain tt_terrain_create(tt_world *w, const tt_terrain_def *def)
         bool grew;
         uint32_t need = ts->pool.free_count ? ts->pool.count : ts->pool.count + 1;
         if (tt__grow((void **)&ts->t, &ts->cap, need, sizeof *ts->t)) {
-            tt_pool_mark mark = tt_pool_mark_now(&ts->pool);
-            i = tt_pool_alloc(&ts->pool, TT_MAX_TERRAINS, &grew);
+            tt__pool_mark mark = tt__pool_mark_now(&ts->pool);
+            i = tt__pool_alloc(&ts->pool, TT_MAX_TERRAINS, &grew);
             if (i != UINT32_MAX && !build(ts, &ts->t[i], def)) {
-                tt_pool_rewind(&ts->pool, mark);
+                tt__pool_rewind(&ts->pool, mark);
                 i = UINT32_MAX;
             }
         }
@@ -116,7 +116,7 @@ tt_result tt_terrain_destroy(tt_world *w, tt_terrain t)
 {
     TERRAIN_CHECK("tt_terrain_destroy");
     tt__terrain_free_one(T);
-    tt_pool_free(&c->terr->pool, t.index);
+    tt__pool_free(&c->terr->pool, t.index);
     c->terr->alive--;
     /* its contacts of the last step will never END: drop them */
     const uint64_t match = (3ull << 62) | ((uint64_t)t.index << 32);

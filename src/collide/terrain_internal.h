@@ -26,7 +26,7 @@ typedef struct tt__terrain {
 } tt__terrain;
 
 typedef struct tt__terrains {
-    tt_pool pool;
+    tt__pool pool;
     tt__terrain *t;
     uint32_t cap, alive;
     /* scratch of the distance update (terrain_band.c), and its table of

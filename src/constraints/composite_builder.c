@@ -50,11 +50,11 @@ static void undo(tt__builder *b)
     /* removal bumped generations and reordered free lists: put both back */
     tt__cgroup *g = tt__cgroup_find(w);
     if (g) {
-        for (uint32_t i = 0; i < b->c.nc; i++) tt_pool_unalloc(&g->pool, b->cmark, i, b->c.cons[i].index, b->c.cons[i].gen);
-        tt_pool_rewind(&g->pool, b->cmark);
+        for (uint32_t i = 0; i < b->c.nc; i++) tt__pool_unalloc(&g->pool, b->cmark, i, b->c.cons[i].index, b->c.cons[i].gen);
+        tt__pool_rewind(&g->pool, b->cmark);
     }
-    for (uint32_t i = 0; i < b->c.np; i++) tt_pool_unalloc(&w->ppool, b->pmark, i, b->c.parts[i].index, b->c.parts[i].gen);
-    tt_pool_rewind(&w->ppool, b->pmark);
+    for (uint32_t i = 0; i < b->c.np; i++) tt__pool_unalloc(&w->ppool, b->pmark, i, b->c.parts[i].index, b->c.parts[i].gen);
+    tt__pool_rewind(&w->ppool, b->pmark);
     w->fresh_count = b->fresh_count;
     w->epoch = b->epoch; /* the particles are as they were, so is what was computed from them */
     tt__cgroup_unmake(w, b->had_group);
@@ -94,12 +94,12 @@ bool tt__builder_spawn(tt__builder *b)
         release(b);
         return false;
     }
-    b->pmark = tt_pool_mark_now(&w->ppool);
+    b->pmark = tt__pool_mark_now(&w->ppool);
     b->fresh_count = w->fresh_count;
     b->epoch = w->epoch;
     b->had_group = tt__cgroup_peek(w) != NULL;
     tt__cgroup *g = tt__cgroup_make(w); /* made here, it starts empty: a mark like any other */
-    if (g) b->cmark = tt_pool_mark_now(&g->pool);
+    if (g) b->cmark = tt__pool_mark_now(&g->pool);
     if (!g || !reserve_record(g)) {
         tt__fail(w, TT_ENOMEM, "%s: out of memory", b->fn);
         undo(b);
@@ -180,7 +180,7 @@ tt_composite tt__builder_finish(tt__builder *b)
     tt_world *w = b->w;
     tt__cgroup *g = tt__cgroup_find(w);
     bool grew;
-    uint32_t s = b->failed ? UINT32_MAX : tt_pool_alloc(&g->cpool, UINT32_MAX - 1, &grew);
+    uint32_t s = b->failed ? UINT32_MAX : tt__pool_alloc(&g->cpool, UINT32_MAX - 1, &grew);
     if (s == UINT32_MAX) {
         if (!b->failed) tt__fail(w, TT_ENOMEM, "%s: out of memory", b->fn);
         undo(b);

@@ -44,7 +44,7 @@ tt_result tt_composite_destroy(tt_world *w, tt_composite c)
     free(k->cons);
     free(k->rest);
     memset(k, 0, sizeof *k);
-    tt_pool_free(&g->cpool, c.index);
+    tt__pool_free(&g->cpool, c.index);
     g->comps_alive--;
     return TT_OK;
 }

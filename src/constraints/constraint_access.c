@@ -53,7 +53,7 @@ static double gen_error(const tt_world *w, const tt__gcon *c)
             for (uint32_t k = 0; k < c->n; k++) e = fmax(e, tt__constraint_bounds_violation(w, c, c->list[k], &dx, &dy));
         } else {
             for (uint32_t i = 0; i < w->ppool.count; i++)
-                if (w->flags[i] & TT_PF_ALIVE) e = fmax(e, tt__constraint_bounds_violation(w, c, i, &dx, &dy));
+                if (w->flags[i] & TT__PF_ALIVE) e = fmax(e, tt__constraint_bounds_violation(w, c, i, &dx, &dy));
         }
         return e;
     }

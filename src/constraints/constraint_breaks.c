@@ -19,7 +19,7 @@ bool tt__cgroup_reserve(tt_world *w, void *self)
     if (!tt__distance_plan_reserve(w, g)) return false;
     if (!g->nbreakable) return true;
     return tt__grow((void **)&g->ev_new, &g->cap_new, g->nnew + g->nbreakable, sizeof *g->ev_new) &&
-           tt_pool_reserve_free(&g->pool, g->nbreakable);
+           tt__pool_reserve_free(&g->pool, g->nbreakable);
 }
 
 /* Called at the end of each substep, after the bounds' friction. */

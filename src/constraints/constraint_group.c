@@ -21,7 +21,7 @@ bool tt__cgroup_slot_new(tt__cgroup *g, uint8_t kind, uint32_t dense, uint32_t *
     uint32_t need = g->pool.free_count ? g->pool.count : g->pool.count + 1;
     if (!tt__grow((void **)&g->slots, &g->slot_cap, need, sizeof *g->slots)) return false;
     bool grew;
-    uint32_t s = tt_pool_alloc(&g->pool, UINT32_MAX - 1, &grew);
+    uint32_t s = tt__pool_alloc(&g->pool, UINT32_MAX - 1, &grew);
     if (s == UINT32_MAX) return false;
     g->slots[s] = (tt__cslot){kind, dense, 0, 0.0};
     g->alive++;
@@ -61,7 +61,7 @@ void tt__cgroup_dist_remove(tt__cgroup *g, uint32_t d)
     if (c->alpha > 0) g->nxpbd--;
     tt__target_forget(g, x->slot);
     g->slots[x->slot].kind = 0;
-    tt_pool_free(&g->pool, x->slot);
+    tt__pool_free(&g->pool, x->slot);
     g->alive--;
     g->plan_ok = false;
     uint32_t last = --g->ndist;
@@ -79,7 +79,7 @@ static void gen_remove(tt__cgroup *g, uint32_t d)
     free(c->list);
     tt__target_forget(g, c->slot);
     g->slots[c->slot].kind = 0;
-    tt_pool_free(&g->pool, c->slot);
+    tt__pool_free(&g->pool, c->slot);
     g->alive--;
     uint32_t last = --g->ngen;
     if (d != last) {
@@ -129,7 +129,7 @@ size_t tt__cgroup_memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__cgroup *g = self;
-    size_t b = sizeof *g + tt_pool_bytes(&g->pool) + (size_t)g->slot_cap * sizeof(tt__cslot);
+    size_t b = sizeof *g + tt__pool_bytes(&g->pool) + (size_t)g->slot_cap * sizeof(tt__cslot);
     b += (size_t)g->dist_cap * sizeof(tt__dist) + (size_t)g->dx_cap * sizeof(tt__dist_x);
     b += (size_t)g->gen_cap * sizeof(tt__gcon);
     for (uint32_t i = 0; i < g->ngen; i++)
@@ -163,7 +163,7 @@ void tt__cgroup_destroy(tt_world *w, void *self)
     free(g->stamp);
     free(g->pk);
     free(g->h_lo);
-    tt_pool_destroy(&g->pool);
+    tt__pool_destroy(&g->pool);
     tt__composites_free(g);
     free(g);
 }
@@ -195,12 +195,12 @@ void tt__composites_free(tt__cgroup *g)
         free(g->comps[i].rest);
     }
     free(g->comps);
-    tt_pool_destroy(&g->cpool);
+    tt__pool_destroy(&g->cpool);
 }
 
 size_t tt__composites_memory(const tt__cgroup *g)
 {
-    size_t b = (size_t)g->comp_cap * sizeof(tt__composite) + tt_pool_bytes(&g->cpool);
+    size_t b = (size_t)g->comp_cap * sizeof(tt__composite) + tt__pool_bytes(&g->cpool);
     for (uint32_t i = 0; i < tt__comp_slots(g); i++) {
         const tt__composite *k = &g->comps[i];
         if (!k->alive) continue;

@@ -109,7 +109,7 @@ void tt__cgroup_save(const tt_world *w, const void *self, tt__sink *s)
 
 /* ---- loading ------------------------------------------------------------------- */
 
-static bool alive(const tt_world *w, uint32_t i) { return i < w->ppool.count && (w->flags[i] & TT_PF_ALIVE); }
+static bool alive(const tt_world *w, uint32_t i) { return i < w->ppool.count && (w->flags[i] & TT__PF_ALIVE); }
 
 static bool slot_is(const tt__cgroup *g, uint32_t slot, uint32_t dense, bool dist)
 {

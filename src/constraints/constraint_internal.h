@@ -76,7 +76,7 @@ typedef struct tt__composite {
  * excluded pairs) or per-step scratch (plan, pk, hot copies, grad, new
  * events), rebuilt after a restore. */
 typedef struct tt__cgroup {
-    tt_pool pool;
+    tt__pool pool;
     tt__cslot *slots;
     uint32_t slot_cap, alive;
 
@@ -124,7 +124,7 @@ typedef struct tt__cgroup {
     uint32_t grad_cap;
 
     /* composites (composites.c) */
-    tt_pool cpool;
+    tt__pool cpool;
     tt__composite *comps;
     uint32_t comp_cap, comps_alive;
 } tt__cgroup;
@@ -236,7 +236,7 @@ typedef struct tt__builder {
     tt__spot *spots;        /* where each particle goes, in order */
     uint32_t nspots;
     /* the world before its first change, for undo */
-    tt_pool_mark pmark, cmark;
+    tt__pool_mark pmark, cmark;
     uint32_t fresh_count;
     uint64_t epoch;         /* particles made and removed moved it on: caches keyed by it would be stale */
     bool had_group;         /* the constraint group was there before */

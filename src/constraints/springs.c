@@ -59,7 +59,7 @@ tt_spring tt_spring_create(tt_world *w, const tt_spring_def *d)
         w->scap = cap;
     }
     bool grew;
-    uint32_t i = tt_pool_alloc(&w->spool, UINT32_MAX - 1, &grew);
+    uint32_t i = tt__pool_alloc(&w->spool, UINT32_MAX - 1, &grew);
     if (i == UINT32_MAX) { tt__fail(w, TT_ENOMEM, "%s: out of memory", fn); return none; }
     tt__spring *s = &w->springs[i];
     s->a = d->a.index;
@@ -79,7 +79,7 @@ static void spring_kill(tt_world *w, uint32_t i)
     w->springs[i].alive = false;
     tt__sleep_touch(w, w->springs[i].a);
     tt__sleep_touch(w, w->springs[i].b);
-    tt_pool_free(&w->spool, i);
+    tt__pool_free(&w->spool, i);
     w->springs_alive--;
 }
 
@@ -180,5 +180,5 @@ void tt__springs_free(tt_world *w)
     free(w->ends);
     w->ends = NULL;
     w->ends_cap = 0;
-    tt_pool_destroy(&w->spool);
+    tt__pool_destroy(&w->spool);
 }

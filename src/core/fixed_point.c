@@ -70,7 +70,7 @@ bool tt__fixed_loaded_ok(const tt_world *w)
     if (w->fixed_point == 0.0) return true;
     if (w->integrator != TT_VERLET) return false;
     for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         tt_vec2 p = {w->px[i], w->py[i]};
         if (!tt__fixed_in_range(w, p) || tt__fixed_snap(w->fixed_point, p.x) != p.x ||
             tt__fixed_snap(w->fixed_point, p.y) != p.y)

@@ -32,8 +32,8 @@ static void verlet_fresh(tt_world *w, const double *ax, const double *ay)
     const double h = 0.5 * w->dt_prev * w->dt_prev;
     for (uint32_t k = 0; k < w->fresh_count; k++) {
         uint32_t i = w->fresh[k];
-        if (!(w->flags[i] & TT_PF_FRESH)) continue;
-        w->flags[i] &= (uint16_t)~TT_PF_FRESH;
+        if (!(w->flags[i] & TT__PF_FRESH)) continue;
+        w->flags[i] &= (uint16_t)~TT__PF_FRESH;
         if (w->inv_mass[i] == 0.0) continue;
         w->qx[i] += (ax ? ax[i] : w->gravity.x) * h;
         w->qy[i] += (ay ? ay[i] : w->gravity.y) * h;
@@ -163,8 +163,8 @@ static uint32_t verlet_few(tt_world *w, double dt)
     const double cx = w->gravity.x + w->wind.x, cy = w->gravity.y + w->wind.y;
     for (uint32_t k = 0; k < w->fresh_count; k++) { /* as in verlet() */
         uint32_t i = w->fresh[k];
-        if (!(w->flags[i] & TT_PF_FRESH)) continue;
-        w->flags[i] &= (uint16_t)~TT_PF_FRESH;
+        if (!(w->flags[i] & TT__PF_FRESH)) continue;
+        w->flags[i] &= (uint16_t)~TT__PF_FRESH;
         if (inv[i] == 0.0) continue;
         const bool end = bsearch(&i, ends, m, sizeof *ends, cmp_u32) != NULL;
         double h = 0.5 * w->dt_prev * w->dt_prev;
@@ -440,7 +440,7 @@ void tt__convert_state(tt_world *w, tt_integrator from, tt_integrator to)
         for (uint32_t i = 0; i < n; i++) {
             w->qx[i] = (w->px[i] - w->qx[i]) / dt;
             w->qy[i] = (w->py[i] - w->qy[i]) / dt;
-            w->flags[i] &= (uint16_t)~TT_PF_FRESH;
+            w->flags[i] &= (uint16_t)~TT__PF_FRESH;
         }
         w->fresh_count = 0;
         w->integrator = to;
@@ -448,7 +448,7 @@ void tt__convert_state(tt_world *w, tt_integrator from, tt_integrator to)
     }
     w->integrator = to;
     for (uint32_t i = 0; i < n; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         tt__set_velocity(w, i, (tt_vec2){w->qx[i], w->qy[i]});
     }
 }

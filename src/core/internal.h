@@ -18,10 +18,10 @@
 
 /* Particle flags. */
 enum {
-    TT_PF_ALIVE = 1u << 0,
-    TT_PF_PINNED = 1u << 1,
-    TT_PF_FRESH = 1u << 2, /* Verlet: velocity was set exactly; first step starts with a·dt²/2 */
-    TT_PF_ASLEEP = 1u << 3 /* sleep.c: at rest, held as if pinned (inverse mass 0) until woken */
+    TT__PF_ALIVE = 1u << 0,
+    TT__PF_PINNED = 1u << 1,
+    TT__PF_FRESH = 1u << 2, /* Verlet: velocity was set exactly; first step starts with a·dt²/2 */
+    TT__PF_ASLEEP = 1u << 3 /* sleep.c: at rest, held as if pinned (inverse mass 0) until woken */
 };
 
 typedef struct tt__spring {
@@ -124,7 +124,7 @@ struct tt_world {
     double fixed_point;   /* 0, or the quantum every position is a multiple of (fixed_point.c) */
 
     /* particles: struct of arrays indexed by slot; a slot keeps its index for life */
-    tt_pool ppool;
+    tt__pool ppool;
     uint32_t pcap;        /* slots allocated in each array */
     uint32_t alive;
     double *px, *py;      /* position */
@@ -158,7 +158,7 @@ struct tt_world {
     uint32_t bcap;
 
     /* springs */
-    tt_pool spool;
+    tt__pool spool;
     tt__spring *springs;
     uint32_t scap, springs_alive;
     uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */

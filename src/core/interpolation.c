@@ -68,7 +68,7 @@ uint32_t tt_world_read_previous_positions(const tt_world *w, double *xy, uint32_
     const double *x = w->ox ? w->ox : w->px, *y = w->ox ? w->oy : w->py;
     uint32_t n = 0;
     for (uint32_t i = 0; i < w->ppool.count && n < cap; i++)
-        if (w->flags[i] & TT_PF_ALIVE) {
+        if (w->flags[i] & TT__PF_ALIVE) {
             xy[2 * n] = x[i];
             xy[2 * n + 1] = y[i];
             n++;

@@ -48,7 +48,7 @@ void tt__particles_free(tt_world *w)
     free(w->fx); free(w->fy); free(w->user); free(w->fresh);
     free(w->ox); free(w->oy);
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) free(w->scratch[k]);
-    tt_pool_destroy(&w->ppool);
+    tt__pool_destroy(&w->ppool);
 }
 
 /* Optional arrays appear on first use, so worlds that never need them never pay. */
@@ -93,7 +93,7 @@ uint32_t tt__particle_room(const tt_world *w)
 bool tt__particle_ok(const tt_world *w, tt_particle p)
 {
     return w && p.index < w->ppool.count && p.gen != 0 && w->ppool.gen[p.index] == p.gen &&
-           (w->flags[p.index] & TT_PF_ALIVE);
+           (w->flags[p.index] & TT__PF_ALIVE);
 }
 
 tt_result tt__particle_check(const tt_world *w, tt_particle p, const char *fn)
@@ -106,7 +106,7 @@ tt_result tt__particle_check(const tt_world *w, tt_particle p, const char *fn)
 
 void tt__mark_fresh(tt_world *w, uint32_t i)
 {
-    if (w->integrator != TT_VERLET || (w->flags[i] & TT_PF_FRESH)) return;
+    if (w->integrator != TT_VERLET || (w->flags[i] & TT__PF_FRESH)) return;
     if (w->fresh_count == w->fresh_cap) {
         uint32_t cap = w->fresh_cap ? w->fresh_cap * 2 : 64;
         uint32_t *f = realloc(w->fresh, (size_t)cap * sizeof *f);
@@ -115,7 +115,7 @@ void tt__mark_fresh(tt_world *w, uint32_t i)
         w->fresh_cap = cap;
     }
     w->fresh[w->fresh_count++] = i;
-    w->flags[i] |= TT_PF_FRESH;
+    w->flags[i] |= TT__PF_FRESH;
 }
 
 void tt__set_velocity(tt_world *w, uint32_t i, tt_vec2 v)
@@ -164,7 +164,7 @@ tt_particle tt_particle_create(tt_world *w, const tt_particle_def *d)
         return none; /* reserve said why */
     if (d->user && need_user(w) != TT_OK) return none;
     bool grew;
-    uint32_t i = tt_pool_alloc(&w->ppool, w->pcap, &grew);
+    uint32_t i = tt__pool_alloc(&w->ppool, w->pcap, &grew);
     if (i == UINT32_MAX) {
         tt__fail(w, TT_ENOMEM, "tt_particle_create: the world is full (max_particles %u)", w->max_particles);
         return none;
@@ -176,7 +176,7 @@ tt_particle tt_particle_create(tt_world *w, const tt_particle_def *d)
     w->mass[i] = d->mass;
     w->inv_mass[i] = d->pinned ? 0.0 : 1.0 / d->mass;
     w->radius[i] = (float)d->radius;
-    w->flags[i] = TT_PF_ALIVE | (d->pinned ? TT_PF_PINNED : 0);
+    w->flags[i] = TT__PF_ALIVE | (d->pinned ? TT__PF_PINNED : 0);
     w->category[i] = d->category;
     w->mask[i] = d->mask;
     if (w->fx) w->fx[i] = w->fy[i] = 0.0;
@@ -203,7 +203,7 @@ tt_result tt_particle_destroy(tt_world *w, tt_particle p)
     w->category[i] = w->mask[i] = 0;
     if (w->fx) w->fx[i] = w->fy[i] = 0.0;
     if (w->user) w->user[i] = 0;
-    tt_pool_free(&w->ppool, i);
+    tt__pool_free(&w->ppool, i);
     w->alive--;
     return TT_OK;
 }
@@ -257,7 +257,7 @@ tt_result tt_particle_set_velocity(tt_world *w, tt_particle p, tt_vec2 v)
 {
     CHECK("tt_particle_set_velocity");
     if (!tt__vec_ok(v)) return tt__fail(w, TT_EINVAL, "tt_particle_set_velocity: velocity must be finite, |v| <= %g", TT_MAX_VALUE);
-    if (w->flags[i] & TT_PF_PINNED) return tt__fail(w, TT_ESTATE, "tt_particle_set_velocity: the particle is pinned");
+    if (w->flags[i] & TT__PF_PINNED) return tt__fail(w, TT_ESTATE, "tt_particle_set_velocity: the particle is pinned");
     tt__sleep_touch(w, i);
     tt__set_velocity(w, i, v);
     return TT_OK;
@@ -277,28 +277,28 @@ tt_result tt_particle_set_mass(tt_world *w, tt_particle p, double mass)
         return tt__fail(w, TT_EINVAL, "tt_particle_set_mass: mass must be in [%g, %g], got %g", TT_MIN_MASS, TT_MAX_MASS, mass);
     tt__sleep_touch(w, i);
     w->mass[i] = mass;
-    if (!(w->flags[i] & TT_PF_PINNED)) w->inv_mass[i] = 1.0 / mass;
+    if (!(w->flags[i] & TT__PF_PINNED)) w->inv_mass[i] = 1.0 / mass;
     return TT_OK;
 }
 
 tt_result tt_particle_get_pinned(const tt_world *w, tt_particle p, bool *out)
 {
     CHECK_OUT("tt_particle_get_pinned");
-    *out = (w->flags[i] & TT_PF_PINNED) != 0;
+    *out = (w->flags[i] & TT__PF_PINNED) != 0;
     return TT_OK;
 }
 
 tt_result tt_particle_set_pinned(tt_world *w, tt_particle p, bool pinned)
 {
     CHECK("tt_particle_set_pinned");
-    if (pinned == ((w->flags[i] & TT_PF_PINNED) != 0)) return TT_OK;
+    if (pinned == ((w->flags[i] & TT__PF_PINNED) != 0)) return TT_OK;
     tt__sleep_touch(w, i);
     tt__set_velocity(w, i, (tt_vec2){0, 0});
     if (pinned) {
-        w->flags[i] |= TT_PF_PINNED;
+        w->flags[i] |= TT__PF_PINNED;
         w->inv_mass[i] = 0.0;
     } else {
-        w->flags[i] &= (uint16_t)~TT_PF_PINNED;
+        w->flags[i] &= (uint16_t)~TT__PF_PINNED;
         w->inv_mass[i] = 1.0 / w->mass[i];
     }
     return TT_OK;
@@ -307,7 +307,7 @@ tt_result tt_particle_set_pinned(tt_world *w, tt_particle p, bool pinned)
 tt_result tt_particle_get_asleep(const tt_world *w, tt_particle p, bool *out)
 {
     CHECK_OUT("tt_particle_get_asleep");
-    *out = (w->flags[i] & TT_PF_ASLEEP) != 0;
+    *out = (w->flags[i] & TT__PF_ASLEEP) != 0;
     return TT_OK;
 }
 
@@ -430,7 +430,7 @@ uint32_t tt_world_list_particles(const tt_world *w, tt_particle *out, uint32_t c
     if (out) {
         uint32_t n = 0;
         for (uint32_t i = 0; i < w->ppool.count && n < cap; i++)
-            if (w->flags[i] & TT_PF_ALIVE) out[n++] = (tt_particle){i, w->ppool.gen[i]};
+            if (w->flags[i] & TT__PF_ALIVE) out[n++] = (tt_particle){i, w->ppool.gen[i]};
     }
     return w->alive;
 }
@@ -440,7 +440,7 @@ uint32_t tt_world_read_positions(const tt_world *w, double *xy, uint32_t cap)
     if (!w || !xy) return 0;
     uint32_t n = 0;
     for (uint32_t i = 0; i < w->ppool.count && n < cap; i++)
-        if (w->flags[i] & TT_PF_ALIVE) {
+        if (w->flags[i] & TT__PF_ALIVE) {
             xy[2 * n] = w->px[i];
             xy[2 * n + 1] = w->py[i];
             n++;

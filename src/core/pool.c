@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew)
+uint32_t tt__pool_alloc(tt__pool *p, uint32_t limit, bool *grew)
 {
     *grew = false;
     if (p->free_count > 0) return p->free_list[--p->free_count];
@@ -21,7 +21,7 @@ uint32_t tt_pool_alloc(tt_pool *p, uint32_t limit, bool *grew)
     return i;
 }
 
-bool tt_pool_reserve_free(tt_pool *p, uint32_t more)
+bool tt__pool_reserve_free(tt__pool *p, uint32_t more)
 {
     /* The free list grows only with removals, so worlds that never remove never pay. */
     uint64_t need = (uint64_t)p->free_count + more;
@@ -37,17 +37,17 @@ bool tt_pool_reserve_free(tt_pool *p, uint32_t more)
     return true;
 }
 
-void tt_pool_free(tt_pool *p, uint32_t index)
+void tt__pool_free(tt__pool *p, uint32_t index)
 {
     if ((p->gen[index] & TT_POOL_GEN_MASK) == TT_POOL_GEN_MASK) return; /* retired: its handles stay stale forever */
     p->gen[index]++;
-    /* Removals reserve their room first (tt_pool_reserve_free); without it
+    /* Removals reserve their room first (tt__pool_reserve_free); without it
      * the slot is retired rather than recycled: its handles stay stale. */
-    if (!tt_pool_reserve_free(p, 1)) return;
+    if (!tt__pool_reserve_free(p, 1)) return;
     p->free_list[p->free_count++] = index;
 }
 
-void tt_pool_unalloc(tt_pool *p, tt_pool_mark m, uint32_t k, uint32_t index, uint32_t gen)
+void tt__pool_unalloc(tt__pool *p, tt__pool_mark m, uint32_t k, uint32_t index, uint32_t gen)
 {
     /* The free list hands out its top first, so the k-th slot came from
      * m.free_count − 1 − k; past the list's end, from the high-water mark,
@@ -57,22 +57,22 @@ void tt_pool_unalloc(tt_pool *p, tt_pool_mark m, uint32_t k, uint32_t index, uin
     p->gen[index] = gen;
 }
 
-void tt_pool_rewind(tt_pool *p, tt_pool_mark m)
+void tt__pool_rewind(tt__pool *p, tt__pool_mark m)
 {
     p->free_count = m.free_count;
     p->count = m.count;
 }
 
-void tt_pool_destroy(tt_pool *p)
+void tt__pool_destroy(tt__pool *p)
 {
     uint32_t tag = p->tag;
     free(p->gen);
     free(p->free_list);
-    *p = (tt_pool){0};
+    *p = (tt__pool){0};
     p->tag = tag;
 }
 
-size_t tt_pool_bytes(const tt_pool *p)
+size_t tt__pool_bytes(const tt__pool *p)
 {
     return (size_t)p->cap * sizeof(uint32_t) + (size_t)p->free_cap * sizeof(uint32_t);
 }

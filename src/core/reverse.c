@@ -22,7 +22,7 @@ static const char *irreversible(const tt_world *w)
     for (uint32_t i = 0; i < w->spool.count; i++)
         if (w->springs[i].alive && w->springs[i].c != 0.0) return "spring damping (a spring with damping > 0)";
     for (uint32_t k = 0; k < w->fresh_count; k++)
-        if (w->flags[w->fresh[k]] & TT_PF_FRESH) return "a velocity set since the last step (step once first)";
+        if (w->flags[w->fresh[k]] & TT__PF_FRESH) return "a velocity set since the last step (step once first)";
     return NULL;
 }
 
@@ -34,7 +34,7 @@ tt_result tt_world_reverse(tt_world *w)
     const uint32_t n = w->ppool.count;
     const double q = w->fixed_point;
     for (uint32_t i = 0; i < n; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         double x = w->px[i], y = w->py[i];
         /* x_old is on a fixed-point lattice after every step; an impulse
          * since moved it off, and positions never leave it */

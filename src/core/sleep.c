@@ -13,7 +13,7 @@
  * leaning on a sleeper (Box2D sleeps by islands for the same reason).
  *
  * A sleeping particle is stored as a pinned one is (inverse mass 0, its
- * velocity zero), flagged TT_PF_ASLEEP, its mass kept: the integrator, shape
+ * velocity zero), flagged TT__PF_ASLEEP, its mass kept: the integrator, shape
  * detection and every relaxation sweep skip it, and the grid makes no pair
  * of two sleepers, with no test of their own in any of those loops. An
  * awake particle still meets a sleeper in the grid: that pair wakes the
@@ -90,7 +90,7 @@ static bool reserve(tt_world *w, void *self) { return grow(self, w->ppool.count 
 
 static inline bool dynamic(const tt_world *w, uint32_t i)
 {
-    return (w->flags[i] & (TT_PF_ALIVE | TT_PF_PINNED)) == TT_PF_ALIVE;
+    return (w->flags[i] & (TT__PF_ALIVE | TT__PF_PINNED)) == TT__PF_ALIVE;
 }
 
 /* Slots the arrays cover: particles made since the last step lie past
@@ -106,7 +106,7 @@ static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
     s->rest[i] = 0.0;
     s->ax[i] = w->px[i];
     s->ay[i] = w->py[i];
-    w->flags[i] &= (uint16_t)~TT_PF_ASLEEP;
+    w->flags[i] &= (uint16_t)~TT__PF_ASLEEP;
     w->inv_mass[i] = 1.0 / w->mass[i];
     s->asleep--;
 }
@@ -151,7 +151,7 @@ static void list_wake(tt_world *w, tt__sleep *s, uint32_t k)
 
 void tt__sleep_touch(tt_world *w, uint32_t i)
 {
-    if (!(w->flags[i] & TT_PF_ASLEEP)) return;
+    if (!(w->flags[i] & TT__PF_ASLEEP)) return;
     tt__sleep *s = peek(w);
     if (!s) return;
     list_wake(w, s, s->island[i]);
@@ -295,7 +295,7 @@ static void fall_asleep(tt_world *w, tt__sleep *s, uint32_t i, uint32_t island)
 {
     s->island[i] = island;
     s->rest[i] = 0.0;
-    w->flags[i] |= TT_PF_ASLEEP;
+    w->flags[i] |= TT__PF_ASLEEP;
     w->inv_mass[i] = 0.0;
     if (w->integrator == TT_VERLET) {
         w->qx[i] = w->px[i];
@@ -391,7 +391,7 @@ static void save(const tt_world *w, const void *self, tt__sink *snk)
     tt__put_f64(snk, s->time);
     tt__put_u32(snk, s->next_island);
     for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         tt__put_f64(snk, i < s->cap ? s->rest[i] : 0.0);
         tt__put_f64(snk, i < s->cap ? s->ax[i] : 0.0);
         tt__put_f64(snk, i < s->cap ? s->ay[i] : 0.0);
@@ -421,12 +421,12 @@ static void *load(tt_world *w, tt__source *src)
     s->next_island = tt__get_u32(src);
     if (s->next_island == 0) tt__src_fail(src, "sleep: island counter 0");
     for (uint32_t i = 0; i < w->ppool.count && !src->failed; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE)) continue;
+        if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         s->rest[i] = tt__get_num(src, 0.0, TT_MAX_VALUE, "time at rest");
         s->ax[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "where rest began");
         s->ay[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "where rest began");
         s->island[i] = tt__get_u32(src);
-        const bool asleep = (w->flags[i] & TT_PF_ASLEEP) != 0;
+        const bool asleep = (w->flags[i] & TT__PF_ASLEEP) != 0;
         if (asleep != (s->island[i] != 0) || (asleep && s->rest[i] != 0.0))
             tt__src_fail(src, "sleep: particle %u is %s but its island is %u", i, asleep ? "asleep" : "awake", s->island[i]);
         s->asleep += asleep;
@@ -497,6 +497,6 @@ bool tt__sleep_loaded_ok(const tt_world *w)
 {
     if (peek(w)) return true;
     for (uint32_t i = 0; i < w->ppool.count; i++)
-        if (w->flags[i] & TT_PF_ASLEEP) return false;
+        if (w->flags[i] & TT__PF_ASLEEP) return false;
     return true;
 }

@@ -34,7 +34,7 @@ static bool any_user(const tt_world *w)
 {
     if (!w->user) return false;
     for (uint32_t i = 0; i < w->ppool.count; i++)
-        if ((w->flags[i] & TT_PF_ALIVE) && w->user[i]) return true;
+        if ((w->flags[i] & TT__PF_ALIVE) && w->user[i]) return true;
     return false;
 }
 
@@ -46,8 +46,8 @@ static void put_live(tt__sink *s, const tt_world *w, const void *arr, size_t ele
     uint32_t i = 0;
     while (i < n) {
         uint32_t j = i;
-        bool alive = w->flags[i] & TT_PF_ALIVE;
-        while (j < n && (bool)(w->flags[j] & TT_PF_ALIVE) == alive) j++;
+        bool alive = w->flags[i] & TT__PF_ALIVE;
+        while (j < n && (bool)(w->flags[j] & TT__PF_ALIVE) == alive) j++;
         if (alive) {
             tt__put(s, a + (size_t)i * elem, (size_t)(j - i) * elem);
         } else {
@@ -254,15 +254,15 @@ static bool particle_valid(const tt_world *w, uint32_t i)
 {
     const double xmax = TT_DIVERGED;
     uint16_t f = w->flags[i];
-    if (f & ~(TT_PF_ALIVE | TT_PF_PINNED | TT_PF_FRESH | TT_PF_ASLEEP)) return false;
-    if ((f & TT_PF_PINNED) && (f & TT_PF_ASLEEP)) return false; /* sleep.c never puts a pinned particle to sleep */
-    if (!(f & TT_PF_ALIVE))
+    if (f & ~(TT__PF_ALIVE | TT__PF_PINNED | TT__PF_FRESH | TT__PF_ASLEEP)) return false;
+    if ((f & TT__PF_PINNED) && (f & TT__PF_ASLEEP)) return false; /* sleep.c never puts a pinned particle to sleep */
+    if (!(f & TT__PF_ALIVE))
         return f == 0 && w->px[i] == 0 && w->py[i] == 0 && w->qx[i] == 0 && w->qy[i] == 0 && w->inv_mass[i] == 0 &&
                w->mass[i] == 0 && w->radius[i] == 0 && w->category[i] == 0 && w->mask[i] == 0;
     const tt_vec2 v = tt__velocity(w, i);
     if (!(fabs(w->px[i]) <= xmax && fabs(w->py[i]) <= xmax && fabs(v.x) <= xmax && fabs(v.y) <= xmax)) return false;
     if (!(w->mass[i] >= TT_MIN_MASS && w->mass[i] <= TT_MAX_MASS)) return false;
-    if (w->inv_mass[i] != ((f & (TT_PF_PINNED | TT_PF_ASLEEP)) ? 0.0 : 1.0 / w->mass[i])) return false;
+    if (w->inv_mass[i] != ((f & (TT__PF_PINNED | TT__PF_ASLEEP)) ? 0.0 : 1.0 / w->mass[i])) return false;
     return w->radius[i] >= 0.0f && w->radius[i] <= (float)TT_MAX_VALUE;
 }
 
@@ -292,10 +292,10 @@ static void load_particles(tt_world *w, tt__source *s)
     if (s->failed) return;
     for (uint32_t i = 0; i < n; i++) {
         if (!particle_valid(w, i)) { tt__src_fail(s, "particle %u is not a valid particle", i); return; }
-        if (w->flags[i] & TT_PF_ALIVE) w->alive++;
+        if (w->flags[i] & TT__PF_ALIVE) w->alive++;
     }
     for (uint32_t k = 0; k < w->ppool.free_count; k++)
-        if (w->flags[w->ppool.free_list[k]] & TT_PF_ALIVE) { tt__src_fail(s, "particle %u is alive and free", w->ppool.free_list[k]); return; }
+        if (w->flags[w->ppool.free_list[k]] & TT__PF_ALIVE) { tt__src_fail(s, "particle %u is alive and free", w->ppool.free_list[k]); return; }
     w->forces_pending = tt__get_bool(s, "forces pending");
     if (w->forces_pending && (!optional_array(s, w, (void **)&w->fx, sizeof *w->fx) || !optional_array(s, w, (void **)&w->fy, sizeof *w->fy))) return;
     for (uint32_t i = 0; w->fx && i < n; i++)
@@ -330,7 +330,7 @@ static void load_springs(tt_world *w, tt__source *s)
         if (s->failed || !sp->alive) continue;
         w->springs_alive++;
         if (sp->a >= w->ppool.count || sp->b >= w->ppool.count || sp->a == sp->b ||
-            !(w->flags[sp->a] & TT_PF_ALIVE) || !(w->flags[sp->b] & TT_PF_ALIVE))
+            !(w->flags[sp->a] & TT__PF_ALIVE) || !(w->flags[sp->b] & TT__PF_ALIVE))
             tt__src_fail(s, "spring %u joins particles %u and %u", i, sp->a, sp->b);
     }
     for (uint32_t k = 0; k < w->spool.free_count && !s->failed; k++)

@@ -120,7 +120,7 @@ void tt__put(tt__sink *s, const void *p, size_t n)
 
 void tt__put_gen(tt__sink *s, uint32_t gen) { tt__put_u32(s, s->hashing ? gen & TT_POOL_GEN_MASK : gen); }
 
-void tt__put_pool(tt__sink *s, const tt_pool *p)
+void tt__put_pool(tt__sink *s, const tt__pool *p)
 {
     tt__put_u32(s, p->count);
     if (s->hashing)
@@ -240,9 +240,9 @@ bool tt__get_bool(tt__source *s, const char *what)
     return v == 1;
 }
 
-bool tt__get_pool(tt__source *s, tt_pool *p, uint32_t max, uint32_t tag, const char *what)
+bool tt__get_pool(tt__source *s, tt__pool *p, uint32_t max, uint32_t tag, const char *what)
 {
-    *p = (tt_pool){0};
+    *p = (tt__pool){0};
     p->tag = tag;
     uint32_t n = tt__get_count(s, 4, what);
     if (n > max) return tt__src_fail(s, "%s: %u slots, at most %u", what, n, max);
@@ -258,7 +258,7 @@ bool tt__get_pool(tt__source *s, tt_pool *p, uint32_t max, uint32_t tag, const c
     unsigned char *seen = calloc(n ? n : 1, 1);
     if (!p->gen || !p->free_list || !seen) {
         free(seen);
-        tt_pool_destroy(p);
+        tt__pool_destroy(p);
         return tt__src_fail(s, "%s: out of memory", what);
     }
     tt__copy(p->gen, gen, (size_t)n * 4);
@@ -273,16 +273,16 @@ bool tt__get_pool(tt__source *s, tt_pool *p, uint32_t max, uint32_t tag, const c
     }
     free(seen);
     if (!ok) {
-        tt_pool_destroy(p);
+        tt__pool_destroy(p);
         return tt__src_fail(s, "%s: a free list entry is out of range or repeated", what);
     }
     /* Every generation one the pool could have handed out: the world's tag
-     * above a reuse count of 1 or more (tt_pool_alloc, tt_pool_free). A
+     * above a reuse count of 1 or more (tt__pool_alloc, tt__pool_free). A
      * live slot of generation 0 would list the null handle. */
     for (uint32_t i = 0; i < n; i++)
         if (p->gen[i] >> TT_POOL_TAG_SHIFT != tag || (p->gen[i] & TT_POOL_GEN_MASK) == 0) {
             uint32_t g = p->gen[i];
-            tt_pool_destroy(p);
+            tt__pool_destroy(p);
             return tt__src_fail(s, "%s: slot %u has generation 0x%x, not one of tag %u", what, i, g, tag);
         }
     return true;

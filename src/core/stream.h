@@ -48,7 +48,7 @@ static inline void tt__put_f64(tt__sink *s, double v) { tt__put(s, &v, 8); }
 /* A handle's generation (the tag masked out when hashing). */
 void tt__put_gen(tt__sink *s, uint32_t gen);
 /* A pool's raw fields: count, generations, free list, tag. */
-void tt__put_pool(tt__sink *s, const tt_pool *p);
+void tt__put_pool(tt__sink *s, const tt__pool *p);
 /* Opens a section (id: four ASCII letters); returns where its length goes. */
 size_t tt__section_open(tt__sink *s, uint32_t id);
 void tt__section_close(tt__sink *s, size_t at);
@@ -78,7 +78,7 @@ double tt__get_num(tt__source *s, double lo, double hi, const char *what);
 bool tt__get_bool(tt__source *s, const char *what);
 /* A pool written by tt__put_pool into p (fresh allocations): free list
  * entries distinct and below count, count at most max, tag the world's. */
-bool tt__get_pool(tt__source *s, tt_pool *p, uint32_t max, uint32_t tag, const char *what);
+bool tt__get_pool(tt__source *s, tt__pool *p, uint32_t max, uint32_t tag, const char *what);
 /* Sections: reads a header, limits s to its payload; tt__section_end checks
  * that the payload was read whole and moves past it. */
 typedef struct tt__section {

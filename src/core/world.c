@@ -311,7 +311,7 @@ tt_result tt_world_get_energy(const tt_world *w, tt_energy *out)
     if (!out) return tt__fail(w, TT_EINVAL, "tt_world_get_energy: out is NULL");
     double ke = 0.0, pe = 0.0;
     for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if ((w->flags[i] & (TT_PF_ALIVE | TT_PF_PINNED)) != TT_PF_ALIVE) continue; /* pinned or removed (a sleeper counts) */
+        if ((w->flags[i] & (TT__PF_ALIVE | TT__PF_PINNED)) != TT__PF_ALIVE) continue; /* pinned or removed (a sleeper counts) */
         tt_vec2 v = tt__velocity(w, i);
         double m = w->mass[i];
         ke += 0.5 * m * (v.x * v.x + v.y * v.y);
@@ -335,11 +335,11 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
     if (w->fx) per += 2 * sizeof(double);
     if (w->user) per += sizeof(uint64_t);
     if (w->ox) per += 2 * sizeof(double);
-    size_t particles = per * w->pcap + tt_pool_bytes(&w->ppool);
+    size_t particles = per * w->pcap + tt__pool_bytes(&w->ppool);
     size_t total = sizeof *w + particles;
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);
     total += (size_t)w->fresh_cap * sizeof(uint32_t) + (size_t)w->ends_cap * sizeof(uint32_t);
-    total += (size_t)w->scap * sizeof(tt__spring) + tt_pool_bytes(&w->spool);
+    total += (size_t)w->scap * sizeof(tt__spring) + tt__pool_bytes(&w->spool);
     total += tt__solver_memory(w);
     out->total = total;
     out->particles = particles;

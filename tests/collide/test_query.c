@@ -75,7 +75,7 @@ TEST(raycast_agrees_with_brute_force)
                 if (tt__ray_vs_prim(c, &c->prims[k], a.x, a.y, b.x - a.x, b.y - a.y, 0, 1, &t, &nx, &ny)) best = fmin(best, t);
             }
             for (uint32_t i = 0; i < w->ppool.count; i++) {
-                if (!(w->flags[i] & TT_PF_ALIVE) || !(w->category[i] & mask)) continue;
+                if (!(w->flags[i] & TT__PF_ALIVE) || !(w->category[i] & mask)) continue;
                 if (tt__ray_vs_circle(a.x, a.y, b.x - a.x, b.y - a.y, w->px[i], w->py[i], w->radius[i], 1, &t, &nx, &ny)) best = fmin(best, t);
             }
             ENSURE(hit.hit == (best <= 1));
@@ -103,7 +103,7 @@ static void check_area(tt_world *w, bool point, tt_vec2 lo, tt_vec2 hi, uint16_t
     uint32_t nw = 0;
     for (uint32_t k = 0; k < np; k++) got[k] = ps[k].index;
     for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if (!(w->flags[i] & TT_PF_ALIVE) || !(w->category[i] & mask)) continue;
+        if (!(w->flags[i] & TT__PF_ALIVE) || !(w->category[i] & mask)) continue;
         double x = w->px[i], y = w->py[i], r = w->radius[i];
         double dx = fmax(fmax(lo.x - x, x - hi.x), 0), dy = fmax(fmax(lo.y - y, y - hi.y), 0);
         if (dx * dx + dy * dy <= r * r) want[nw++] = i;

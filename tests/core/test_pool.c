@@ -17,7 +17,7 @@ TEST(a_day_of_churn_at_ten_thousand_a_second_never_runs_out_of_handles)
      * (`make memcheck`), which the other pool tests cover */
     if (getenv("TT_MEMCHECK")) return;
     enum { PER_SECOND = 10000, SECONDS = 24 * 3600 };
-    tt_pool p = {0};
+    tt__pool p = {0};
     p.tag = 7;
     uint32_t *slot = malloc(PER_SECOND * sizeof *slot);
     uint32_t *gen0 = malloc(PER_SECOND * sizeof *gen0);
@@ -25,12 +25,12 @@ TEST(a_day_of_churn_at_ten_thousand_a_second_never_runs_out_of_handles)
     bool grew;
     for (uint32_t s = 0; s < SECONDS; s++) {
         for (uint32_t i = 0; i < PER_SECOND; i++) {
-            slot[i] = tt_pool_alloc(&p, TT_HANDLE_MAX_SLOTS, &grew);
+            slot[i] = tt__pool_alloc(&p, TT_HANDLE_MAX_SLOTS, &grew);
             if (slot[i] == UINT32_MAX) ENSURE(!"the pool ran out of handles");
         }
         if (s == 0)
             for (uint32_t i = 0; i < PER_SECOND; i++) gen0[i] = p.gen[slot[i]];
-        for (uint32_t i = 0; i < PER_SECOND; i++) tt_pool_free(&p, slot[i]);
+        for (uint32_t i = 0; i < PER_SECOND; i++) tt__pool_free(&p, slot[i]);
     }
     /* Each slot served 65 535 lives before retiring: 86 400 s of churn took
      * two sets of 10 000 slots, 0.12 % of the budget. */
@@ -44,7 +44,7 @@ TEST(a_day_of_churn_at_ten_thousand_a_second_never_runs_out_of_handles)
     for (uint32_t i = 0; i < p.free_count; i++) ENSURE(p.free_list[i] >= PER_SECOND);
     free(slot);
     free(gen0);
-    tt_pool_destroy(&p);
+    tt__pool_destroy(&p);
 }
 
 /* The worst case for one slot: one particle made and removed over and over,
