@@ -398,3 +398,25 @@ uint64_t scene_positions_digest(const tt_world *w)
     free(xy);
     return h;
 }
+
+void scene_spring_network(tt_world *w, int cols, int rows)
+{
+    const int n = cols * rows;
+    tt_particle *p = malloc((size_t)n * sizeof *p);
+    if (!p) return;
+    for (int i = 0; i < n; i++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.position = (tt_vec2){(i % cols) * 0.5, -(i / cols) * 0.5};
+        pd.pinned = i < cols;
+        p[i] = tt_particle_create(w, &pd);
+    }
+    for (int i = 0; i < n; i++) {
+        tt_spring_def sd = tt_spring_def_default();
+        sd.stiffness = 200;
+        sd.damping = 0;
+        sd.a = p[i];
+        if (i % cols + 1 < cols) { sd.b = p[i + 1]; tt_spring_create(w, &sd); }
+        if (i + cols < n) { sd.b = p[i + cols]; tt_spring_create(w, &sd); }
+    }
+    free(p);
+}

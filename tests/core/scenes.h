@@ -33,6 +33,10 @@ void scene_step(scene *sc);
 /* A small world with one of nearly everything, stepped twice: a short
  * stream for the byte-by-byte tests and the stream fuzzer. */
 tt_world *scene_small_world(void);
+/* Adds to w a cols × rows network 0.5 m apart from (0, 0) down, undamped
+ * springs (k = 200) to the right and below, the top row pinned: the
+ * reversal tests' scene. */
+void scene_spring_network(tt_world *w, int cols, int rows);
 /* FNV-1a over every live particle's position bits in slot order, from
  * tt_world_read_positions: a digest independent of tt_world_hash. */
 uint64_t scene_positions_digest(const tt_world *w);

@@ -5,6 +5,7 @@
  * of range or does not fit is refused with the world unchanged; a world
  * without the option saves and hashes as before. */
 #include "test.h"
+#include "core/scenes.h"
 
 #include <tether.h>
 
@@ -21,22 +22,7 @@ static tt_world *network(double quantum)
     wd.gravity = (tt_vec2){0, -9.81};
     wd.fixed_point = quantum;
     tt_world *w = tt_world_create(&wd);
-    if (!w) return NULL;
-    tt_particle p[N];
-    for (int i = 0; i < N; i++) {
-        tt_particle_def pd = tt_particle_def_default();
-        pd.position = (tt_vec2){(i % COLS) * 0.5, -(i / COLS) * 0.5};
-        pd.pinned = i < COLS;
-        p[i] = tt_particle_create(w, &pd);
-    }
-    for (int i = 0; i < N; i++) {
-        tt_spring_def sd = tt_spring_def_default();
-        sd.stiffness = 200;
-        sd.damping = 0;
-        sd.a = p[i];
-        if (i % COLS + 1 < COLS) { sd.b = p[i + 1]; tt_spring_create(w, &sd); }
-        if (i + COLS < N) { sd.b = p[i + COLS]; tt_spring_create(w, &sd); }
-    }
+    if (w) scene_spring_network(w, COLS, ROWS);
     return w;
 }
 

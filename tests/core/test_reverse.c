@@ -4,6 +4,7 @@
  * springs in floating point (measured and printed: the README's table);
  * any world with something irreversible is refused, naming it. */
 #include "test.h"
+#include "core/scenes.h"
 
 #include <tether.h>
 
@@ -84,21 +85,7 @@ TEST(reverse_a_spring_network_in_floating_point_comes_back_to_rounding)
     for (int r = 0; r < 3; r++) {
         tt_world *w = verlet_world((tt_vec2){0, -9.81});
         ENSURE(w);
-        tt_particle p[N];
-        for (int i = 0; i < N; i++) {
-            tt_particle_def pd = tt_particle_def_default();
-            pd.position = (tt_vec2){(i % COLS) * 0.5, -(i / COLS) * 0.5};
-            pd.pinned = i < COLS;
-            p[i] = tt_particle_create(w, &pd);
-        }
-        for (int i = 0; i < N; i++) {
-            tt_spring_def sd = tt_spring_def_default();
-            sd.stiffness = 200;
-            sd.damping = 0;
-            sd.a = p[i];
-            if (i % COLS + 1 < COLS) { sd.b = p[i + 1]; tt_spring_create(w, &sd); }
-            if (i + COLS < N) { sd.b = p[i + COLS]; tt_spring_create(w, &sd); }
-        }
+        scene_spring_network(w, COLS, ROWS);
         tt_world_step(w, 1.0 / 60);
         double xy0[2 * N];
         uint32_t got;
