@@ -94,11 +94,12 @@ static void c_cloth_create(fz *f)
     d.pin_top_corners = fz_chance(f, 70);
     d.pin_top_row = fz_chance(f, 20);
     d.break_strain = fz_chance(f, 60) ? 0.0 : fz_real(f, 0.01, 0.5); /* tearing */
+    d.long_range = fz_chance(f, 25); /* refused with tearing */
     fz_log(f, "tt_cloth_create(%s, &(tt_cloth_def){mass %s, radius %s, stiffness %s, compliance %s, %s, %s x %s, "
-              "%u x %u, shear %s, bend %s, pins %d %d, break %s})", fz_wn(f, w), fz_d(d.common.mass),
+              "%u x %u, shear %s, bend %s, pins %d %d, break %s, long_range %d})", fz_wn(f, w), fz_d(d.common.mass),
            fz_d(d.common.radius), fz_d(d.common.stiffness), fz_d(d.common.compliance), fz_v(d.origin), fz_d(d.width),
            fz_d(d.height), d.columns, d.rows, fz_d(d.shear_stiffness), fz_d(d.bend_stiffness), d.pin_top_corners,
-           d.pin_top_row, fz_d(d.break_strain));
+           d.pin_top_row, fz_d(d.break_strain), d.long_range);
     FZ_HIT(f, tt_cloth_create);
     adopt(f, w, tt_cloth_create(w, fz_chance(f, 2) ? NULL : &d));
 }

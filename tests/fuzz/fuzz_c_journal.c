@@ -56,6 +56,7 @@ static void c_journal_start(fz *f)
     free_journal();
     jr = tt_journal_start(w, null ? NULL : &d);
     fz_log_more(f, " -> %s", jr ? "journal" : tt_last_error(w));
+    if (!jr) f->failed = true; /* a refusal: the world must be as it was, and a call that had to fail did */
     if (jr && (null || !w || d.max_bytes < 1024)) fz_fail(f, "tt_journal_start took what it should refuse");
     if (w && jr && tt_journal_start(w, &d)) fz_fail(f, "a second journal started on a journaled world");
 }
