@@ -140,10 +140,10 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
         d->a = tt__get_u32(s);
         d->b = tt__get_u32(s);
         /* lengths taken from positions reach the world's diagonal, 2√2 × TT_MAX_VALUE */
-        d->lo = tt__get_num(s, 0.0, 3 * TT_MAX_VALUE, "link length");
+        d->lo = tt__get_num(s, 0.0, 3 * TT_DIVERGED, "link length"); /* between any two positions short of the guard */
         d->hi = tt__get_num(s, 0.0, INFINITY, "link length");
         d->k = get_soft(s, &d->alpha);
-        x->rest = tt__get_num(s, 0.0, 3 * TT_MAX_VALUE, "link rest length");
+        x->rest = tt__get_num(s, 0.0, 3 * TT_DIVERGED, "link rest length");
         x->break_strain = tt__get_num(s, 0.0, TT_MAX_VALUE, "break strain");
         x->slot = tt__get_u32(s);
         x->mode = tt__get_u8(s);
@@ -151,7 +151,7 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
         g->ndist = i + 1;
         if (s->failed) return;
         if (!alive(w, d->a) || !alive(w, d->b) || d->a == d->b) { tt__src_fail(s, "link %u joins %u and %u", i, d->a, d->b); return; }
-        if (x->mode > TT_DISTANCE_MIN || d->lo > d->hi || (x->mode != TT_DISTANCE_MIN && d->hi > 3 * TT_MAX_VALUE))
+        if (x->mode > TT_DISTANCE_MIN || d->lo > d->hi || (x->mode != TT_DISTANCE_MIN && d->hi > 3 * TT_DIVERGED))
             { tt__src_fail(s, "link %u: mode %u, length [%g, %g]", i, x->mode, d->lo, d->hi); return; }
         if (!slot_is(g, x->slot, i, true)) { tt__src_fail(s, "link %u: slot %u", i, x->slot); return; }
         g->refs[d->a]++;
@@ -163,14 +163,23 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
 }
 
 /* The particles constraint c names, and what its kind asks of its numbers. */
+/* The largest |v[k]| a world can hold: a pin's anchor is where its particle
+ * was (any position short of the guard), an area's rest area a product of
+ * two coordinates, the rest (bounds, angle limits, pressure) what the API
+ * takes. */
+static double value_limit(const tt__gcon *c, int k)
+{
+    if (c->kind == TT_CONSTRAINT_AREA && k == 0) return TT_DIVERGED * TT_DIVERGED;
+    return c->kind == TT_CONSTRAINT_PIN ? TT_DIVERGED : TT_MAX_VALUE;
+}
+
 static bool gen_valid(const tt_world *w, const tt__gcon *c)
 {
     const uint32_t *p = c->list ? c->list : c->p;
     for (uint32_t k = 0; k < c->n; k++)
         if (!alive(w, p[k])) return false;
-    for (int k = 0; k < 4; k++) /* an area's rest area: up to TT_MAX_VALUE² */
-        if (!(fabs(c->v[k]) <= (c->kind == TT_CONSTRAINT_AREA && k == 0 ? TT_MAX_VALUE * TT_MAX_VALUE : TT_MAX_VALUE)))
-            return false;
+    for (int k = 0; k < 4; k++)
+        if (!(fabs(c->v[k]) <= value_limit(c, k))) return false;
     switch (c->kind) {
     case TT_CONSTRAINT_PIN: return c->n == 1 && !c->list;
     case TT_CONSTRAINT_BOUNDS: return (c->n > 0) == (c->list != NULL) && c->v[0] < c->v[2] && c->v[1] < c->v[3];
@@ -205,11 +214,7 @@ static void load_gen(tt_world *w, tt__cgroup *g, tt__source *s)
             tt__get(s, c->p, sizeof c->p);
         }
         c->k = get_soft(s, &c->alpha);
-        /* an area's rest area is a product of two coordinates */
-        for (int k = 0; k < 4; k++) {
-            const double lim = c->kind == TT_CONSTRAINT_AREA && k == 0 ? TT_MAX_VALUE * TT_MAX_VALUE : TT_MAX_VALUE;
-            c->v[k] = tt__get_num(s, -lim, lim, "constraint value");
-        }
+        for (int k = 0; k < 4; k++) c->v[k] = tt__get_num(s, -value_limit(c, k), value_limit(c, k), "constraint value");
         c->friction = tt__get_num(s, 0.0, 1.0, "bounds friction");
         if (s->failed) return;
         if (!gen_valid(w, c) || !slot_is(g, c->slot, i, false) || g->slots[c->slot].kind != c->kind)
@@ -231,9 +236,10 @@ static void load_movers(tt__cgroup *g, tt__source *s)
     for (uint32_t k = 0; k < n && !s->failed; k++) {
         tt__mover *m = &g->moving[k];
         m->slot = tt__get_u32(s);
-        for (int j = 0; j < 2; j++) m->at[j] = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "target");
-        for (int j = 0; j < 2; j++) m->to[j] = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "target");
-        for (int j = 0; j < 2; j++) m->end[j] = tt__get_num(s, -TT_MAX_VALUE, TT_MAX_VALUE, "target");
+        /* a moving target starts from the pin's anchor or the link's length: anywhere short of the guard */
+        for (int j = 0; j < 2; j++) m->at[j] = tt__get_num(s, -3 * TT_DIVERGED, 3 * TT_DIVERGED, "target");
+        for (int j = 0; j < 2; j++) m->to[j] = tt__get_num(s, -3 * TT_DIVERGED, 3 * TT_DIVERGED, "target");
+        for (int j = 0; j < 2; j++) m->end[j] = tt__get_num(s, -3 * TT_DIVERGED, 3 * TT_DIVERGED, "target");
         g->nmoving = k + 1;
         if (s->failed) return;
         uint8_t kind = m->slot < g->pool.count ? g->slots[m->slot].kind : 0;
