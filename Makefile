@@ -83,7 +83,7 @@ RENDER_LIBS = $(call lazy,RENDER_LIBS,$(call PC_LIBS,osmesa sdl2 libpng))
 # snapshot stream reader's and the replay journal reader's fuzzers are tests of
 # test_c (make test runs 300 streams and 200 journals).
 # tests/box2d/ links Box2D: a program of its own.
-TEST_SRC := $(filter-out tests/fuzz/% tests/box2d/% tests/crossbuild/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c \
+TEST_SRC := $(filter-out tests/fuzz/% tests/box2d/% tests/crossbuild/%,$(wildcard tests/*.c tests/*/*.c)) tests/fuzz/fuzz_stream.c tests/fuzz/fuzz_bytes.c \
             tests/fuzz/fuzz_journal.c
 FUZZ_C_SRC := $(wildcard tests/fuzz/fuzz_c*.c)
 FUZZ_C_OBJ := $(FUZZ_C_SRC:tests/%.c=$(BUILD)/obj/tests/%.o)

@@ -14,30 +14,15 @@
 #include "test.h"
 #include "core/scenes.h"
 #include "core/stream.h" /* tt__hash_bytes: to forge valid checksums */
+#include "fuzz_bytes.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-typedef struct buf {
-    unsigned char *p;
-    size_t n;
-} buf;
-
-static uint64_t rng;
-static uint64_t next(void)
+static fuzz_buf save(const tt_world *w)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return rng * 0x2545F4914F6CDD1Dull;
-}
-static size_t below(size_t n) { return n ? (size_t)(next() % n) : 0; }
-
-static buf save(const tt_world *w)
-{
-    buf b = {NULL, 0};
+    fuzz_buf b = {NULL, 0};
     tt_world_save(w, NULL, 0, &b.n);
     b.p = malloc(b.n);
     if (b.p && tt_world_save(w, b.p, b.n, &b.n) != TT_OK) {
@@ -48,7 +33,7 @@ static buf save(const tt_world *w)
 }
 
 /* Length and checksum made to match the (mutated) body. */
-static void reseal(buf *b)
+static void reseal(fuzz_buf *b)
 {
     if (b->n < 32) return;
     uint64_t body = b->n - 32, sum = tt__hash_bytes(b->p + 32, b->n - 32);
@@ -56,49 +41,23 @@ static void reseal(buf *b)
     memcpy(b->p + 24, &sum, 8);
 }
 
-static void put_field(buf *b)
+static void put_field(fuzz_buf *b)
 {
     static const uint32_t u32s[] = {0, 1, 2, 3, 0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 0xFFFFu, 0x10000u, 1000, 64};
     static const uint64_t f64s[] = {0x7FF8000000000000ull, 0x7FF0000000000000ull, 0xFFF0000000000000ull,
                                     0x7E37E43C8800759Cull /* 1e300 */, 0x8000000000000000ull, 1ull,
                                     0x4341C37937E08000ull /* 1e16 */, 0x3FF0000000000000ull};
     if (b->n < 40) return;
-    size_t at = 32 + below(b->n - 40);
-    if (next() & 1) memcpy(b->p + at, &u32s[below(sizeof u32s / sizeof u32s[0])], 4);
-    else memcpy(b->p + at, &f64s[below(sizeof f64s / sizeof f64s[0])], 8);
+    size_t at = 32 + fuzz_below(b->n - 40);
+    if (fuzz_next() & 1) memcpy(b->p + at, &u32s[fuzz_below(sizeof u32s / sizeof u32s[0])], 4);
+    else memcpy(b->p + at, &f64s[fuzz_below(sizeof f64s / sizeof f64s[0])], 8);
 }
 
-/* A copy of base, mutated once or a few times. */
-static buf mutate(const buf *base, const buf *other)
+/* A copy of base, mutated once or a few times past its header, mostly resealed. */
+static fuzz_buf mutate(const fuzz_buf *base, const fuzz_buf *other)
 {
-    buf b = {malloc(base->n + other->n + 64), base->n};
-    memcpy(b.p, base->p, base->n);
-    for (int k = 1 + (int)below(3); k > 0; k--) {
-        size_t at = 32 + below(b.n > 32 ? b.n - 32 : 1), len = 1 + below(16);
-        if (at + len > b.n) len = b.n > at ? b.n - at : 0;
-        switch (below(6)) {
-        case 0: b.p[32 + below(b.n - 32)] ^= (unsigned char)(1u << below(8)); break;
-        case 1: put_field(&b); break;
-        case 2: /* delete */
-            memmove(b.p + at, b.p + at + len, b.n - at - len);
-            b.n -= len;
-            break;
-        case 3: /* repeat */
-            if (b.n + len <= base->n + other->n + 64 - 16) {
-                memmove(b.p + at + len, b.p + at, b.n - at);
-                b.n += len;
-            }
-            break;
-        case 4: { /* splice from the other stream */
-            size_t from = 32 + below(other->n - 32);
-            if (from + len > other->n) len = other->n - from;
-            if (at + len <= b.n) memcpy(b.p + at, other->p + from, len);
-            break;
-        }
-        default: b.n = 32 + below(b.n - 32); break; /* cut short */
-        }
-    }
-    if (below(10)) reseal(&b);
+    fuzz_buf b = fuzz_mutate(base, other, 32, put_field);
+    if (b.p && fuzz_below(10)) reseal(&b);
     return b;
 }
 
@@ -136,7 +95,7 @@ static bool check_accepted(tt_world *w, unsigned long it)
     if (tt_world_get_iterations(w) > 20) tt_world_set_iterations(w, 20);
     for (int s = 0; s < 3; s++) tt_world_step(w, 1.0 / 60);
     if (!bounded(w, it, "after 3 steps")) return false;
-    buf again = save(w);
+    fuzz_buf again = save(w);
     if (!again.p) return false;
     tt_world *c = tt_world_load(again.p, again.n);
     bool ok = c && tt_world_hash(c) == tt_world_hash(w);
@@ -145,17 +104,26 @@ static bool check_accepted(tt_world *w, unsigned long it)
     return ok;
 }
 
-static bool one_stream(const buf *corpus, int ncorpus, tt_world **targets, unsigned long it, uint32_t *accepted)
+enum { N = 3 };
+typedef struct streams {
+    fuzz_buf corpus[N];
+    tt_world *targets[N];
+} streams;
+
+static bool one_stream(void *ctx, unsigned long it, uint32_t *accepted)
 {
-    int k = (int)below((size_t)ncorpus), o = (int)below((size_t)ncorpus);
-    buf m = mutate(&corpus[k], &corpus[o]);
+    const fuzz_buf *corpus = ((streams *)ctx)->corpus;
+    tt_world **targets = ((streams *)ctx)->targets;
+    int k = (int)fuzz_below(N), o = (int)fuzz_below(N);
+    fuzz_buf m = mutate(&corpus[k], &corpus[o]);
+    if (!m.p) return false;
     bool ok = true;
     if (tt_world_restore(targets[k], m.p, m.n) == TT_OK) {
         (*accepted)++;
         ok = check_accepted(targets[k], it);
         if (ok) ok = tt_world_restore(targets[k], corpus[k].p, corpus[k].n) == TT_OK;
     } else {
-        buf now = save(targets[k]);
+        fuzz_buf now = save(targets[k]);
         ok = now.p && now.n == corpus[k].n && memcmp(now.p, corpus[k].p, now.n) == 0;
         free(now.p);
         if (!ok) tt_test_fail(__FILE__, __LINE__, "stream %lu: refused, yet the world changed", it);
@@ -170,40 +138,22 @@ static bool one_stream(const buf *corpus, int ncorpus, tt_world **targets, unsig
 
 TEST(fuzz_stream_reader)
 {
-    const char *secs = getenv("FUZZ_STREAM_SECONDS"), *seed = getenv("FUZZ_SEED"), *its = getenv("FUZZ_STREAM_ITERATIONS");
-    double seconds = secs ? atof(secs) : 0.0;
-    unsigned long max_it = its ? strtoul(its, NULL, 10) : seconds > 0 ? (unsigned long)-1 : 300;
-    rng = (seed && *seed ? strtoull(seed, NULL, 10) : 1) ^ 0x9E3779B97F4A7C15ull;
-    if (!rng) rng = 1;
-    enum { N = 3 };
-    buf corpus[N];
-    tt_world *targets[N];
+    streams st;
     scene sc[2];
     ENSURE(scene_build(&sc[0], SCENE_ZOO) && scene_build(&sc[1], SCENE_INTEGRATORS));
     for (int s = 0; s < 20; s++) scene_step(&sc[0]);
     for (int s = 0; s < 70; s++) scene_step(&sc[1]);
-    targets[0] = scene_small_world();
-    targets[1] = sc[0].w;
-    targets[2] = sc[1].w;
+    st.targets[0] = scene_small_world();
+    st.targets[1] = sc[0].w;
+    st.targets[2] = sc[1].w;
     for (int k = 0; k < N; k++) {
-        ENSURE(targets[k]);
-        corpus[k] = save(targets[k]);
-        ENSURE(corpus[k].p);
+        ENSURE(st.targets[k]);
+        st.corpus[k] = save(st.targets[k]);
+        ENSURE(st.corpus[k].p);
     }
-    uint32_t accepted = 0;
-    unsigned long it = 0;
-    const clock_t t0 = clock();
-    for (; it < max_it; it++) {
-        if (seconds > 0 && (it & 15) == 0 && (double)(clock() - t0) / CLOCKS_PER_SEC > seconds) break;
-        if (!one_stream(corpus, N, targets, it, &accepted)) {
-            printf("    fuzz_stream: failed at stream %lu; replay: FUZZ_SEED=%s FUZZ_STREAM_ITERATIONS=%lu build/test_c fuzz_stream_reader\n",
-                   it, seed ? seed : "1", it + 1);
-            break;
-        }
-    }
-    printf("    fuzz_stream: %lu streams, %u accepted, seed %s\n", it, accepted, seed && *seed ? seed : "1");
+    fuzz_run("stream", "fuzz_stream_reader", 300, one_stream, &st);
     for (int k = 0; k < N; k++) {
-        free(corpus[k].p);
-        tt_world_destroy(targets[k]);
+        free(st.corpus[k].p);
+        tt_world_destroy(st.targets[k]);
     }
 }

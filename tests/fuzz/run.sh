@@ -111,35 +111,24 @@ target_png() {
     return 1
 }
 
-# --- the snapshot stream reader (tests/fuzz/fuzz_stream.c, a test in test_c) -----------
-target_stream() {
-    secs=$1 seed=$2 dir=$3
-    FUZZ_SEED=$seed FUZZ_STREAM_SECONDS=$secs "$BUILD/test_c" fuzz_stream_reader >"$dir/log.txt" 2>&1
+# --- the byte-stream readers, each a test in test_c: the snapshot stream
+# (tests/fuzz/fuzz_stream.c) and the replay journal (fuzz_journal.c) ----------
+reader_target() {
+    what=$1 secs=$2 seed=$3 dir=$4
+    var="FUZZ_$(echo "$what" | tr a-z A-Z)_SECONDS"
+    env FUZZ_SEED="$seed" "$var=$secs" "$BUILD/test_c" "fuzz_${what}_reader" >"$dir/log.txt" 2>&1
     rc=$?
     if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
-        echo "fuzz stream: $(grep '^ *fuzz_stream: ' "$dir/log.txt" | tail -n 1 | sed 's/^ *fuzz_stream: //') ($secs s)"
+        echo "fuzz $what: $(grep "^ *fuzz_$what: " "$dir/log.txt" | tail -n 1 | sed "s/^ *fuzz_$what: //") ($secs s)"
         return 0
     fi
-    echo "fuzz stream: FAILED (exit $rc), seed $seed"
-    echo "    replay: FUZZ_SEED=$seed FUZZ_STREAM_SECONDS=$secs $BUILD/test_c fuzz_stream_reader"
+    echo "fuzz $what: FAILED (exit $rc), seed $seed"
+    echo "    replay: FUZZ_SEED=$seed $var=$secs $BUILD/test_c fuzz_${what}_reader"
     tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
     return 1
 }
-
-# --- the replay journal reader (tests/fuzz/fuzz_journal.c, a test in test_c) -----------
-target_journal() {
-    secs=$1 seed=$2 dir=$3
-    FUZZ_SEED=$seed FUZZ_JOURNAL_SECONDS=$secs "$BUILD/test_c" fuzz_journal_reader >"$dir/log.txt" 2>&1
-    rc=$?
-    if [ "$rc" -eq 0 ] && grep -q '^1 passed, 0 failed$' "$dir/log.txt"; then
-        echo "fuzz journal: $(grep 'fuzz_journal: ' "$dir/log.txt" | tail -n 1 | sed 's/^ *fuzz_journal: //')"
-        return 0
-    fi
-    echo "fuzz journal: FAILED (exit $rc), seed $seed"
-    echo "    replay: FUZZ_SEED=$seed FUZZ_JOURNAL_SECONDS=$secs $BUILD/test_c fuzz_journal_reader"
-    tail -n 30 "$dir/log.txt" | sed 's/^/    | /'
-    return 1
-}
+target_stream() { reader_target stream "$@"; }
+target_journal() { reader_target journal "$@"; }
 
 # --- the same Lua fuzzer against the LuaJIT module, under luajit ----------------
 # No frames (a plain host runs the update phase alone): the binding's 5.1 path.
