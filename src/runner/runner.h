@@ -55,9 +55,9 @@ double tr_median(double *v, size_t n);
 void tr_register_gfx(lua_State *L, int module);
 int tr_run_frames(session *s, const options *o);
 int tr_run_window(session *s, const options *o);
-/* `tether crosscheck …` (argv[1] is "crosscheck"): an exit status. */
+/* runner_module.c: `tether crosscheck …` (argv[1] is "crosscheck"): an exit status. */
 int tr_crosscheck(int argc, char **argv);
-/* `tether atlas …` (argv[1] is "atlas"): an exit status (runner_atlas.c). */
+/* `tether atlas …` (argv[1] is "atlas"): an exit status. */
 int tr_atlas(int argc, char **argv);
 
 #endif
