@@ -34,6 +34,26 @@ static void tmp_png(char *path, size_t n)
     snprintf(path, n, "%s/tether-test-render-%d.png", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
 }
 
+/* A frame of c rendered by hl and read back from its PNG (RGBA, *w × *h); NULL on failure. */
+static uint8_t *frame(tt_headless *hl, const tt_canvas *c, int *w, int *h)
+{
+    char path[512];
+    tmp_png(path, sizeof path);
+    if (tt_headless_render(hl, c) != TT_OK || tt_headless_write_png(hl, path) != TT_OK) return NULL;
+    uint8_t *px = read_png(path, w, h);
+    remove(path);
+    return px;
+}
+
+/* A 64 × 48 headless context; says why when there is none. */
+static tt_headless *headless(void)
+{
+    char err[256] = "";
+    tt_headless *hl = tt_headless_create(64, 48, err, sizeof err);
+    if (!hl) printf("    %s\n", err);
+    return hl;
+}
+
 TEST(canvas_camera_maps_world_to_pixels_and_back)
 {
     tt_canvas *c = tt_canvas_create(200, 100);
@@ -136,9 +156,7 @@ TEST(canvas_batches_by_kind)
  * on pixel (32 + 12, 24 − 8) = (44, 16) from the top-left. */
 TEST(headless_frame_shows_the_particle_where_it_is)
 {
-    char err[256] = "";
-    tt_headless *hl = tt_headless_create(64, 48, err, sizeof err);
-    if (!hl) printf("    %s\n", err);
+    tt_headless *hl = headless();
     ENSURE(hl != NULL);
     tt_canvas *c = tt_canvas_create(64, 48);
     tt_world *w = tt_world_create(NULL);
@@ -151,13 +169,8 @@ TEST(headless_frame_shows_the_particle_where_it_is)
     tt_debug_draw dd = tt_debug_draw_default();
     dd.particle = (tt_color){255, 0, 0, 255};
     ENSURE_OK(tt_canvas_draw_world(c, w, &dd));
-    ENSURE_OK(tt_headless_render(hl, c));
-    char path[512];
-    tmp_png(path, sizeof path);
-    ENSURE_OK(tt_headless_write_png(hl, path));
     int pw = 0, ph = 0;
-    uint8_t *px = read_png(path, &pw, &ph);
-    remove(path);
+    uint8_t *px = frame(hl, c, &pw, &ph);
     ENSURE(px != NULL);
     ENSURE(pw == 64 && ph == 48);
     /* pixel (44, 16) covers [44, 45] x [16, 17]: its centre is 0.5√2 px from the disc's centre */
@@ -415,13 +428,8 @@ TEST(an_image_destroyed_while_a_canvas_holds_it_is_drawn_then_freed)
 /* The x of the centroid of the red pixels of a frame of c, px from the left; -1 when none. */
 static double red_centroid_x(tt_headless *hl, const tt_canvas *c)
 {
-    if (tt_headless_render(hl, c) != TT_OK) return -1;
-    char path[512];
-    tmp_png(path, sizeof path);
-    if (tt_headless_write_png(hl, path) != TT_OK) return -1;
     int pw = 0, ph = 0;
-    uint8_t *px = read_png(path, &pw, &ph);
-    remove(path);
+    uint8_t *px = frame(hl, c, &pw, &ph);
     if (!px) return -1;
     double sx = 0, n = 0;
     for (int i = 0; i < pw * ph; i++)
@@ -439,9 +447,7 @@ static double red_centroid_x(tt_headless *hl, const tt_canvas *c)
  * or NaN is refused, nothing drawn. */
 TEST(headless_frame_draws_between_the_last_two_steps_by_alpha)
 {
-    char err[256] = "";
-    tt_headless *hl = tt_headless_create(64, 48, err, sizeof err);
-    if (!hl) printf("    %s\n", err);
+    tt_headless *hl = headless();
     ENSURE(hl != NULL);
     tt_canvas *c = tt_canvas_create(64, 48);
     tt_world_def wd = tt_world_def_default();
@@ -484,13 +490,8 @@ TEST(headless_frame_draws_between_the_last_two_steps_by_alpha)
 /* The x of the centroid of the lit pixels of row y of a frame of c; -1 when none. */
 static double lit_row_x(tt_headless *hl, const tt_canvas *c, int y)
 {
-    if (tt_headless_render(hl, c) != TT_OK) return -1;
-    char path[512];
-    tmp_png(path, sizeof path);
-    if (tt_headless_write_png(hl, path) != TT_OK) return -1;
     int pw = 0, ph = 0;
-    uint8_t *px = read_png(path, &pw, &ph);
-    remove(path);
+    uint8_t *px = frame(hl, c, &pw, &ph);
     if (!px || y >= ph) { free(px); return -1; }
     double sx = 0, n = 0;
     for (int x = 0; x < pw; x++) {
@@ -508,9 +509,7 @@ static double lit_row_x(tt_headless *hl, const tt_canvas *c, int y)
  * alpha 0.5 at x = 0 (pixel 32), at alpha 1 at x = 2 (pixel 40); row 24 is y = 0. */
 TEST(headless_frame_draws_springs_between_the_last_two_steps_by_alpha)
 {
-    char err[256] = "";
-    tt_headless *hl = tt_headless_create(64, 48, err, sizeof err);
-    if (!hl) printf("    %s\n", err);
+    tt_headless *hl = headless();
     ENSURE(hl != NULL);
     tt_canvas *c = tt_canvas_create(64, 48);
     tt_world_def wd = tt_world_def_default();
