@@ -4,6 +4,7 @@
 #include "test.h"
 #include "tether.h"
 #include "scenes/scene.h"
+#include "core/scenes.h" /* scene_save, scene_reload */
 
 #include <stdlib.h>
 #include <string.h>
@@ -169,9 +170,8 @@ TEST(terrain_snapshot_carve_restore_is_bit_exact)
     (void)p;
     for (int k = 0; k < 10; k++) tt_world_step(w, 1.0 / 60);
     size_t size = 0;
-    tt_world_save(w, NULL, 0, &size);
-    void *buf = malloc(size);
-    ENSURE_OK(tt_world_save(w, buf, size, &size));
+    unsigned char *buf = scene_save(w, &size);
+    ENSURE(buf);
     const uint64_t h0 = tt_world_hash(w);
     double d0;
     tt_terrain_distance(w, t, (tt_vec2){5.0, -2.3}, &d0, NULL);
@@ -293,11 +293,7 @@ TEST(terrain_events_keep_their_terrain_through_a_snapshot)
     tt_world_set_collision(w, &cs);
     ball(w, 5.0, -2.25, 0.2, 0.6);
     for (int k = 0; k < 30; k++) tt_world_step(w, 1.0 / 60);
-    size_t size = 0;
-    tt_world_save(w, NULL, 0, &size);
-    void *buf = malloc(size);
-    ENSURE_OK(tt_world_save(w, buf, size, &size));
-    tt_world *c = tt_world_load(buf, size);
+    tt_world *c = scene_reload(w);
     ENSURE(c != NULL);
     for (int k = 0; k < 3 && c; k++) {
         uint32_t nw, nc;
@@ -325,7 +321,6 @@ TEST(terrain_events_keep_their_terrain_through_a_snapshot)
     }
     ENSURE(c && tt_world_hash(c) == tt_world_hash(w));
     tt_world_destroy(c);
-    free(buf);
     tt_world_destroy(w);
 }
 

@@ -1,5 +1,6 @@
 /* tether — reference scenes for the golden and snapshot tests (scenes.h). */
 #include "core/scenes.h"
+#include "test.h" /* tt_test_fail: scene_reload says why a stream did not load */
 
 #include <math.h>
 #include <stdlib.h>
@@ -419,4 +420,26 @@ void scene_spring_network(tt_world *w, int cols, int rows)
         if (i + cols < n) { sd.b = p[i + cols]; tt_spring_create(w, &sd); }
     }
     free(p);
+}
+
+unsigned char *scene_save(const tt_world *w, size_t *size)
+{
+    size_t n = 0;
+    if (tt_world_save(w, NULL, 0, &n) != TT_ENOMEM || n == 0) return NULL;
+    unsigned char *b = malloc(n);
+    if (b && tt_world_save(w, b, n, size) != TT_OK) {
+        free(b);
+        return NULL;
+    }
+    return b;
+}
+
+tt_world *scene_reload(const tt_world *w)
+{
+    size_t n = 0;
+    unsigned char *b = scene_save(w, &n);
+    tt_world *c = b ? tt_world_load(b, n) : NULL;
+    if (!c) tt_test_fail(__FILE__, __LINE__, "the world's own stream did not %s: %s", b ? "load" : "save", tt_last_error(b ? NULL : w));
+    free(b);
+    return c;
 }

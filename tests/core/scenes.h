@@ -37,6 +37,11 @@ tt_world *scene_small_world(void);
  * springs (k = 200) to the right and below, the top row pinned: the
  * reversal tests' scene. */
 void scene_spring_network(tt_world *w, int cols, int rows);
+/* w's snapshot stream in a new buffer of *size bytes (free it); NULL on failure. */
+unsigned char *scene_save(const tt_world *w, size_t *size);
+/* A new world loaded from w's own stream; NULL, with the reason reported as
+ * a test failure, when it does not save or load. */
+tt_world *scene_reload(const tt_world *w);
 /* FNV-1a over every live particle's position bits in slot order, from
  * tt_world_read_positions: a digest independent of tt_world_hash. */
 uint64_t scene_positions_digest(const tt_world *w);

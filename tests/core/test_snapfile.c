@@ -187,17 +187,10 @@ TEST(snapshot_a_large_area_from_current_positions_loads_again)
     ad.particles = p;
     ad.count = 3;
     ENSURE(tt_constraint_is_valid(w, tt_area_create(w, &ad)));
-    size_t n = 0;
-    tt_world_save(w, NULL, 0, &n);
-    unsigned char *b = malloc(n);
-    ENSURE(b);
-    ENSURE_OK(tt_world_save(w, b, n, &n));
-    tt_world *c = tt_world_load(b, n);
-    if (!c) tt_test_fail(__FILE__, __LINE__, "%s", tt_last_error(NULL));
+    tt_world *c = scene_reload(w);
     ENSURE(c && tt_world_hash(c) == tt_world_hash(w));
     tt_world_destroy(c);
     tt_world_destroy(w);
-    free(b);
 }
 
 /* Found by the rewind ring's fuzz wrapper: a segment made with radius
@@ -221,15 +214,10 @@ TEST(shape_create_refuses_inf_and_nan_even_in_fields_its_type_does_not_use)
     ENSURE(!tt_shape_is_valid(w, tt_shape_create(w, &d)));
     d.half_extents.y = 1;
     ENSURE(tt_shape_is_valid(w, tt_shape_create(w, &d)));
-    size_t n = 0;
-    tt_world_save(w, NULL, 0, &n);
-    unsigned char *b = malloc(n);
-    ENSURE(b && tt_world_save(w, b, n, &n) == TT_OK);
-    tt_world *c = tt_world_load(b, n);
+    tt_world *c = scene_reload(w);
     ENSURE(c);
     tt_world_destroy(c);
     tt_world_destroy(w);
-    free(b);
 }
 
 /* Found by the rewind ring's fuzz wrapper: tt_particle_set_material takes
@@ -243,16 +231,10 @@ TEST(snapshot_a_particle_friction_the_setter_takes_loads_again)
     tt_particle_def pd = tt_particle_def_default();
     tt_particle p = tt_particle_create(w, &pd);
     ENSURE_OK(tt_particle_set_material(w, p, 0.5, 1e15, 1e30));
-    size_t n = 0;
-    tt_world_save(w, NULL, 0, &n);
-    unsigned char *b = malloc(n);
-    ENSURE(b && tt_world_save(w, b, n, &n) == TT_OK);
-    tt_world *c = tt_world_load(b, n);
-    if (!c) tt_test_fail(__FILE__, __LINE__, "%s", tt_last_error(NULL));
+    tt_world *c = scene_reload(w);
     ENSURE(c && tt_world_hash(c) == tt_world_hash(w));
     tt_world_destroy(c);
     tt_world_destroy(w);
-    free(b);
 }
 
 /* Found by the rewind ring's fuzz wrapper: a link or spring whose length is
@@ -276,14 +258,8 @@ TEST(snapshot_links_and_springs_as_long_as_the_world_is_wide_load_again)
     sd.a = a;
     sd.b = b;
     ENSURE(tt_spring_is_valid(w, tt_spring_create(w, &sd)));
-    size_t n = 0;
-    tt_world_save(w, NULL, 0, &n);
-    unsigned char *buf = malloc(n);
-    ENSURE(buf && tt_world_save(w, buf, n, &n) == TT_OK);
-    tt_world *c = tt_world_load(buf, n);
-    if (!c) tt_test_fail(__FILE__, __LINE__, "%s", tt_last_error(NULL));
+    tt_world *c = scene_reload(w);
     ENSURE(c && tt_world_hash(c) == tt_world_hash(w));
     tt_world_destroy(c);
     tt_world_destroy(w);
-    free(buf);
 }

@@ -11,23 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The world's stream in a new buffer (NULL on failure). */
-static unsigned char *save(const tt_world *w, size_t *size)
-{
-    size_t n = 0;
-    if (tt_world_save(w, NULL, 0, &n) != TT_ENOMEM || n == 0) return NULL;
-    unsigned char *b = malloc(n);
-    if (b && tt_world_save(w, b, n, size) != TT_OK) {
-        free(b);
-        return NULL;
-    }
-    return b;
-}
-
 static bool same_stream(const tt_world *w, const unsigned char *b, size_t n)
 {
     size_t m;
-    unsigned char *c = save(w, &m);
+    unsigned char *c = scene_save(w, &m);
     bool same = c && m == n && memcmp(b, c, n) == 0;
     free(c);
     return same;
@@ -59,7 +46,7 @@ TEST(snapshot_restore_in_place_repeats_the_same_1000_steps)
         ENSURE(scene_build(&sc, (scene_kind)k));
         run(&sc, 40);
         size_t n;
-        unsigned char *b = save(sc.w, &n);
+        unsigned char *b = scene_save(sc.w, &n);
         ENSURE(b);
         uint64_t h0 = tt_world_hash(sc.w);
         run_counting(&sc, 1000, &breaks, &events);
@@ -85,7 +72,7 @@ TEST(snapshot_into_a_new_world_continues_as_the_original)
         ENSURE(scene_build(&sc, (scene_kind)k));
         run(&sc, 77);
         size_t n;
-        unsigned char *b = save(sc.w, &n);
+        unsigned char *b = scene_save(sc.w, &n);
         ENSURE(b);
         scene copy = sc;
         copy.w = tt_world_load(b, n);
@@ -110,7 +97,7 @@ TEST(snapshot_saved_handles_work_in_the_loaded_world)
     tt_particle gone = tt_particle_create(a, &pd);
     ENSURE_OK(tt_particle_destroy(a, gone));
     size_t n;
-    unsigned char *b = save(a, &n);
+    unsigned char *b = scene_save(a, &n);
     ENSURE(b);
     tt_world_destroy(a);
     tt_world *other = tt_world_create(NULL); /* takes the next tag */
@@ -158,7 +145,7 @@ TEST(snapshot_truncated_corrupted_or_foreign_streams_are_refused_with_the_world_
     ENSURE(src && w);
     tt_world_step(w, 0.01); /* w differs from src */
     size_t n, wn;
-    unsigned char *b = save(src, &n), *before = save(w, &wn);
+    unsigned char *b = scene_save(src, &n), *before = scene_save(w, &wn);
     ENSURE(b && before);
     for (size_t len = 0; len < n; len++) {
         if (tt_world_restore(w, b, len) != TT_EINVAL) { tt_test_fail(__FILE__, __LINE__, "truncated to %zu accepted", len); break; }
@@ -208,7 +195,7 @@ TEST(snapshot_reader_survives_every_byte_changed_behind_a_valid_checksum)
     tt_world *w = scene_small_world();
     ENSURE(w);
     size_t n, wn;
-    unsigned char *b = save(w, &n), *before = save(w, &wn);
+    unsigned char *b = scene_save(w, &n), *before = scene_save(w, &wn);
     ENSURE(b && before);
     uint32_t accepted = 0;
     for (size_t i = 32; i < n; i++) {
@@ -220,7 +207,7 @@ TEST(snapshot_reader_survives_every_byte_changed_behind_a_valid_checksum)
                 accepted++;
                 for (int s = 0; s < 3; s++) tt_world_step(w, 1.0 / 60);
                 size_t m;
-                unsigned char *again = save(w, &m);
+                unsigned char *again = scene_save(w, &m);
                 ENSURE(again);
                 free(again);
                 ENSURE_OK(tt_world_restore(w, before, wn));
@@ -248,7 +235,7 @@ TEST(snapshot_refuses_a_spring_joining_a_removed_particle)
     ENSURE(tt_spring_create(w, &sd).gen);
     ENSURE_OK(tt_particle_destroy(w, c));
     size_t n;
-    unsigned char *s = save(w, &n);
+    unsigned char *s = scene_save(w, &n);
     ENSURE(s);
     /* the spring record is the last 33 bytes of the world section's springs: b is at offset 5 */
     unsigned char *rec = NULL;
@@ -280,7 +267,7 @@ TEST(snapshot_loaded_world_removes_a_particles_springs_with_it)
     sd.b = b;
     ENSURE(tt_spring_create(w, &sd).gen);
     size_t n;
-    unsigned char *s = save(w, &n);
+    unsigned char *s = scene_save(w, &n);
     ENSURE(s);
     tt_world *l = tt_world_load(s, n);
     ENSURE(l);
@@ -313,7 +300,7 @@ TEST(snapshot_refuses_a_negative_moving_length)
     ENSURE(c.gen);
     ENSURE_OK(tt_distance_set_length(w, c, 3.25)); /* a target that moves over the next step */
     size_t n;
-    unsigned char *s = save(w, &n);
+    unsigned char *s = scene_save(w, &n);
     ENSURE(s);
     const double want = 3.25, bad = -3.25;
     unsigned char *to = NULL; /* the mover's target follows the link's rest length: the last 3.25 */
@@ -326,7 +313,7 @@ TEST(snapshot_refuses_a_negative_moving_length)
     if (tt_world_restore(w, s, n) == TT_OK) { /* accepted: then it must step into a world that saves and loads */
         ENSURE_OK(tt_world_step(w, 1.0 / 60));
         size_t m;
-        unsigned char *again = save(w, &m);
+        unsigned char *again = scene_save(w, &m);
         tt_world *back = again ? tt_world_load(again, m) : NULL;
         ENSURE(back != NULL);
         tt_world_destroy(back);
@@ -357,7 +344,7 @@ TEST(snapshot_refuses_a_velocity_past_the_divergence_guard)
         tt_particle p = tt_particle_create(w, &pd);
         ENSURE(p.gen);
         size_t n;
-        unsigned char *s = save(w, &n);
+        unsigned char *s = scene_save(w, &n);
         ENSURE(s);
         unsigned char *px = NULL; /* one particle: px, py, then qx */
         for (size_t i = 32; i + 24 <= n && !px; i++)
@@ -394,7 +381,7 @@ TEST(snapshot_refuses_a_slot_generation_no_pool_hands_out)
     const uint32_t tag = b.gen >> TT_HANDLE_GEN_BITS;
     const uint32_t bad[] = {0, ((tag % 1000) + 1) << TT_HANDLE_GEN_BITS | 1u, tag << TT_HANDLE_GEN_BITS};
     size_t n;
-    unsigned char *s = save(w, &n);
+    unsigned char *s = scene_save(w, &n);
     ENSURE(s);
     const uint32_t pool[5] = {2, a.gen, b.gen, 0, tag}; /* count, generations, free count, tag */
     unsigned char *at = NULL;
@@ -460,7 +447,7 @@ TEST(snapshot_restore_is_exact_for_every_integrator_with_contacts)
         ENSURE_OK(tt_world_set_substeps(sc.w, 2));
         run(&sc, 30);
         size_t n;
-        unsigned char *b = save(sc.w, &n);
+        unsigned char *b = scene_save(sc.w, &n);
         ENSURE(b);
         run(&sc, 200);
         uint64_t h1 = tt_world_hash(sc.w);
@@ -491,7 +478,7 @@ TEST(snapshot_between_a_shape_move_and_the_step_keeps_the_shapes_path)
     for (int s = 0; s < 30; s++) tt_world_step(w, 1.0 / 60);
     ENSURE_OK(tt_shape_set_transform(w, box, (tt_vec2){0.05, 0}, 0));
     size_t n;
-    unsigned char *b = save(w, &n);
+    unsigned char *b = scene_save(w, &n);
     ENSURE(b);
     tt_world_step(w, 1.0 / 60);
     tt_vec2 v1, v2;
@@ -536,18 +523,13 @@ TEST(a_world_with_a_removed_particle_steps_as_its_loaded_copy)
     }
     for (int s = 0; s < 5; s++) tt_world_step(w, 1.0 / 60);
     ENSURE(tt_particle_destroy(w, ps[2]) == TT_OK);
-    size_t n = 0;
-    tt_world_save(w, NULL, 0, &n);
-    unsigned char *buf = malloc(n);
-    ENSURE(buf && tt_world_save(w, buf, n, &n) == TT_OK);
-    tt_world *copy = tt_world_load(buf, n);
+    tt_world *copy = scene_reload(w);
     ENSURE(copy != NULL);
     for (int s = 0; s < 30; s++) {
         tt_world_step(w, 1.0 / 60);
         tt_world_step(copy, 1.0 / 60);
         ENSURE(tt_world_hash(w) == tt_world_hash(copy));
     }
-    free(buf);
     tt_world_destroy(copy);
     tt_world_destroy(w);
 }
@@ -563,9 +545,8 @@ TEST(snapshot_load_and_restore_out_of_memory_at_each_allocation_are_refused_clea
         ENSURE(scene_build(&sc, (scene_kind)kind));
         for (int s = 0; s < 5; s++) scene_step(&sc);
         size_t n = 0;
-        tt_world_save(sc.w, NULL, 0, &n);
-        unsigned char *b = malloc(n);
-        ENSURE(b && tt_world_save(sc.w, b, n, &n) == TT_OK);
+        unsigned char *b = scene_save(sc.w, &n);
+        ENSURE(b);
         const uint64_t h = tt_world_hash(sc.w);
         for (long k = 0;; k++) {
             tt_test_alloc_fail_from(k);
@@ -616,14 +597,9 @@ TEST(a_world_with_a_pin_anchored_past_the_largest_coordinate_saves_and_loads)
     dd.a = p;
     dd.b = q;
     ENSURE(tt_distance_create(w, &dd).gen != 0);
-    size_t n = 0;
-    tt_world_save(w, NULL, 0, &n);
-    unsigned char *buf = malloc(n);
-    ENSURE(buf && tt_world_save(w, buf, n, &n) == TT_OK);
-    tt_world *copy = tt_world_load(buf, n);
+    tt_world *copy = scene_reload(w);
     ENSURE(copy != NULL);
     if (copy) ENSURE(tt_world_hash(copy) == tt_world_hash(w));
-    free(buf);
     tt_world_destroy(copy);
     tt_world_destroy(w);
 }

@@ -23,12 +23,7 @@
 static fuzz_buf save(const tt_world *w)
 {
     fuzz_buf b = {NULL, 0};
-    tt_world_save(w, NULL, 0, &b.n);
-    b.p = malloc(b.n);
-    if (b.p && tt_world_save(w, b.p, b.n, &b.n) != TT_OK) {
-        free(b.p);
-        b.p = NULL;
-    }
+    b.p = scene_save(w, &b.n);
     return b;
 }
 
