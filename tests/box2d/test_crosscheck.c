@@ -174,12 +174,14 @@ TEST(box2d_crosscheck_quick_pour)
     ENSURE(r != NULL);
     const cc_row *h18 = row(r, "pile height at 20", "1x8"), *h88 = row(r, "pile height at 20", "8x8");
     const cc_row *o88 = row(r, "max overlap at 20", "8x8"), *ke88 = row(r, "kinetic energy at 20", "8x8");
-    ENSURE(h18 && h88 && o88 && ke88);
-    /* tether packs denser than Box2D: the pile is lower by 1.29 m (1 x 8) and 1.24 m (8 x 8) of 29 m.
-     * (0.9 and 0.8 m before the velocity pass ended bottom-up, contact_lift.c: a pile that no longer
-     * throws its layers up settles into its gaps; issue 21 keeps the 0.5 m target open.) */
+    const cc_row *c18 = row(r, "contacts per circle at 20", "1x8"), *c88 = row(r, "contacts per circle at 20", "8x8");
+    ENSURE(h18 && h88 && o88 && ke88 && c18 && c88);
+    /* tether packs denser than Box2D: the pile is lower by 1.29 m (1 x 8) and 1.24 m (8 x 8) of 29 m,
+     * nearly hexagonal (5.58 and 5.48 contacts per circle against Box2D's 4.57). The issue's 0.5 m
+     * is not met. */
     ENSURE(h18->tether < h18->box2d && h18->box2d - h18->tether <= 1.4);
     ENSURE(h88->tether < h88->box2d && h88->box2d - h88->tether <= 1.4);
+    ENSURE(c18->tether >= c18->box2d + 0.8 && c88->tether >= c88->box2d + 0.8);
     ENSURE(o88->tether <= 0.01 && o88->box2d <= 0.2); /* 8 x 8 at rest within 1 % of a radius */
     ENSURE(ke88->tether <= 1e-4 && ke88->box2d <= 2e-3);
     free(r);
