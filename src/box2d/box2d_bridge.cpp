@@ -161,6 +161,7 @@ extern "C" int tb_body_create(tb_world *w, const tb_body_def *d)
     bd.angle = (float)d->angle;
     bd.linearVelocity = vec(d->velocity);
     bd.angularVelocity = (float)d->spin;
+    bd.fixedRotation = d->fixed_rotation;
     try {
         w->bodies.reserve(w->bodies.size() + 1);
     } catch (const std::bad_alloc &) {

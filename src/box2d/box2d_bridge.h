@@ -41,6 +41,7 @@ typedef struct tb_body_def {
     double density;               /* kg/m²; default 1 */
     double friction;              /* default 0.3 (Box2D mixes √(μa·μb)) */
     double restitution;           /* 0 … 1; default 0 (Box2D mixes the larger) */
+    bool fixed_rotation;          /* the body never turns (as tether's particles); default false */
 } tb_body_def;
 
 typedef struct tb_body_state {

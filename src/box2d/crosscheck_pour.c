@@ -92,12 +92,13 @@ static void rows_for(cc_report *r, const char *setting, const pour_state b[2], c
 {
     static const char *when[2] = {"5 s", "20 s"};
     for (int i = 0; i < 2; i++) {
-        const struct { const char *what, *unit; double b, t; bool end_only; } m[4] = {
+        const struct { const char *what, *unit; double b, t; bool end_only; } m[5] = {
             {"pile height", "m", b[i].pile.height, t[i].pile.height, false},
             {"max overlap", "r", b[i].pile.max_overlap, t[i].pile.max_overlap, true},
             {"mean overlap", "r", b[i].pile.mean_overlap, t[i].pile.mean_overlap, true},
+            {"contacts per circle", "1", b[i].pile.contacts, t[i].pile.contacts, true},
             {"kinetic energy", "J/kg", b[i].ke, t[i].ke, false}};
-        for (int j = 0; j < 4; j++) {
+        for (int j = 0; j < 5; j++) {
             if ((m[j].end_only && i == 0) || (!has_tether && isnan(m[j].b))) continue;
             char what[48];
             snprintf(what, sizeof what, "%s at %s", m[j].what, when[i]);
@@ -142,7 +143,7 @@ static void report(cc_report *r, pour_run *p, pour_state st[][2])
         c->runs = 1;
         c->steps = steps;
     }
-    if (p->default_steps < steps) st[1][1] = (pour_state){{NAN, NAN, NAN, 0}, NAN};
+    if (p->default_steps < steps) st[1][1] = (pour_state){{NAN, NAN, NAN, 0, NAN}, NAN};
     rows_for(r, "b2 defaults", st[1], st[1], false);
     cc_cost *c = cc_add_cost(r, "pour", "");
     if (c) {

@@ -105,6 +105,7 @@ typedef struct ts_pile {
     double max_overlap;  /* deepest overlap of two circles, fraction of a radius */
     double mean_overlap; /* mean over overlapping pairs, fraction of a radius */
     uint32_t overlapping;/* pairs closer than two radii */
+    double contacts;     /* per circle: twice the pairs within 1 % of a radius of touching, over n (how densely it packs) */
 } ts_pile;
 /* Circles of equal radius r at centres xy (2n doubles; reordered on the way);
  * NaN measures for r ≤ 0 or no xy. */

@@ -1,6 +1,8 @@
 /* tether — measures of a pile of equal circles, the same for every engine:
  * height, and overlap as a fraction of a radius (deepest, and the mean over
- * the pairs that overlap at all). The height is the fill level: the median
+ * the pairs that overlap at all), and the contacts per circle (pairs within
+ * 1 % of a radius of touching: what a resting engine keeps apart by its
+ * slop or margin still touches). The height is the fill level: the median
  * over columns one diameter wide of the highest circle top in each, so one
  * circle rolling on top of the pile does not move it. */
 #include "scene.h"
@@ -46,15 +48,17 @@ static double fill_level(const double *xy, uint32_t n, double r)
 void ts_pile_measure(double *xy, uint32_t n, double r, ts_pile *out)
 {
     if (!out) return;
-    *out = (ts_pile){NAN, NAN, NAN, 0};
+    *out = (ts_pile){NAN, NAN, NAN, 0, NAN};
     if ((!xy && n) || !(r > 0)) return;
-    /* sorted by x, a circle's neighbours within 2r follow it: no grid needed */
+    /* sorted by x, a circle's neighbours within reach follow it: no grid needed */
     qsort(xy, n, 2 * sizeof *xy, by_x);
+    const double reach = 2.01 * r;
     double deepest = 0, sum = 0;
-    uint32_t pairs = 0;
+    uint32_t pairs = 0, touching = 0;
     for (uint32_t i = 0; i < n; i++) {
-        for (uint32_t j = i + 1; j < n && xy[2 * j] - xy[2 * i] < 2 * r; j++) {
+        for (uint32_t j = i + 1; j < n && xy[2 * j] - xy[2 * i] < reach; j++) {
             const double dx = xy[2 * j] - xy[2 * i], dy = xy[2 * j + 1] - xy[2 * i + 1], d2 = dx * dx + dy * dy;
+            if (d2 < reach * reach) touching++;
             if (d2 >= 4 * r * r) continue;
             const double depth = 2 * r - sqrt(d2);
             deepest = fmax(deepest, depth);
@@ -66,4 +70,5 @@ void ts_pile_measure(double *xy, uint32_t n, double r, ts_pile *out)
     out->max_overlap = deepest / r;
     out->mean_overlap = pairs ? sum / pairs / r : 0;
     out->overlapping = pairs;
+    out->contacts = n ? 2.0 * touching / n : 0;
 }

@@ -174,13 +174,98 @@ TEST(box2d_crosscheck_quick_pour)
     ENSURE(r != NULL);
     const cc_row *h18 = row(r, "pile height at 20", "1x8"), *h88 = row(r, "pile height at 20", "8x8");
     const cc_row *o88 = row(r, "max overlap at 20", "8x8"), *ke88 = row(r, "kinetic energy at 20", "8x8");
-    ENSURE(h18 && h88 && o88 && ke88);
-    /* tether packs denser than Box2D: the pile is lower by 1.29 m (1 x 8) and 1.24 m (8 x 8) of 29 m.
-     * (0.9 and 0.8 m before the velocity pass ended bottom-up, contact_lift.c: a pile that no longer
-     * throws its layers up settles into its gaps; issue 21 keeps the 0.5 m target open.) */
-    ENSURE(h18->tether < h18->box2d && h18->box2d - h18->tether <= 1.4);
-    ENSURE(h88->tether < h88->box2d && h88->box2d - h88->tether <= 1.4);
+    const cc_row *c18 = row(r, "contacts per circle at 20", "1x8"), *c88 = row(r, "contacts per circle at 20", "8x8");
+    ENSURE(h18 && h88 && o88 && ke88 && c18 && c88);
+    /* tether packs denser than Box2D: the pile is lower by 1.29 m (1 x 8) and 1.24 m (8 x 8) of 29 m,
+     * nearly hexagonal (5.58 and 5.48 contacts per circle against Box2D's 4.57), as a frictionless
+     * pile packs: tether's friction between particles at rest holds almost nothing (the next test).
+     * The issue's 0.5 m is not met. */
+    ENSURE(h18->tether < h18->box2d && h18->box2d - h18->tether <= 1.3);
+    ENSURE(h88->tether < h88->box2d && h88->box2d - h88->tether <= 1.3);
+    ENSURE(c18->tether >= c18->box2d + 0.8 && c88->tether >= c88->box2d + 0.8);
     ENSURE(o88->tether <= 0.01 && o88->box2d <= 0.2); /* 8 x 8 at rest within 1 % of a radius */
     ENSURE(ke88->tether <= 1e-4 && ke88->box2d <= 2e-3);
     free(r);
+}
+
+/* A small pour (200 circles into a box 11 m wide, 6 s) built in Box2D
+ * body by body, so its discs can be made not to turn. */
+static tb_world *b2_small_pour(const ts_scene *s, bool locked)
+{
+    tb_world_def wd = tb_world_def_default();
+    wd.sleep = wd.continuous = false;
+    tb_world *w = tb_world_create(&wd);
+    for (uint32_t i = 0; w && i < s->body_count; i++) {
+        const ts_body *b = &s->bodies[i];
+        tb_body_def d = tb_body_def_default();
+        d.shape = b->shape == TS_BOX ? TB_BOX : TB_CIRCLE;
+        d.dynamic = b->dynamic;
+        d.position[0] = b->position.x, d.position[1] = b->position.y;
+        d.radius = b->radius;
+        d.half[0] = b->half.x, d.half[1] = b->half.y;
+        d.friction = b->friction;
+        d.fixed_rotation = locked;
+        if (tb_body_create(w, &d) != (int)i) return tb_world_destroy(w), NULL;
+    }
+    return w;
+}
+
+/* The small pour's pile at friction mu (circles and walls): in Box2D with
+ * its discs free to turn (engine 0) or not (1), or in tether at 1 x 8 (2). */
+static ts_pile small_pile(double mu, int engine)
+{
+    ts_scene s;
+    ts_scene_pour(&s, 200, 11);
+    s.steps = 360;
+    for (uint32_t i = 0; i < s.body_count; i++) s.bodies[i].friction = mu;
+    const uint32_t n = s.body_count - 3; /* the floor and the walls first */
+    double *xy = malloc(2 * (size_t)n * sizeof *xy);
+    ts_pile p = {NAN, NAN, NAN, 0, NAN};
+    if (engine < 2) {
+        tb_world *w = b2_small_pour(&s, engine == 1);
+        for (uint32_t k = 0; w && k < s.steps; k++) tb_world_step(w, s.dt);
+        if (w && xy && tb_positions(w, 3, (int)n, xy)) ts_pile_measure(xy, n, 0.5, &p);
+        tb_world_destroy(w);
+    } else {
+        ts_tether t;
+        const char *why = "";
+        ts_tether_settings set = ts_tether_settings_default();
+        if (ts_tether_build(&s, &set, &t, &why) == TT_OK) {
+            for (uint32_t k = 0; k < s.steps; k++) tt_world_step(t.world, s.dt);
+            if (xy && tt_particles_get_positions(t.world, t.circles, n, xy) == TT_OK) ts_pile_measure(xy, n, 0.5, &p);
+            ts_tether_free(&t);
+        }
+    }
+    free(xy);
+    ts_scene_free(&s);
+    return p;
+}
+
+/* Why tether's pour settles lower than Box2D's (issue 17): between
+ * particles at rest, tether's friction holds almost nothing. It is bounded
+ * by μ times the pair's normal velocity change in the velocity pass
+ * (contact_response.c): an impact, or a particle's own fall onto another,
+ * but not the load the pile above presses through the contact, which the
+ * sweeps carry; so a resting pile packs as if frictionless, toward the
+ * hexagonal packing (6 contacts per circle). Box2D's friction keeps its
+ * discs in a looser packing; with its discs made not to turn (as tether's
+ * particles cannot) far looser still, grains standing in columns. Measured
+ * (contacts per circle / height, μ 0.3 then 0): Box2D 3.66 / 17.57 m,
+ * 4.78 / 16.81 m, not turning 1.91 / 21.61 m; tether 5.00 / 17.00 m,
+ * 5.18 / 16.55 m. So bounding pair friction by the load instead, as shape
+ * contacts are, is not the fix: it stands tether's grains in columns too
+ * (the quick pour at 8 x 8: 35.5 m against Box2D's 29.0); rigid discs get
+ * their looser-than-frictionless packing from friction and turning
+ * together (README "Box2D cross-check"). When tether's particle friction
+ * changes, this test says by how much. */
+TEST(box2d_pile_friction_at_rest)
+{
+    const ts_pile b = small_pile(0.3, 0), b0 = small_pile(0, 0), bl = small_pile(0.3, 1);
+    const ts_pile t = small_pile(0.3, 2), t0 = small_pile(0, 2);
+    printf("    contacts per circle / height (m), mu 0.3 and 0: Box2D %.2f / %.2f, %.2f / %.2f (discs not turning: %.2f / %.2f);"
+           " tether %.2f / %.2f, %.2f / %.2f\n", b.contacts, b.height, b0.contacts, b0.height, bl.contacts, bl.height, t.contacts,
+           t.height, t0.contacts, t0.height);
+    ENSURE(b0.contacts - b.contacts >= 0.8 && b.height > b0.height);     /* Box2D: friction loosens the pile */
+    ENSURE(bl.contacts < b.contacts && bl.height > b.height);             /* more so when the discs cannot turn */
+    ENSURE(fabs(t0.contacts - t.contacts) <= 0.3 && t.contacts >= b.contacts + 1); /* tether: it hardly does */
 }

@@ -119,8 +119,14 @@ TEST(scenes_pile_measures)
     ENSURE_NEAR(p.max_overlap, 0.2, 1e-12);
     ENSURE_NEAR(p.mean_overlap, 0.2, 1e-12);
     ENSURE_NEAR(p.height, 1, 1e-12);
+    ENSURE_NEAR(p.contacts, 2.0 / 3, 1e-12); /* one contact between three circles */
+    /* a contact is a pair within 1 % of a radius of touching: 0.004 apart counts, 0.006 does not */
+    double near[] = {0, 0.5, 1.004, 0.5, 2.01, 0.5};
+    ts_pile_measure(near, 3, 0.5, &p);
+    ENSURE(p.overlapping == 0);
+    ENSURE_NEAR(p.contacts, 2.0 / 3, 1e-12);
     ts_pile_measure(NULL, 3, 0.5, &p);
-    ENSURE(isnan(p.height) && p.overlapping == 0);
+    ENSURE(isnan(p.height) && isnan(p.contacts) && p.overlapping == 0);
     ts_pile_measure(xy, 3, 0, &p);
     ENSURE(isnan(p.max_overlap));
 }
