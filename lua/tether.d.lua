@@ -696,7 +696,7 @@ function world:break_events() end
 ---opts: start, finish, segments, pin_start, pin_finish, slack, break_strain + composite options.
 ---@return tether.composite
 function world:rope(opts) end
----opts: origin, width, height, columns, rows, shear_stiffness, bend_stiffness, pin_top_corners, pin_top_row, break_strain, long_range (attachments to the pins: no stretch under its own weight; not with break_strain) + composite options.
+---opts: origin, width, height, columns, rows, shear_stiffness, bend_stiffness, pin_top_corners, pin_top_row, break_strain, long_range (attachments to the pins, and between two pinned corners an angle limit that keeps the top band from sagging: no stretch under its own weight; not with break_strain) + composite options.
 ---@return tether.composite
 function world:cloth(opts) end
 ---opts: position, height, limits + composite options.

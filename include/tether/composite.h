@@ -48,8 +48,11 @@ typedef struct tt_cloth_def {
                             ///< farther from the cloth's pinned ones than in the rest shape (a "max" distance link
                             ///< to each pinned corner, or with a pinned top row to the particle atop its column),
                             ///< solved after the other links: a hanging cloth stops stretching under its own
-                            ///< weight at the same sweeps. Not with break_strain (a torn piece would stay tied
-                            ///< to the pins); default false
+                            ///< weight at the same sweeps. Hung from two corners, a particle near the line
+                            ///< between them (where the corners' discs meet at under 30°) is also kept inside the
+                            ///< circle through both corners and its rest spot (an angle limit at it, after the
+                            ///< links): the top band does not sag between the pins. Not with break_strain (a torn
+                            ///< piece would stay tied to the pins); default false
 } tt_cloth_def;
 
 /// A ragdoll of 11 particles, in this order: 0 head, 1 neck, 2 pelvis,

@@ -160,7 +160,7 @@ void tt__builder_link(tt__builder *b, uint32_t i, uint32_t j, double stiffness, 
     tt__builder_add_constraint(b, tt_distance_create(b->w, &d));
 }
 
-void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, double hi)
+void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, double hi, double stiffness)
 {
     if (!tt__builder_con_room(b)) return;
     tt_angle_def d = tt_angle_def_default();
@@ -170,7 +170,7 @@ void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, doubl
     d.use_current = false;
     d.min = lo;
     d.max = hi;
-    d.stiffness = b->k.stiffness;
+    d.stiffness = stiffness;
     tt__builder_add_constraint(b, tt_angle_create(b->w, &d));
 }
 

@@ -249,7 +249,7 @@ bool tt__builder_spawn(tt__builder *b);
 bool tt__builder_con_room(tt__builder *b);
 void tt__builder_add_constraint(tt__builder *b, tt_constraint h);
 void tt__builder_link(tt__builder *b, uint32_t i, uint32_t j, double stiffness, tt_distance_mode mode, double break_strain);
-void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, double hi);
+void tt__builder_limit(tt__builder *b, uint32_t i, uint32_t j, uint32_t k, double lo, double hi, double stiffness);
 tt_composite tt__builder_finish(tt__builder *b);
 
 #endif
