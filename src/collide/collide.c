@@ -1,44 +1,13 @@
 /* tether — the public collision settings (tether/collide.h): the world's
- * defaults for particles, per-particle materials and bullets, and the pairs
- * switched off, with the filter that reads them. */
+ * settings and statistics, per-particle materials and bullets, and the
+ * pairs switched off (looked up by pair_filter.c); and the pair sweep mode
+ * the tests force. Their defaults are in collide_defs.c. These calls make
+ * the collision state on first use (tt__collide_get), so they sit above
+ * the contacts group and its stages. */
 #include "collide_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-tt_collision_settings tt_collision_settings_default(void)
-{
-    tt_collision_settings s;
-    memset(&s, 0, sizeof s);
-    s.particles = true;
-    s.broadphase = TT_BROADPHASE_GRID;
-    s.cell_size = 0.0;
-    s.restitution = 0.0;
-    s.friction_static = 0.6;
-    s.friction_kinetic = 0.5;
-    s.restitution_threshold = -1.0;
-    s.events = 0;
-    return s;
-}
-
-/* --- filter: the one place deciding whether two particles may collide ---- */
-
-static bool excluded(const tt__collide *c, uint64_t key)
-{
-    uint32_t lo = 0, hi = c->nexcl;
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) / 2;
-        if (c->excl[mid] < key) lo = mid + 1;
-        else hi = mid;
-    }
-    return lo < c->nexcl && c->excl[lo] == key;
-}
-
-
-bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b)
-{
-    return excluded(c, tt__pair_key(a, b));
-}
 
 /* --- public settings ------------------------------------------------------- */
 
@@ -203,4 +172,15 @@ tt_result tt_world_set_pair_collision(tt_world *w, tt_particle a, tt_particle b,
         c->nexcl++;
     }
     return TT_OK;
+}
+
+/* --- for tests ---------------------------------------------------------- */
+
+bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode)
+{
+    if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && tt__simd_kind((uint8_t)mode) == TT__SIMD_SCALAR) return false;
+    tt__collide *c = tt__collide_get(w, true, "tt__contacts_set_simd");
+    if (!c) return false;
+    c->bat.simd = (uint8_t)mode;
+    return true;
 }

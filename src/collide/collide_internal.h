@@ -1,12 +1,11 @@
-/* tether — private declarations of the collision feature (grid.c,
- * broadphase_brute.c, shapes.c, narrowphase.c, collide.c, contacts.c,
- * contact_detect.c, contact_response.c, contact_events.c, contact_batch.c,
- * ccd.c, query.c). */
+/* tether — private declarations of the collision feature: every file of
+ * src/collide/ (the terrains' add terrain_internal.h). */
 #ifndef TETHER_COLLIDE_INTERNAL_H
 #define TETHER_COLLIDE_INTERNAL_H
 
 #include "core/internal.h"
 #include "core/simd.h"
+#include "core/stream.h" /* TT__ID */
 #include "tether/collide.h"
 
 /* Candidate pairs are kept when their gap is under this fraction of the
@@ -170,7 +169,7 @@ static inline bool tt__pair_push(uint32_t a, uint32_t b, double rs, double ws, d
     return true;
 }
 /* Forces w's pair sweep mode (tests compare them bit for bit); false when
- * this build or processor lacks it. */
+ * this build or processor lacks it (collide.c). */
 bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode);
 
 typedef struct tt__scontact {
@@ -265,6 +264,13 @@ typedef struct tt__collide {
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
 
+/* The contacts group's hook table and the collision state's accessor
+ * (contacts.c). The table names every stage, so the files that make the
+ * state (the public calls: collide.c, shapes.c, query.c, terrain_api.c)
+ * sit above the stages; the stages and helpers find an existing state by
+ * the group's id (tt__collide_peek), never through the table, so no file
+ * the table uses depends on it back. */
+#define TT__COLL_ID TT__ID('C', 'O', 'L', 'L') /* its snapshot section, and how its files find it */
 extern const tt__group_ops tt__contacts_ops;
 /* The collision state of w, made and registered on first use when create is true. */
 tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
@@ -273,7 +279,7 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
 void tt__contacts_lift(tt_world *w, tt__collide *c, double thr);
 static inline tt__collide *tt__collide_peek(const tt_world *w)
 {
-    return (tt__collide *)tt__group_find(w, &tt__contacts_ops);
+    return (tt__collide *)tt__group_find_id(w, TT__COLL_ID);
 }
 
 /* The stages of the contacts group (contacts.c registers them): detection
@@ -312,7 +318,7 @@ static inline double tt__mat(const tt__collide *c, uint32_t i, int k)
 
 /* Filters: the one place that decides whether two particles may collide
  * (layers, two pinned, switched-off pairs, particles joined by a constraint
- * that does not let them collide). */
+ * that does not let them collide). The switched-off pairs: pair_filter.c. */
 bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b);
 static inline bool tt__pair_filter(const tt_world *w, const tt__collide *c, uint32_t a, uint32_t b)
 {
@@ -368,10 +374,14 @@ static inline int32_t tt__cell_coord(double v, double o, double inv)
 /* Brute force (broadphase_brute.c): the same candidate set, every pair tested. */
 bool tt__brute_pairs(tt_world *w, tt__collide *c);
 
-/* Shapes (shapes.c; primitives and the static index: static_index.c). */
+/* Shapes (shapes.c; their definitions: collide_defs.c; primitives, the
+ * static index and the storage's memory: static_index.c). */
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
 /* What tt_shape_create accepts (a snapshot's shapes pass the same test). */
 tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const char *fn);
+/* A restitution in [0, 1] and frictions in [0, TT_MAX_VALUE], as shapes
+ * and terrains take them. */
+tt_result tt__material_check(const tt_world *w, double e, double fs, double fk, const char *fn);
 /* Places the shapes the script moved where they are at the end of the
  * world's current substep, on their way from `from` to their def's
  * transform (the static index holds their whole path: no rebuild). */
