@@ -1,6 +1,6 @@
 /* tether — the public collision settings (tether/collide.h): the world's
  * settings and statistics, per-particle materials and bullets, and the
- * pairs switched off (looked up by pair_filter.c); and the pair sweep mode
+ * pairs switched off (a set of core/pair_set.h); and the pair sweep mode
  * the tests force. Their defaults are in collide_defs.c. These calls make
  * the collision state on first use (tt__collide_get), so they sit above
  * the contacts group and its stages. */
@@ -154,23 +154,10 @@ tt_result tt_world_set_pair_collision(tt_world *w, tt_particle a, tt_particle b,
     if (a.index == b.index) return tt__fail(w, TT_EINVAL, "%s: a and b are the same particle", fn);
     tt__collide *c = tt__collide_get(w, !enabled, fn);
     if (!c) return enabled ? TT_OK : TT_ENOMEM;
-    uint64_t key = tt__pair_key(a.index, b.index);
-    uint32_t lo = 0, hi = c->nexcl;
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) / 2;
-        if (c->excl[mid] < key) lo = mid + 1;
-        else hi = mid;
-    }
-    bool present = lo < c->nexcl && c->excl[lo] == key;
-    if (enabled && present) {
-        memmove(c->excl + lo, c->excl + lo + 1, (size_t)(c->nexcl - lo - 1) * sizeof *c->excl);
-        c->nexcl--;
-    } else if (!enabled && !present) {
-        if (!tt__grow((void **)&c->excl, &c->exclcap, c->nexcl + 1, sizeof *c->excl)) return tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
-        memmove(c->excl + lo + 1, c->excl + lo, (size_t)(c->nexcl - lo) * sizeof *c->excl);
-        c->excl[lo] = key;
-        c->nexcl++;
-    }
+    const bool present = tt__pair_set_has(&c->excl, a.index, b.index);
+    if (enabled && present) tt__pair_set_remove(&c->excl, a.index, b.index);
+    else if (!enabled && !present && !tt__pair_set_add(&c->excl, a.index, b.index))
+        return tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
     return TT_OK;
 }
 

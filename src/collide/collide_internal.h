@@ -4,6 +4,7 @@
 #define TETHER_COLLIDE_INTERNAL_H
 
 #include "core/internal.h"
+#include "core/pair_set.h"
 #include "core/simd.h"
 #include "core/stream.h" /* TT__ID */
 #include "tether/collide.h"
@@ -230,8 +231,7 @@ typedef struct tt__collide {
     uint8_t *bullet;      /* NULL until used */
     uint32_t bulletcap, nbullets;
     int32_t *ccd_prim;    /* per slot: primitive hit by the sweep this substep, −1 none (bullets only) */
-    uint64_t *excl;       /* sorted keys of particle pairs that do not collide */
-    uint32_t nexcl, exclcap;
+    tt__pair_set excl;    /* particle pairs the script switched off (one reference each), ordered: saved in order */
     /* contacts of the current substep */
     tt__pair *pairs;
     uint32_t npairs, paircap;
@@ -318,13 +318,12 @@ static inline double tt__mat(const tt__collide *c, uint32_t i, int k)
 
 /* Filters: the one place that decides whether two particles may collide
  * (layers, two pinned, switched-off pairs, particles joined by a constraint
- * that does not let them collide). The switched-off pairs: pair_filter.c. */
-bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b);
+ * that does not let them collide; both sets of pairs are core/pair_set.h's). */
 static inline bool tt__pair_filter(const tt_world *w, const tt__collide *c, uint32_t a, uint32_t b)
 {
     if (!((w->category[a] & w->mask[b]) && (w->category[b] & w->mask[a]))) return false;
     if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0) return false;
-    if (c->nexcl && tt__pair_excluded(c, a, b)) return false;
+    if (c->excl.used && tt__pair_set_contains(&c->excl, a, b)) return false;
     if (tt__constraint_pair_excluded(w, a, b)) return false;
     return true;
 }

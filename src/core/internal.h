@@ -287,7 +287,7 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
         w->py[i] += dy;
     }
 }
-/* Constraints (constraint_pairs.c): true when a constraint joining particle slots
+/* Constraints (constraint_group.c): true when a constraint joining particle slots
  * a and b says they must not collide (O(1); the collision stage asks). */
 bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
 /* Whether any constraint keeps its particles from colliding (else the test above is always false). */
