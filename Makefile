@@ -197,11 +197,15 @@ $(B2_A): $(B2_OBJ)
 	rm -f $@; ar rcs $@ $^
 
 # The cross-check's Lua module carries its own copy of the engine (like
-# tether.so) and is the one product that links Box2D and libstdc++.
-$(B2_MOD): $(B2_LUA_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
+# tether.so) and is the one product that links Box2D and libstdc++. It reads
+# its option tables with the binding's checkers (lua_common.c, lua_options.c),
+# linked in as objects: hidden symbols, no clash with tether.so's.
+B2_TL_OBJ := $(BUILD)/obj/lua/lua_common.o $(BUILD)/obj/lua/lua_options.o
+B2_TL_LUAJIT_OBJ := $(BUILD)/obj/luajit/lua_common.o $(BUILD)/obj/luajit/lua_options.o
+$(B2_MOD): $(B2_LUA_OBJ) $(B2_TL_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm
 
-$(B2_LUAJIT_MOD): $(B2_LUAJIT_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
+$(B2_LUAJIT_MOD): $(B2_LUAJIT_OBJ) $(B2_TL_LUAJIT_OBJ) $(B2_A) $(SCENES_A) $(LIB_A)
 	@mkdir -p $(@D)
 	$(CC) -shared -o $@ $^ $(LDFLAGS_ALL) $(BOX2D_LIBS) -lstdc++ -lm
 

@@ -5,7 +5,11 @@
 --
 -- Bodies are numbered from 1 in creation order; in a joint, body 0 is the
 -- ground. Misuse raises an error naming the function and the argument
--- ("tether_box2d.world:state: bad argument #2 (no such body)").
+-- ("tether_box2d.world:state: bad argument #2 (no such body)"). Option tables
+-- are read as tether's own are: an unknown key is refused with the list of
+-- keys ("tether_box2d.world: unknown option 'slep' (expected one of: …)"),
+-- a bad value names the key ("bad option 'sleep' (boolean expected, got
+-- number)"); numbers must be finite, Box2D refuses what it cannot build.
 
 ---@alias tether_box2d.shape_name
 ---| "circle"  # radius

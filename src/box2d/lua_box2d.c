@@ -14,10 +14,9 @@
  * ground. Misuse raises an error naming the function and the argument. */
 #include "lua_box2d.h"
 
-#include <lauxlib.h>
-#include "lua/lua_compat.h" /* one source for Lua 5.4 and LuaJIT */
-#include <lua.h>
+#include "lua/lua_common.h" /* option tables and checkers as every binding has them; Lua 5.4 and LuaJIT */
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -53,100 +52,35 @@ static lua_Integer check_int(lua_State *L, int i, const char *fn, const char *na
     return lua_tointeger(L, i);
 }
 
-/* Every key of the table at t must be one of names (NULL-terminated). */
-void tl_b2_only_keys(lua_State *L, int t, const char *fn, const char *const *names)
+/* Option tables are read as every tether binding reads them
+ * (src/lua/lua_options.c): one tl_opt description per table, so the keys,
+ * their ranges and the unknown-key list are written once, and the errors
+ * read "fn: bad option 'key' (why)". The bridge checks what Box2D itself
+ * refuses (a radius of 0, a concave polygon): here any finite number. */
+static const tl_range FINITE = {-DBL_MAX, DBL_MAX, false};
+
+/* {x, y} of finite numbers, or def when the option is absent. */
+static void opt_pair(lua_State *L, int t, const char *key, double out[2])
 {
-    lua_pushnil(L);
-    while (lua_next(L, t)) {
-        lua_pop(L, 1);
-        bool known = false;
-        if (lua_type(L, -1) == LUA_TSTRING)
-            for (int i = 0; names[i] && !known; i++) known = !strcmp(lua_tostring(L, -1), names[i]);
-        if (!known) luaL_error(L, "%s: unknown option '%s'", fn, lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : luaL_typename(L, -1));
-    }
+    const tt_vec2 v = tl_optfield_vec2(L, t, key, &FINITE, (tt_vec2){out[0], out[1]});
+    out[0] = v.x;
+    out[1] = v.y;
 }
 
-static double opt_num(lua_State *L, int t, const char *fn, const char *key, double def)
-{
-    lua_getfield(L, t, key);
-    double v = def;
-    if (!lua_isnil(L, -1)) {
-        if (!lua_isnumber(L, -1)) luaL_error(L, "%s: option '%s' must be a number, got %s", fn, key, luaL_typename(L, -1));
-        v = lua_tonumber(L, -1);
-        if (!isfinite(v)) luaL_error(L, "%s: option '%s' must be finite", fn, key);
-    }
-    lua_pop(L, 1);
-    return v;
-}
+static const tl_opt world_opts[] = {
+    TL_OPT_BYHAND("gravity"), /* two doubles, read as {x, y} */
+    TL_OPT_INT(tb_world_def, "velocity_iterations", velocity_iterations, 1, 1000),
+    TL_OPT_INT(tb_world_def, "position_iterations", position_iterations, 1, 1000),
+    TL_OPT_FLAG(tb_world_def, "sleep", sleep),
+    TL_OPT_FLAG(tb_world_def, "continuous", continuous),
+    TL_OPT_END,
+};
 
-static bool opt_bool(lua_State *L, int t, const char *fn, const char *key, bool def)
-{
-    lua_getfield(L, t, key);
-    bool v = def;
-    if (!lua_isnil(L, -1)) {
-        if (!lua_isboolean(L, -1)) luaL_error(L, "%s: option '%s' must be a boolean, got %s", fn, key, luaL_typename(L, -1));
-        v = lua_toboolean(L, -1);
-    }
-    lua_pop(L, 1);
-    return v;
-}
-
-/* Up to n numbers from the list t[key] into out; how many there were. */
-static int opt_list(lua_State *L, int t, const char *fn, const char *key, double *out, int n)
-{
-    lua_getfield(L, t, key);
-    int got = 0;
-    if (!lua_isnil(L, -1)) {
-        if (!lua_istable(L, -1)) luaL_error(L, "%s: option '%s' must be a list of numbers", fn, key);
-        got = (int)lua_rawlen(L, -1);
-        if (got > n) luaL_error(L, "%s: option '%s' has %d numbers, at most %d", fn, key, got, n);
-        for (int i = 0; i < got; i++) {
-            lua_rawgeti(L, -1, i + 1);
-            if (!lua_isnumber(L, -1)) luaL_error(L, "%s: option '%s'[%d] must be a number", fn, key, i + 1);
-            out[i] = lua_tonumber(L, -1);
-            lua_pop(L, 1);
-        }
-    }
-    lua_pop(L, 1);
-    return got;
-}
-
-int tl_b2_pick(lua_State *L, int t, const char *fn, const char *key, const char *const *names)
-{
-    lua_getfield(L, t, key);
-    const char *v = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "";
-    for (int i = 0; names[i]; i++)
-        if (!strcmp(v, names[i])) {
-            lua_pop(L, 1);
-            return i;
-        }
-    luaL_Buffer b;
-    luaL_buffinit(L, &b);
-    for (int i = 0; names[i]; i++) {
-        luaL_addstring(&b, i ? ", '" : "'");
-        luaL_addstring(&b, names[i]);
-        luaL_addstring(&b, "'");
-    }
-    luaL_pushresult(&b);
-    return luaL_error(L, "%s: option '%s' must be one of %s", fn, key, lua_tostring(L, -1));
-}
-
-static const char *const world_keys[] = {"gravity", "velocity_iterations", "position_iterations", "sleep", "continuous", NULL};
-
-tb_world_def tl_b2_world_def(lua_State *L, int t, const char *fn)
+tb_world_def tl_b2_world_def(lua_State *L, int t)
 {
     tb_world_def d = tb_world_def_default();
-    if (lua_isnoneornil(L, t)) return d;
-    luaL_checktype(L, t, LUA_TTABLE);
-    tl_b2_only_keys(L, t, fn, world_keys);
-    if (opt_list(L, t, fn, "gravity", d.gravity, 2) == 1) luaL_error(L, "%s: option 'gravity' must be {x, y}", fn);
-    const double vi = opt_num(L, t, fn, "velocity_iterations", 8), pi = opt_num(L, t, fn, "position_iterations", 3);
-    if (!(vi >= 1 && vi <= 1000 && pi >= 1 && pi <= 1000) || vi != floor(vi) || pi != floor(pi))
-        luaL_error(L, "%s: options 'velocity_iterations' and 'position_iterations' must be integers in [1, 1000]", fn);
-    d.velocity_iterations = (int)vi;
-    d.position_iterations = (int)pi;
-    d.sleep = opt_bool(L, t, fn, "sleep", d.sleep);
-    d.continuous = opt_bool(L, t, fn, "continuous", d.continuous);
+    tl_readopts(L, t, world_opts, &d);
+    opt_pair(L, t, "gravity", d.gravity);
     return d;
 }
 
@@ -161,47 +95,75 @@ tb_world *tl_b2_push_world(lua_State *L, const tb_world_def *d, const char *fn)
 
 int tl_b2_world(lua_State *L)
 {
-    const tb_world_def d = tl_b2_world_def(L, 1, "tether_box2d.world");
+    const tb_world_def d = tl_b2_world_def(L, 1);
     tl_b2_push_world(L, &d, "tether_box2d.world");
     return 1;
 }
 
 static const char *const shapes[] = {"circle", "box", "polygon", "edge", NULL};
-static const char *const body_keys[] = {"shape", "dynamic", "x", "y", "angle", "vx", "vy", "spin", "radius", "hx", "hy",
-                                        "points", "a", "b", "density", "friction", "restitution", NULL};
+static const tl_opt body_opts[] = {
+    TL_OPT_BYHAND("shape"), /* required */
+    TL_OPT_FLAG(tb_body_def, "dynamic", dynamic),
+    TL_OPT_NUM(tb_body_def, "x", position[0], &FINITE),
+    TL_OPT_NUM(tb_body_def, "y", position[1], &FINITE),
+    TL_OPT_NUM(tb_body_def, "angle", angle, &FINITE),
+    TL_OPT_NUM(tb_body_def, "vx", velocity[0], &FINITE),
+    TL_OPT_NUM(tb_body_def, "vy", velocity[1], &FINITE),
+    TL_OPT_NUM(tb_body_def, "spin", spin, &FINITE),
+    TL_OPT_NUM(tb_body_def, "radius", radius, &FINITE),
+    TL_OPT_NUM(tb_body_def, "hx", half[0], &FINITE),
+    TL_OPT_NUM(tb_body_def, "hy", half[1], &FINITE),
+    TL_OPT_BYHAND("points"), /* x1, y1, x2, y2, … */
+    TL_OPT_BYHAND("a"),
+    TL_OPT_BYHAND("b"),
+    TL_OPT_NUM(tb_body_def, "density", density, &FINITE),
+    TL_OPT_NUM(tb_body_def, "friction", friction, &FINITE),
+    TL_OPT_NUM(tb_body_def, "restitution", restitution, &FINITE),
+    TL_OPT_END,
+};
+
+/* The polygon's x1, y1, x2, y2, … into d. */
+static void opt_points(lua_State *L, int t, tb_body_def *d)
+{
+    if (!tl_getopt(L, t, "points")) return;
+    const int p = lua_gettop(L);
+    if (lua_type(L, p) != LUA_TTABLE) {
+        tl_push_expected(L, p, "list of numbers x1, y1, x2, y2, ...", false);
+        tl_error(L, "bad option 'points' (%s)", lua_tostring(L, -1));
+    }
+    const size_t n = lua_rawlen(L, p);
+    if (n % 2 || n > 2 * TB_MAX_POLYGON)
+        tl_error(L, "bad option 'points' (x1, y1, x2, y2, ... of at most %d points expected, got %d numbers)", TB_MAX_POLYGON, (int)n);
+    for (size_t i = 0; i < n; i++) {
+        lua_rawgeti(L, p, (lua_Integer)i + 1);
+        if (!tl_tonumber_in(L, -1, &FINITE, &d->points[i])) tl_error(L, "bad option 'points' (index %d: %s)", (int)i + 1, lua_tostring(L, -1));
+        lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    d->count = (int)n / 2;
+}
 
 /* A body definition from the table at t (the keys of tether_box2d.scene's bodies). */
-tb_body_def tl_b2_body_def(lua_State *L, int t, const char *fn)
+tb_body_def tl_b2_body_def(lua_State *L, int t)
 {
-    luaL_checktype(L, t, LUA_TTABLE);
-    tl_b2_only_keys(L, t, fn, body_keys);
     tb_body_def d = tb_body_def_default();
-    d.shape = (tb_shape)tl_b2_pick(L, t, fn, "shape", shapes);
-    d.dynamic = opt_bool(L, t, fn, "dynamic", false);
-    d.position[0] = opt_num(L, t, fn, "x", 0);
-    d.position[1] = opt_num(L, t, fn, "y", 0);
-    d.angle = opt_num(L, t, fn, "angle", 0);
-    d.velocity[0] = opt_num(L, t, fn, "vx", 0);
-    d.velocity[1] = opt_num(L, t, fn, "vy", 0);
-    d.spin = opt_num(L, t, fn, "spin", 0);
-    d.radius = opt_num(L, t, fn, "radius", 0.5);
-    d.half[0] = opt_num(L, t, fn, "hx", 0.5);
-    d.half[1] = opt_num(L, t, fn, "hy", 0.5);
-    const int np = opt_list(L, t, fn, "points", d.points, 2 * TB_MAX_POLYGON);
-    if (np % 2) luaL_error(L, "%s: option 'points' must be x1, y1, x2, y2, ...", fn);
-    d.count = np / 2;
-    opt_list(L, t, fn, "a", d.a, 2);
-    opt_list(L, t, fn, "b", d.b, 2);
-    d.density = opt_num(L, t, fn, "density", d.density);
-    d.friction = opt_num(L, t, fn, "friction", d.friction);
-    d.restitution = opt_num(L, t, fn, "restitution", d.restitution);
+    if (!tl_readopts(L, t, body_opts, &d)) tl_typeerror(L, t, "table");
+    const int shape = tl_optfield_option(L, t, "shape", "shape", shapes, -1);
+    if (shape < 0) {
+        tl_push_choices(L, shapes);
+        tl_error(L, "bad option 'shape' (one of %s expected, got no value)", lua_tostring(L, -1));
+    }
+    d.shape = (tb_shape)shape;
+    opt_points(L, t, &d);
+    opt_pair(L, t, "a", d.a);
+    opt_pair(L, t, "b", d.b);
     return d;
 }
 
 static int l_body(lua_State *L)
 {
     tb_world *w = check_world(L, 1);
-    const tb_body_def d = tl_b2_body_def(L, 2, "tether_box2d.world:body");
+    const tb_body_def d = tl_b2_body_def(L, 2);
     const int i = tb_body_create(w, &d);
     if (i < 0) return luaL_error(L, "tether_box2d.world:body: %s", tb_last_error());
     lua_pushinteger(L, i + 1);
@@ -289,7 +251,8 @@ void tl_b2_register(lua_State *L)
     static const luaL_Reg meta[] = {{"__gc", l_destroy}, {"__close", l_destroy}, {"__tostring", l_tostring}, {NULL, NULL}};
     luaL_newmetatable(L, WORLD);
     luaL_setfuncs(L, meta, 0);
-    luaL_newlib(L, methods);
+    lua_newtable(L);
+    tl_setfuncs(L, methods, "tether_box2d.world:"); /* named for the option tables' errors */
     lua_setfield(L, -2, "__index");
     lua_pop(L, 1);
 }

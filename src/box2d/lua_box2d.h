@@ -7,13 +7,10 @@
 
 #include <lua.h>
 
-/* Option readers: each raises an error naming fn and the option. */
-tb_world_def tl_b2_world_def(lua_State *L, int t, const char *fn);
-tb_body_def tl_b2_body_def(lua_State *L, int t, const char *fn);
-/* Raises naming fn when the table at t has a key not in names (NULL-terminated). */
-void tl_b2_only_keys(lua_State *L, int t, const char *fn, const char *const *names);
-/* The index in names (NULL-terminated) of the string t[key]; raises otherwise. */
-int tl_b2_pick(lua_State *L, int t, const char *fn, const char *key, const char *const *names);
+/* Option tables (tl_readopts, src/lua/lua_options.c): each raises an error
+ * naming the calling function (tl_setfuncs' upvalue) and the option. */
+tb_world_def tl_b2_world_def(lua_State *L, int t);
+tb_body_def tl_b2_body_def(lua_State *L, int t);
 /* A new world userdata on the stack (raises on failure). */
 tb_world *tl_b2_push_world(lua_State *L, const tb_world_def *d, const char *fn);
 

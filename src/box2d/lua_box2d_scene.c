@@ -3,8 +3,7 @@
  * such a table, the cross-check's rows as tables; and the module's opener. */
 #include "lua_box2d.h"
 
-#include <lauxlib.h>
-#include "lua/lua_compat.h" /* one source for Lua 5.4 and LuaJIT */
+#include "lua/lua_common.h" /* option tables and checkers as every binding has them; Lua 5.4 and LuaJIT */
 
 #include <limits.h>
 #include <math.h>
@@ -129,7 +128,8 @@ static void build_joints(lua_State *L, tb_world *w, int t, const char *fn)
         lua_rawgeti(L, jt, i);
         const int j = lua_gettop(L);
         if (!lua_istable(L, j)) luaL_error(L, "%s: joints[%d] must be a table", fn, (int)i);
-        const int kind = tl_b2_pick(L, j, fn, "kind", kinds);
+        const int kind = tl_optfield_option(L, j, "kind", "joint kind", kinds, -1);
+        if (kind < 0) luaL_error(L, "%s: joints[%d]: 'kind' must be one of 'revolute', 'distance', 'weld'", fn, (int)i);
         lua_getfield(L, j, "a");
         lua_getfield(L, j, "b");
         const lua_Integer a = lua_tointeger(L, -2), b = lua_tointeger(L, -1);
@@ -155,7 +155,7 @@ int tl_b2_build(lua_State *L)
 {
     const char *fn = "tether_box2d.build";
     luaL_checktype(L, 1, LUA_TTABLE);
-    tb_world_def d = tl_b2_world_def(L, 2, fn);
+    tb_world_def d = tl_b2_world_def(L, 2);
     lua_getfield(L, 1, "gravity");
     const bool has_g = !lua_isnil(L, -1);
     lua_pop(L, 1);
@@ -168,7 +168,7 @@ int tl_b2_build(lua_State *L)
     for (lua_Integer i = 1, n = lua_rawlen(L, bt); i <= n; i++) {
         lua_rawgeti(L, bt, i);
         if (!lua_istable(L, -1)) return luaL_error(L, "%s: bodies[%d] must be a table", fn, (int)i);
-        const tb_body_def b = tl_b2_body_def(L, lua_gettop(L), fn);
+        const tb_body_def b = tl_b2_body_def(L, lua_gettop(L));
         if (tb_body_create(w, &b) < 0) return luaL_error(L, "%s: bodies[%d]: %s", fn, (int)i, tb_last_error());
         lua_pop(L, 1);
     }
@@ -199,6 +199,17 @@ static void push_rows(lua_State *L, const cc_report *r)
     }
 }
 
+typedef struct cc_opts {
+    bool quick, print;
+    int runs;
+} cc_opts;
+static const tl_opt cc_opt_spec[] = {
+    TL_OPT_FLAG(cc_opts, "quick", quick),
+    TL_OPT_FLAG(cc_opts, "print", print),
+    TL_OPT_INT(cc_opts, "runs", runs, 1, 50),
+    TL_OPT_END,
+};
+
 /* tether_box2d.crosscheck([scene [, {quick =, runs =, print =}]]) → rows
  * ({scene, measure, setting, unit, expected, box2d, tether}, a missing
  * number is nil) and costs ({scene, setting, box2d_ms, tether_ms}). */
@@ -206,27 +217,14 @@ int tl_b2_crosscheck(lua_State *L)
 {
     const char *fn = "tether_box2d.crosscheck";
     const char *scene = luaL_optstring(L, 1, NULL);
+    cc_opts o = {false, false, 0}; /* runs 0: 2 quick, else 5 */
+    tl_readopts(L, 2, cc_opt_spec, &o);
     cc_report *r = lua_newuserdatauv(L, sizeof *r, 0); /* freed by Lua even if a step below raises */
     memset(r, 0, sizeof *r);
-    r->runs = 5;
+    r->quick = o.quick;
+    r->runs = o.runs ? o.runs : o.quick ? 2 : 5;
     r->small = ts_tether_settings_default();
-    bool print = false;
-    if (!lua_isnoneornil(L, 2)) {
-        static const char *const keys[] = {"quick", "print", "runs", NULL};
-        if (!lua_istable(L, 2)) return luaL_error(L, "%s: bad argument #2 (options must be a table)", fn);
-        tl_b2_only_keys(L, 2, fn, keys);
-        lua_getfield(L, 2, "quick");
-        if (lua_toboolean(L, -1)) r->quick = true, r->runs = 2;
-        lua_getfield(L, 2, "print");
-        print = lua_toboolean(L, -1);
-        lua_getfield(L, 2, "runs");
-        if (!lua_isnil(L, -1)) {
-            const lua_Integer n = lua_isinteger(L, -1) ? lua_tointeger(L, -1) : 0;
-            if (n < 1 || n > 50) return luaL_error(L, "%s: option 'runs' must be an integer in [1, 50]", fn);
-            r->runs = (int)n;
-        }
-        lua_pop(L, 3);
-    }
+    const bool print = o.print;
     const char *why = "";
     char before[64];
     cc_load(before, sizeof before);
@@ -266,7 +264,8 @@ __attribute__((visibility("default"))) int luaopen_tether_box2d(lua_State *L)
                                    {"crosscheck", tl_b2_crosscheck}, {"main", tl_b2_main},   {NULL, NULL}};
     luaL_checkversion(L);
     tl_b2_register(L);
-    luaL_newlib(L, lib);
+    lua_newtable(L);
+    tl_setfuncs(L, lib, "tether_box2d."); /* named for the option tables' errors */
     lua_pushliteral(L, "Box2D 2.4.1");
     lua_setfield(L, -2, "version");
     return 1;

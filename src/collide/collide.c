@@ -1,44 +1,13 @@
 /* tether — the public collision settings (tether/collide.h): the world's
- * defaults for particles, per-particle materials and bullets, and the pairs
- * switched off, with the filter that reads them. */
+ * settings and statistics, per-particle materials and bullets, and the
+ * pairs switched off (a set of core/pair_set.h); and the pair sweep mode
+ * the tests force. Their defaults are in collide_defs.c. These calls make
+ * the collision state on first use (tt__collide_get), so they sit above
+ * the contacts group and its stages. */
 #include "collide_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-tt_collision_settings tt_collision_settings_default(void)
-{
-    tt_collision_settings s;
-    memset(&s, 0, sizeof s);
-    s.particles = true;
-    s.broadphase = TT_BROADPHASE_GRID;
-    s.cell_size = 0.0;
-    s.restitution = 0.0;
-    s.friction_static = 0.6;
-    s.friction_kinetic = 0.5;
-    s.restitution_threshold = -1.0;
-    s.events = 0;
-    return s;
-}
-
-/* --- filter: the one place deciding whether two particles may collide ---- */
-
-static bool excluded(const tt__collide *c, uint64_t key)
-{
-    uint32_t lo = 0, hi = c->nexcl;
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) / 2;
-        if (c->excl[mid] < key) lo = mid + 1;
-        else hi = mid;
-    }
-    return lo < c->nexcl && c->excl[lo] == key;
-}
-
-
-bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b)
-{
-    return excluded(c, tt__pair_key(a, b));
-}
 
 /* --- public settings ------------------------------------------------------- */
 
@@ -185,22 +154,20 @@ tt_result tt_world_set_pair_collision(tt_world *w, tt_particle a, tt_particle b,
     if (a.index == b.index) return tt__fail(w, TT_EINVAL, "%s: a and b are the same particle", fn);
     tt__collide *c = tt__collide_get(w, !enabled, fn);
     if (!c) return enabled ? TT_OK : TT_ENOMEM;
-    uint64_t key = tt__pair_key(a.index, b.index);
-    uint32_t lo = 0, hi = c->nexcl;
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) / 2;
-        if (c->excl[mid] < key) lo = mid + 1;
-        else hi = mid;
-    }
-    bool present = lo < c->nexcl && c->excl[lo] == key;
-    if (enabled && present) {
-        memmove(c->excl + lo, c->excl + lo + 1, (size_t)(c->nexcl - lo - 1) * sizeof *c->excl);
-        c->nexcl--;
-    } else if (!enabled && !present) {
-        if (!tt__grow((void **)&c->excl, &c->exclcap, c->nexcl + 1, sizeof *c->excl)) return tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
-        memmove(c->excl + lo + 1, c->excl + lo, (size_t)(c->nexcl - lo) * sizeof *c->excl);
-        c->excl[lo] = key;
-        c->nexcl++;
-    }
+    const bool present = tt__pair_set_has(&c->excl, a.index, b.index);
+    if (enabled && present) tt__pair_set_remove(&c->excl, a.index, b.index);
+    else if (!enabled && !present && !tt__pair_set_add(&c->excl, a.index, b.index))
+        return tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);
     return TT_OK;
+}
+
+/* --- for tests ---------------------------------------------------------- */
+
+bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode)
+{
+    if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && tt__simd_kind((uint8_t)mode) == TT__SIMD_SCALAR) return false;
+    tt__collide *c = tt__collide_get(w, true, "tt__contacts_set_simd");
+    if (!c) return false;
+    c->bat.simd = (uint8_t)mode;
+    return true;
 }

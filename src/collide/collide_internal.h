@@ -1,12 +1,12 @@
-/* tether — private declarations of the collision feature (grid.c,
- * broadphase_brute.c, shapes.c, narrowphase.c, collide.c, contacts.c,
- * contact_detect.c, contact_response.c, contact_events.c, contact_batch.c,
- * ccd.c, query.c). */
+/* tether — private declarations of the collision feature: every file of
+ * src/collide/ (the terrains' add terrain_internal.h). */
 #ifndef TETHER_COLLIDE_INTERNAL_H
 #define TETHER_COLLIDE_INTERNAL_H
 
 #include "core/internal.h"
+#include "core/pair_set.h"
 #include "core/simd.h"
+#include "core/stream.h" /* TT__ID */
 #include "tether/collide.h"
 
 /* Candidate pairs are kept when their gap is under this fraction of the
@@ -170,7 +170,7 @@ static inline bool tt__pair_push(uint32_t a, uint32_t b, double rs, double ws, d
     return true;
 }
 /* Forces w's pair sweep mode (tests compare them bit for bit); false when
- * this build or processor lacks it. */
+ * this build or processor lacks it (collide.c). */
 bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode);
 
 typedef struct tt__scontact {
@@ -231,8 +231,7 @@ typedef struct tt__collide {
     uint8_t *bullet;      /* NULL until used */
     uint32_t bulletcap, nbullets;
     int32_t *ccd_prim;    /* per slot: primitive hit by the sweep this substep, −1 none (bullets only) */
-    uint64_t *excl;       /* sorted keys of particle pairs that do not collide */
-    uint32_t nexcl, exclcap;
+    tt__pair_set excl;    /* particle pairs the script switched off (one reference each), ordered: saved in order */
     /* contacts of the current substep */
     tt__pair *pairs;
     uint32_t npairs, paircap;
@@ -265,6 +264,13 @@ typedef struct tt__collide {
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
 } tt__collide;
 
+/* The contacts group's hook table and the collision state's accessor
+ * (contacts.c). The table names every stage, so the files that make the
+ * state (the public calls: collide.c, shapes.c, query.c, terrain_api.c)
+ * sit above the stages; the stages and helpers find an existing state by
+ * the group's id (tt__collide_peek), never through the table, so no file
+ * the table uses depends on it back. */
+#define TT__COLL_ID TT__ID('C', 'O', 'L', 'L') /* its snapshot section, and how its files find it */
 extern const tt__group_ops tt__contacts_ops;
 /* The collision state of w, made and registered on first use when create is true. */
 tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
@@ -273,7 +279,7 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
 void tt__contacts_lift(tt_world *w, tt__collide *c, double thr);
 static inline tt__collide *tt__collide_peek(const tt_world *w)
 {
-    return (tt__collide *)tt__group_find(w, &tt__contacts_ops);
+    return (tt__collide *)tt__group_find_id(w, TT__COLL_ID);
 }
 
 /* The stages of the contacts group (contacts.c registers them): detection
@@ -312,13 +318,12 @@ static inline double tt__mat(const tt__collide *c, uint32_t i, int k)
 
 /* Filters: the one place that decides whether two particles may collide
  * (layers, two pinned, switched-off pairs, particles joined by a constraint
- * that does not let them collide). */
-bool tt__pair_excluded(const tt__collide *c, uint32_t a, uint32_t b);
+ * that does not let them collide; both sets of pairs are core/pair_set.h's). */
 static inline bool tt__pair_filter(const tt_world *w, const tt__collide *c, uint32_t a, uint32_t b)
 {
     if (!((w->category[a] & w->mask[b]) && (w->category[b] & w->mask[a]))) return false;
     if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0) return false;
-    if (c->nexcl && tt__pair_excluded(c, a, b)) return false;
+    if (c->excl.used && tt__pair_set_contains(&c->excl, a, b)) return false;
     if (tt__constraint_pair_excluded(w, a, b)) return false;
     return true;
 }
@@ -368,10 +373,14 @@ static inline int32_t tt__cell_coord(double v, double o, double inv)
 /* Brute force (broadphase_brute.c): the same candidate set, every pair tested. */
 bool tt__brute_pairs(tt_world *w, tt__collide *c);
 
-/* Shapes (shapes.c; primitives and the static index: static_index.c). */
+/* Shapes (shapes.c; their definitions: collide_defs.c; primitives, the
+ * static index and the storage's memory: static_index.c). */
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
 /* What tt_shape_create accepts (a snapshot's shapes pass the same test). */
 tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const char *fn);
+/* A restitution in [0, 1] and frictions in [0, TT_MAX_VALUE], as shapes
+ * and terrains take them. */
+tt_result tt__material_check(const tt_world *w, double e, double fs, double fk, const char *fn);
 /* Places the shapes the script moved where they are at the end of the
  * world's current substep, on their way from `from` to their def's
  * transform (the static index holds their whole path: no rebuild). */

@@ -429,12 +429,3 @@ size_t tt__batches_bytes(const tt__batches *B)
     return (size_t)B->cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
            ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double);
 }
-
-bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode)
-{
-    if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && tt__simd_kind((uint8_t)mode) == TT__SIMD_SCALAR) return false;
-    tt__collide *c = tt__collide_get(w, true, "tt__contacts_set_simd");
-    if (!c) return false;
-    c->bat.simd = (uint8_t)mode;
-    return true;
-}

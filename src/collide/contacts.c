@@ -32,11 +32,8 @@ static void particle_removed(tt_world *w, void *self, uint32_t i)
         c->nbullets--;
     }
     if (c->ccd_prim && i < c->bulletcap) c->ccd_prim[i] = -1;
+    tt__pair_set_drop(&c->excl, i);
     uint32_t k = 0;
-    for (uint32_t j = 0; j < c->nexcl; j++)
-        if ((uint32_t)(c->excl[j] >> 32) != i && (uint32_t)c->excl[j] != i) c->excl[k++] = c->excl[j];
-    c->nexcl = k;
-    k = 0;
     for (uint32_t j = 0; j < c->nprev; j++) {
         uint64_t key = c->prev[j].key;
         bool hit = (uint32_t)key == i || (!(key >> 63) && (uint32_t)(key >> 32) == i);
@@ -55,7 +52,7 @@ static bool idle(const tt_world *w, const void *self)
     return !s->particles && s->broadphase == d.broadphase && s->cell_size == d.cell_size &&
            s->restitution == d.restitution && s->friction_static == d.friction_static &&
            s->friction_kinetic == d.friction_kinetic && s->restitution_threshold == d.restitution_threshold &&
-           s->events == d.events && c->spool.count == 0 && c->nexcl == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
+           s->events == d.events && c->spool.count == 0 && c->excl.used == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
            c->nevents == 0 && !c->terr;
 }
 
@@ -76,7 +73,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     b += ((size_t)c->vcap + c->scap + c->gcap) * 2 * sizeof(double);
     b += (size_t)c->lift_cap * (sizeof(tt__lift) + 2 * sizeof(uint32_t));
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
-    b += (size_t)c->exclcap * sizeof(uint64_t);
+    b += tt__pair_set_bytes(&c->excl);
     b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
     b += (size_t)c->runs_cap * sizeof *c->runs + c->near_cap;
     b += ((size_t)c->reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
@@ -92,7 +89,7 @@ void tt__contacts_destroy(tt_world *w, void *self)
     free(c->vx0); free(c->vy0); free(c->sx0); free(c->sy0); free(c->gx0); free(c->gy0);
     free(c->lift); free(c->lift_start); free(c->lift_order);
     free(c->mat); free(c->bullet); free(c->ccd_prim);
-    free(c->excl);
+    tt__pair_set_free(&c->excl);
     free(c->pairs); free(c->sc); free(c->runs); free(c->near);
     tt__batches_free(&c->bat);
     free(c->rec); free(c->prev); free(c->events);
@@ -112,7 +109,7 @@ const tt__group_ops tt__contacts_ops = {
     .particle_removed = particle_removed,
     .memory = tt__contacts_memory,
     .destroy = tt__contacts_destroy,
-    .id = TT__ID('C', 'O', 'L', 'L'),
+    .id = TT__COLL_ID,
     .save = tt__contacts_save,
     .idle = idle,
     .quiet = quiet,
@@ -136,6 +133,7 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn)
     c->set.particles = false; /* until tt_world_set_collision says otherwise */
     c->grid.epoch = UINT64_MAX;
     c->spool.tag = w->tag; /* shape handles carry the world's tag, like particles */
+    tt__pair_set_init(&c->excl, true);
     if (tt__group_add(w, &tt__contacts_ops, c) < 0) {
         free(c);
         tt__fail(w, TT_ENOMEM, "%s: no room for another relaxation group (%d)", fn, TT_MAX_GROUPS);
@@ -214,8 +212,10 @@ static void save_particle_data(const tt_world *w, const tt__collide *c, tt__sink
         tt__put(s, c->bullet, have);
         for (uint32_t i = have; i < n; i++) tt__put_u8(s, 0);
     }
-    tt__put_u32(s, c->nexcl);
-    tt__put(s, c->excl, (size_t)c->nexcl * sizeof *c->excl);
+    uint32_t nexcl;
+    const uint64_t *excl = tt__pair_set_sorted(&c->excl, &nexcl);
+    tt__put_u32(s, nexcl);
+    tt__put(s, excl, (size_t)nexcl * sizeof *excl);
     /* valid as contact_detect.c's substep_start reads them: the next substep starts from them */
     bool ends = w->integrator != TT_VERLET && c->sx0 && c->s_epoch == w->epoch && c->s_count == n;
     tt__put_u8(s, ends);
@@ -359,12 +359,14 @@ static bool load_particle_data(tt_world *w, tt__collide *c, tt__source *s)
             c->nbullets += c->bullet[i];
         }
     }
-    c->nexcl = c->exclcap = tt__get_count(s, 8, "switched-off pairs");
-    if (s->failed || !(c->excl = malloc((size_t)(c->nexcl ? c->nexcl : 1) * sizeof *c->excl))) return tt__src_fail(s, "out of memory");
-    tt__get(s, c->excl, (size_t)c->nexcl * sizeof *c->excl);
-    for (uint32_t k = 0; k < c->nexcl && !s->failed; k++) {
-        uint32_t a = (uint32_t)(c->excl[k] >> 32), b = (uint32_t)c->excl[k];
-        if (a >= b || b >= n || (k && c->excl[k - 1] >= c->excl[k])) tt__src_fail(s, "switched-off pair %u", k);
+    const uint32_t nexcl = tt__get_count(s, 8, "switched-off pairs");
+    if (s->failed || !tt__pair_set_reserve(&c->excl, nexcl)) return tt__src_fail(s, "out of memory");
+    for (uint64_t k = 0, key, last = 0; k < nexcl && !s->failed; k++, last = key) {
+        key = tt__get_u64(s);
+        uint32_t a = (uint32_t)(key >> 32), b = (uint32_t)key;
+        if (s->failed) break;
+        if (a >= b || b >= n || (k && last >= key)) tt__src_fail(s, "switched-off pair %u", (uint32_t)k);
+        else tt__pair_set_add(&c->excl, a, b); /* room reserved: cannot fail */
     }
     if (tt__get_bool(s, "end positions")) {
         if (w->integrator == TT_VERLET) return tt__src_fail(s, "end positions in a Verlet world");
@@ -419,6 +421,7 @@ void *tt__contacts_load(tt_world *w, tt__source *s)
     if (!c) { tt__src_fail(s, "out of memory"); return NULL; }
     c->grid.epoch = UINT64_MAX;
     c->spool.tag = w->tag;
+    tt__pair_set_init(&c->excl, true);
     tt_collision_settings *set = &c->set;
     set->particles = tt__get_bool(s, "particle collisions");
     set->broadphase = (tt_broadphase)tt__get_u32(s);

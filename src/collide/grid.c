@@ -362,7 +362,7 @@ bool tt__grid_pairs(tt_world *w, tt__collide *c)
     const tt__grid *g = &c->grid;
     c->nrows = 0;
     if (!tt__grow((void **)&c->runs, &c->runs_cap, (uint32_t)g->ny * TT__PARTS + 1, sizeof *c->runs)) return false;
-    const bool plain = g->one_layer && c->nexcl == 0 && !tt__constraint_pairs_any(w);
+    const bool plain = g->one_layer && c->excl.used == 0 && !tt__constraint_pairs_any(w);
 #ifdef TT_SIMD_X86
     if (tt__simd_kind(TT__SIMD_AUTO) != TT__SIMD_SCALAR) return plain ? walk_plain_avx2(w, c, g) : walk_full_avx2(w, c, g);
 #endif

@@ -1,6 +1,8 @@
 /* tether — the static index: every shape as primitives in world
  * coordinates, and a uniform grid over primitive boxes, built once and
- * rebuilt only when a shape is added, removed or moved. */
+ * rebuilt only when a shape is added, removed or moved; and the freeing
+ * and size of the shapes' storage with it (the group's destroy and memory
+ * hooks, contacts.c, use them). */
 #include "collide_internal.h"
 
 #include <string.h>
@@ -319,4 +321,28 @@ void tt__sgrid_query(tt__collide *c, double lox, double loy, double hix, double 
                 visit(ctx, k);
             }
         }
+}
+
+/* --- storage ------------------------------------------------------------ */
+
+void tt__shapes_free(tt__collide *c)
+{
+    /* a load that ran out of memory may leave the pool read and the array not made */
+    for (uint32_t i = 0; c->shapes && i < c->spool.count; i++) free(c->shapes[i].pts);
+    free(c->shapes);
+    tt__pool_destroy(&c->spool);
+    free(c->prims); free(c->verts); free(c->norms);
+    free(c->sgrid.start); free(c->sgrid.items); free(c->sgrid.big);
+    free(c->pstamp); free(c->sstamp);
+}
+
+size_t tt__shapes_bytes(const tt__collide *c)
+{
+    size_t b = (size_t)c->shcap * sizeof(tt__shape) + tt__pool_bytes(&c->spool);
+    for (uint32_t i = 0; i < c->spool.count; i++)
+        if (c->shapes[i].alive) b += (size_t)c->shapes[i].def.count * sizeof(tt_vec2);
+    b += (size_t)c->primcap * sizeof(tt__prim) + ((size_t)c->vertcap + c->normcap) * sizeof(tt_vec2);
+    b += ((size_t)c->sgrid.cap_cells + c->sgrid.cap_items + c->sgrid.cap_big) * sizeof(uint32_t);
+    b += ((size_t)c->pstamp_cap + c->sstamp_cap) * sizeof(uint32_t);
+    return b;
 }

@@ -19,16 +19,6 @@ tt_terrain_def tt_terrain_def_default(void)
     return d;
 }
 
-static tt_result material_check(const tt_world *w, double e, double fs, double fk, const char *fn)
-{
-    if (!tt__in_range(e, 0.0, 1.0)) return tt__fail(w, TT_EINVAL, "%s: restitution must be in [0, 1], got %g", fn, e);
-    if (!tt__in_range(fs, 0.0, TT_MAX_VALUE))
-        return tt__fail(w, TT_EINVAL, "%s: static friction must be in [0, %g], got %g", fn, TT_MAX_VALUE, fs);
-    if (!tt__in_range(fk, 0.0, TT_MAX_VALUE))
-        return tt__fail(w, TT_EINVAL, "%s: kinetic friction must be in [0, %g], got %g", fn, TT_MAX_VALUE, fk);
-    return TT_OK;
-}
-
 static tt_result check_def(const tt_world *w, const tt_terrain_def *d, const char *fn)
 {
     if (!d) return tt__fail(w, TT_EINVAL, "%s: def is NULL", fn);
@@ -41,7 +31,7 @@ static tt_result check_def(const tt_world *w, const tt_terrain_def *d, const cha
         return tt__fail(w, TT_EINVAL, "%s: pixel must be in [1e-9, %g / side] m, got %g", fn, TT_MAX_VALUE, d->pixel);
     if (d->band < 5 || d->band > TT_TERRAIN_MAX_BAND)
         return tt__fail(w, TT_EINVAL, "%s: band must be in [5, %d] pixels, got %d", fn, TT_TERRAIN_MAX_BAND, d->band);
-    return material_check(w, d->restitution, d->friction_static, d->friction_kinetic, fn);
+    return tt__material_check(w, d->restitution, d->friction_static, d->friction_kinetic, fn);
 }
 
 /* Makes slot i's terrain from def; false on no memory (nothing kept). */
@@ -262,7 +252,7 @@ tt_result tt_terrain_set_material(tt_world *w, tt_terrain t, double restitution,
                                   double friction_kinetic)
 {
     TERRAIN_CHECK("tt_terrain_set_material");
-    tt_result r = material_check(w, restitution, friction_static, friction_kinetic, "tt_terrain_set_material");
+    tt_result r = tt__material_check(w, restitution, friction_static, friction_kinetic, "tt_terrain_set_material");
     if (r != TT_OK) return r;
     T->def.restitution = restitution;
     T->def.friction_static = friction_static;

@@ -123,10 +123,10 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
         !tt__grow((void **)&g->dist, &g->dist_cap, g->ndist + 1, sizeof *g->dist) ||
         !tt__grow((void **)&g->dx, &g->dx_cap, g->ndist + 1, sizeof *g->dx))
         goto nomem;
-    if (!d->collide && !tt__constraint_pair_add(g, d->a.index, d->b.index)) goto nomem;
+    if (!d->collide && !tt__pair_set_add(&g->pairs, d->a.index, d->b.index)) goto nomem;
     uint32_t slot;
     if (!tt__cgroup_slot_new(g, TT_CONSTRAINT_DISTANCE, g->ndist, &slot)) {
-        if (!d->collide) tt__constraint_pair_remove(g, d->a.index, d->b.index);
+        if (!d->collide) tt__pair_set_remove(&g->pairs, d->a.index, d->b.index);
         goto nomem;
     }
     double len = d->length < 0 ? tt__constraint_dist_of(w, d->a.index, d->b.index) : d->length;

@@ -1,8 +1,9 @@
 /* tether — the constraints group's storage: its slots and handles, the
  * particle reference counts, removal (with the pairs it switched off and
  * the targets it was moving), composites' storage, the memory count and
- * destruction. Every file of the feature uses this one; it uses none of
- * them but constraint_pairs.c. */
+ * destruction; and the pairs its links keep from colliding (a counted set,
+ * core/pair_set.h), which the collision stage asks. Every file of the
+ * feature uses this one; it uses none of them. */
 #include "constraint_internal.h"
 
 #include <stdlib.h>
@@ -54,7 +55,7 @@ void tt__cgroup_dist_remove(tt__cgroup *g, uint32_t d)
 {
     tt__dist *c = &g->dist[d];
     tt__dist_x *x = &g->dx[d];
-    if (!x->collide) tt__constraint_pair_remove(g, c->a, c->b);
+    if (!x->collide) tt__pair_set_remove(&g->pairs, c->a, c->b);
     g->refs[c->a]--;
     g->refs[c->b]--;
     if (x->break_strain > 0) g->nbreakable--;
@@ -134,7 +135,7 @@ size_t tt__cgroup_memory(const tt_world *w, const void *self)
     b += (size_t)g->gen_cap * sizeof(tt__gcon);
     for (uint32_t i = 0; i < g->ngen; i++)
         if (g->gen[i].list) b += (size_t)g->gen[i].n * sizeof(uint32_t);
-    b += (size_t)g->pair_cap * (sizeof(uint64_t) + sizeof(uint32_t));
+    b += tt__pair_set_bytes(&g->pairs);
     b += (size_t)(g->cap_new + g->cap_pub) * sizeof(tt_break_event);
     b += (size_t)g->grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
     b += ((size_t)g->plan_cap + g->stamp_cap) * sizeof(uint32_t) + (size_t)g->pk_cap * 4 * sizeof(double);
@@ -152,8 +153,7 @@ void tt__cgroup_destroy(tt_world *w, void *self)
     free(g->dist);
     free(g->dx);
     free(g->slots);
-    free(g->pair_key);
-    free(g->pair_n);
+    tt__pair_set_free(&g->pairs);
     free(g->ev_new);
     free(g->ev_pub);
     free(g->grad);
@@ -207,4 +207,18 @@ size_t tt__composites_memory(const tt__cgroup *g)
         b += (size_t)k->np * (sizeof(tt_particle) + 2 * sizeof(double)) + (size_t)k->ccap * sizeof(tt_constraint);
     }
     return b;
+}
+
+/* ---- pairs kept from colliding ---------------------------------------------- */
+
+bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b)
+{
+    const tt__cgroup *g = tt__cgroup_peek(w);
+    return g && tt__pair_set_has(&g->pairs, a, b);
+}
+
+bool tt__constraint_pairs_any(const tt_world *w)
+{
+    const tt__cgroup *g = tt__cgroup_peek(w);
+    return g && g->pairs.used;
 }

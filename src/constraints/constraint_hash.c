@@ -158,7 +158,7 @@ static void load_dist(tt_world *w, tt__cgroup *g, tt__source *s)
         g->refs[d->b]++;
         if (x->break_strain > 0) g->nbreakable++;
         if (d->alpha > 0) g->nxpbd++;
-        if (!x->collide && !tt__constraint_pair_add(g, d->a, d->b)) { tt__src_fail(s, "out of memory"); return; }
+        if (!x->collide && !tt__pair_set_add(&g->pairs, d->a, d->b)) { tt__src_fail(s, "out of memory"); return; }
     }
 }
 

@@ -1,12 +1,13 @@
 /* tether — private storage of the constraints feature, and what its files
- * share: constraints.c (the group, slots, removal), constraint_pairs.c,
- * constraint_create.c, constraint_access.c, constraint_relax.c (with the
+ * share: constraints.c (the group's hook table), constraint_group.c (its
+ * storage, slots, removal, the pairs its links keep apart), constraint_create.c, constraint_access.c, constraint_relax.c (with the
  * targets the script moves), distance_sweep.c, constraint_breaks.c, constraint_hash.c (the snapshot section); composites.c
  * (handles, queries), composite_builder.c, composite_kinds.c. */
 #ifndef TETHER_CONSTRAINT_INTERNAL_H
 #define TETHER_CONSTRAINT_INTERNAL_H
 
 #include "core/internal.h"
+#include "core/pair_set.h"
 #include "core/simd.h"
 #include "core/stream.h" /* TT__ID */
 #include "tether/composite.h"
@@ -87,10 +88,7 @@ typedef struct tt__cgroup {
     tt__gcon *gen;
     uint32_t ngen, gen_cap;
 
-    /* pairs (min, max) that must not collide, with how many constraints say so */
-    uint64_t *pair_key;
-    uint32_t *pair_n;
-    uint32_t pair_cap, pair_used;
+    tt__pair_set pairs;   /* pairs joined by a link with collide = false, one reference per link */
 
     /* break events: gathered during the step, published after it */
     tt_break_event *ev_new, *ev_pub;
@@ -155,11 +153,6 @@ static inline tt_constraint tt__cgroup_handle(const tt__cgroup *g, uint32_t slot
     return (tt_constraint){slot, g->pool.gen[slot]};
 }
 static inline tt_particle tt__cgroup_particle(const tt_world *w, uint32_t i) { return (tt_particle){i, w->ppool.gen[i]}; }
-
-/* ---- excluded collision pairs (constraint_pairs.c) ------------------------- */
-/* Counted: a pair stays excluded until the last constraint naming it goes. */
-bool tt__constraint_pair_add(tt__cgroup *g, uint32_t a, uint32_t b);
-void tt__constraint_pair_remove(tt__cgroup *g, uint32_t a, uint32_t b);
 
 /* ---- checks the setters share with the creating calls (constraint_create.c) */
 tt_result tt__constraint_check_compliance(const tt_world *w, double alpha, const char *fn);

@@ -287,7 +287,7 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
         w->py[i] += dy;
     }
 }
-/* Constraints (constraint_pairs.c): true when a constraint joining particle slots
+/* Constraints (constraint_group.c): true when a constraint joining particle slots
  * a and b says they must not collide (O(1); the collision stage asks). */
 bool tt__constraint_pair_excluded(const tt_world *w, uint32_t a, uint32_t b);
 /* Whether any constraint keeps its particles from colliding (else the test above is always false). */
@@ -309,7 +309,7 @@ void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double
 bool tt__sleep_loaded_ok(const tt_world *w);
 
 /* Geometry shared by the polygon shape and the lattice composite
- * (collide/shapes.c): the vertex at which pts[0..n) (n >= 3) stops being a
+ * (collide/collide_defs.c): the vertex at which pts[0..n) (n >= 3) stops being a
  * polygon's outline (a point repeated, three consecutive points on a line,
  * with `convex` a turn against the winding), or n when none does. */
 uint32_t tt__polygon_fault(const tt_vec2 *pts, uint32_t n, bool convex);
