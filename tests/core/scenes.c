@@ -1,8 +1,8 @@
 /* tether — reference scenes for the golden and snapshot tests (scenes.h). */
 #include "core/scenes.h"
-#include "test.h" /* tt_test_fail: scene_reload says why a stream did not load */
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -439,7 +439,7 @@ tt_world *scene_reload(const tt_world *w)
     size_t n = 0;
     unsigned char *b = scene_save(w, &n);
     tt_world *c = b ? tt_world_load(b, n) : NULL;
-    if (!c) tt_test_fail(__FILE__, __LINE__, "the world's own stream did not %s: %s", b ? "load" : "save", tt_last_error(b ? NULL : w));
+    if (!c) printf("    the world's own stream did not %s: %s\n", b ? "load" : "save", tt_last_error(b ? NULL : w));
     free(b);
     return c;
 }

@@ -39,8 +39,8 @@ tt_world *scene_small_world(void);
 void scene_spring_network(tt_world *w, int cols, int rows);
 /* w's snapshot stream in a new buffer of *size bytes (free it); NULL on failure. */
 unsigned char *scene_save(const tt_world *w, size_t *size);
-/* A new world loaded from w's own stream; NULL, with the reason reported as
- * a test failure, when it does not save or load. */
+/* A new world loaded from w's own stream; NULL, with the reason printed,
+ * when it does not save or load. */
 tt_world *scene_reload(const tt_world *w);
 /* FNV-1a over every live particle's position bits in slot order, from
  * tt_world_read_positions: a digest independent of tt_world_hash. */
