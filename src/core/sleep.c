@@ -5,7 +5,7 @@
  * area, collinear), found by union-find. Pinned particles, shapes, pins and
  * bounds join nothing: they do not move, so they carry no motion from one
  * particle to another. An island falls asleep when every particle in it has
- * rested for sleep_time (rest_test: a window of sleep_speed·sleep_time
+ * rested for sleep_time (rest_one: a window of sleep_speed·sleep_time
  * that a rattle stays in, a creep leaves slowly and a swing leaves
  * fast); it wakes whole. Islands
  * rather than grid cells: a cell boundary cuts a pile in two, and the awake
@@ -47,6 +47,8 @@ typedef struct tt__sleep {
     double *held;         /* per slot: seconds since its anchor was set (awake particles) */
     double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
     uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
+    uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
+    uint64_t tick;        /* steps since sleeping went on, from 2 (0 in seen: never held) */
     uint32_t *parent;     /* union-find scratch */
     double *minrest;      /* per root: the least time at rest in its island */
     uint32_t *wake;       /* islands to wake at the end of the step */
@@ -68,6 +70,9 @@ static bool grow(tt__sleep *s, uint32_t n)
     uint32_t *is = realloc(s->island, (size_t)cap * sizeof *is);
     if (!is) return false;
     s->island = is;
+    uint64_t *sn = realloc(s->seen, (size_t)cap * sizeof *sn);
+    if (!sn) return false;
+    s->seen = sn;
     uint32_t *p = realloc(s->parent, (size_t)cap * sizeof *p);
     if (!p) return false;
     s->parent = p;
@@ -86,6 +91,7 @@ static bool grow(tt__sleep *s, uint32_t n)
     for (uint32_t i = s->cap; i < cap; i++) {
         s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = 0.0;
         s->island[i] = 0;
+        s->seen[i] = 0;
     }
     s->cap = cap;
     return true;
@@ -323,7 +329,8 @@ static void settle(tt_world *w, tt__sleep *s)
     for (uint32_t i = 0; i < n; i++) {
         if (!dynamic(w, i) || s->island[i]) continue;
         uint32_t r = find(s->parent, i);
-        if (s->rest[i] < s->minrest[r]) s->minrest[r] = s->rest[i];
+        const double rest = s->seen[i] == s->tick ? s->rest[i] : 0.0; /* nothing held it: in flight, not at rest */
+        if (rest < s->minrest[r]) s->minrest[r] = rest;
     }
     /* island ids in slot order of their roots: the same world sleeps the same way */
     for (uint32_t i = 0; i < n; i++) {
@@ -371,24 +378,62 @@ static bool anything_holds(const tt_world *w)
  *   1 s) a 1 m pendulum swinging 2 cm or more, a 4 m one swinging 5 cm, a
  *   particle at the top of its throw or a ball rolling at 1 cm/s or more
  *   stay awake; a swing whose whole arc fits in the window is at rest. */
-static void rest_test(tt_world *w, tt__sleep *s, double dt, bool *ready)
+static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *ready)
 {
-    const double lim = s->speed * s->time, lim2 = lim * lim;
-    for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if (w->inv_mass[i] == 0.0) continue; /* asleep, pinned or removed */
-        const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i];
+    if (i >= w->ppool.count || s->seen[i] == s->tick) return; /* (made since the last step: none of its arrays) */
+    const uint64_t was = s->seen[i];
+    s->seen[i] = s->tick;
+    if (w->inv_mass[i] == 0.0) return; /* asleep, pinned or removed */
+    const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i];
+    const double lim = s->speed * s->time;
+    const bool out = dx * dx + dy * dy > lim * lim;
+    if (was + 1 != s->tick) { /* free since it was last held: its rest starts here */
+        s->rest[i] = s->held[i] = 0.0;
+    } else {
         s->held[i] += dt;
-        if (dx * dx + dy * dy <= lim2 || s->held[i] >= s->time) {
+        if (!out || s->held[i] >= s->time) {
             s->rest[i] += dt;
             *ready |= s->rest[i] >= s->time;
         } else {
             s->rest[i] = 0.0;
         }
-        if (dx * dx + dy * dy > lim2) {
-            s->held[i] = 0.0;
-            s->ax[i] = w->px[i];
-            s->ay[i] = w->py[i];
+    }
+    if (out || was + 1 != s->tick) {
+        s->held[i] = 0.0;
+        s->ax[i] = w->px[i];
+        s->ay[i] = w->py[i];
+    }
+}
+
+/* Only what something holds can rest: a free particle under gravity never
+ * does, and testing it would make one spring elsewhere cost a pass over
+ * every particle (the pay-only table). The holders are the last substep's
+ * contacts (pairs, shapes, terrain), springs and constraints (bounds over
+ * every particle hold every particle). */
+static void rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready)
+{
+    s->tick++;
+    const tt__collide *c = feature(w, ID_CONTACTS);
+    for (uint32_t k = 0; c && k < c->npairs; k++) {
+        rest_one(w, s, c->pairs[k].a, dt, ready);
+        rest_one(w, s, c->pairs[k].b, dt, ready);
+    }
+    for (uint32_t k = 0; c && k < c->nsc; k++) rest_one(w, s, c->sc[k].a, dt, ready);
+    for (uint32_t k = 0; k < w->spool.count; k++)
+        if (w->springs[k].alive) rest_one(w, s, w->springs[k].a, dt, ready), rest_one(w, s, w->springs[k].b, dt, ready);
+    const tt__cgroup *g = feature(w, ID_CONSTRAINTS);
+    for (uint32_t k = 0; g && k < g->pool.count; k++) {
+        if (!g->slots[k].kind) continue;
+        uint32_t ids[3];
+        const uint32_t *list;
+        uint32_t n = constraint_parts(g, k, ids, &list);
+        const tt__gcon *b = g->slots[k].kind == TT_CONSTRAINT_DISTANCE ? NULL : &g->gen[g->slots[k].dense];
+        if (b && b->kind == TT_CONSTRAINT_BOUNDS) {
+            n = b->n ? b->n : w->ppool.count;
+            for (uint32_t j = 0; j < n; j++) rest_one(w, s, b->n ? b->list[j] : j, dt, ready);
+            continue;
         }
+        for (uint32_t j = 0; j < n; j++) rest_one(w, s, list ? list[j] : ids[j], dt, ready);
     }
 }
 
@@ -398,7 +443,7 @@ static void after_step(tt_world *w, void *self)
     wake_touched(w, s);
     if (!anything_holds(w)) return;
     bool ready = false;
-    rest_test(w, s, w->dt_prev * w->substeps, &ready);
+    rest_held(w, s, w->dt_prev * w->substeps, &ready);
     if (ready) settle(w, s);
 }
 
@@ -422,6 +467,7 @@ static void save(const tt_world *w, const void *self, tt__sink *snk)
         tt__put_f64(snk, i < s->cap ? s->ax[i] : 0.0);
         tt__put_f64(snk, i < s->cap ? s->ay[i] : 0.0);
         tt__put_u32(snk, i < s->cap ? s->island[i] : 0);
+        tt__put_u32(snk, i < s->cap && s->seen[i] == s->tick); /* held in the last step */
     }
 }
 
@@ -430,7 +476,7 @@ static void destroy(tt_world *w, void *self)
     (void)w;
     tt__sleep *s = self;
     if (!s) return;
-    free(s->rest); free(s->held); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
+    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
     free(s);
 }
 
@@ -444,6 +490,7 @@ static void *load(tt_world *w, tt__source *src)
     }
     s->speed = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep speed");
     s->time = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep time");
+    s->tick = 2;
     s->next_island = tt__get_u32(src);
     if (s->next_island == 0) tt__src_fail(src, "sleep: island counter 0");
     for (uint32_t i = 0; i < w->ppool.count && !src->failed; i++) {
@@ -453,6 +500,9 @@ static void *load(tt_world *w, tt__source *src)
         s->ax[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
         s->ay[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
         s->island[i] = tt__get_u32(src);
+        const uint32_t held = tt__get_u32(src);
+        if (held > 1) tt__src_fail(src, "sleep: particle %u held flag %u", i, held);
+        s->seen[i] = held ? 2 : 0;
         const bool asleep = (w->flags[i] & TT__PF_ASLEEP) != 0;
         if (asleep != (s->island[i] != 0) || (asleep && (s->rest[i] != 0.0 || s->held[i] != 0.0)))
             tt__src_fail(src, "sleep: particle %u is %s but its island is %u", i, asleep ? "asleep" : "awake", s->island[i]);
@@ -469,7 +519,7 @@ static size_t memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__sleep *s = self;
-    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t);
+    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t);
 }
 
 static const tt__group_ops sleep_ops = {
@@ -498,6 +548,7 @@ bool tt__sleep_enable(tt_world *w, double speed, double time)
             return false;
         }
         s->next_island = 1;
+        s->tick = 2;
     }
     s->speed = speed;
     s->time = time;

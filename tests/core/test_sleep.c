@@ -278,7 +278,7 @@ TEST(sleep_snapshot_round_trip)
 }
 
 /* Slow motions never sleep mid-motion at the default rest test (a 1 cm
- * window, 1 s; sleep.c rest_test): each runs with sleeping on and must
+ * window, 1 s; sleep.c rest_one): each runs with sleeping on and must
  * still be moving at the end (no test that cannot fail: the swings keep
  * their amplitude, so an island that slept would be caught by the count). */
 static tt_world *sleepy(double g)
