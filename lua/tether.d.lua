@@ -52,7 +52,7 @@ local tether = {}
 ---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
----@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default false
+---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default true
 ---@field sleep_speed? number a particle rests while it stays within sleep_speed·sleep_time of where it was (or leaves slower than this), m/s, in [0, 1e12]; default 0.01
 ---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 1
 ---@field fixed_point? boolean|number positions on a fixed-point lattice, so `w:reverse()` runs back bit for bit: true for the quantum 2^-32 m (range ±2^19 m), or the quantum itself, a power of two 2^-k, k = 1..60 (range ±2^51 quanta); positions given are rounded onto it, one outside the range raises; needs integrator "verlet"; default false

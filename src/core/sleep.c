@@ -88,6 +88,12 @@ static bool grow(tt__sleep *s, uint32_t n)
     double *y = realloc(s->ay, (size_t)cap * sizeof *y);
     if (!y) return false;
     s->ay = y;
+    if (s->wake_cap < cap) { /* an island per particle at most: waking at a step allocates nothing */
+        uint32_t *k = realloc(s->wake, (size_t)cap * sizeof *k);
+        if (!k) return false;
+        s->wake = k;
+        s->wake_cap = cap;
+    }
     for (uint32_t i = s->cap; i < cap; i++) {
         s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = 0.0;
         s->island[i] = 0;
@@ -146,6 +152,13 @@ static void list_wake(tt_world *w, tt__sleep *s, uint32_t k)
 {
     for (uint32_t j = 0; j < s->nwake && j < 8; j++)
         if (s->wake[s->nwake - 1 - j] == k) return; /* the common repeat: the same island again */
+    if (s->nwake == s->wake_cap && s->nwake) { /* full of repeats? each island once: no more than sleepers */
+        qsort(s->wake, s->nwake, sizeof *s->wake, cmp_u32);
+        uint32_t m = 1;
+        for (uint32_t j = 1; j < s->nwake; j++)
+            if (s->wake[j] != s->wake[m - 1]) s->wake[m++] = s->wake[j];
+        s->nwake = m;
+    }
     if (s->nwake == s->wake_cap) {
         uint32_t cap = s->wake_cap ? s->wake_cap * 2 : 16;
         uint32_t *p = realloc(s->wake, (size_t)cap * sizeof *p);
@@ -362,8 +375,9 @@ static bool anything_holds(const tt_world *w)
 /* The rest test. A particle rests while it stays within a window of
  * L = sleep_speed·sleep_time of its anchor (where its present stretch
  * began); when it leaves, the anchor moves there, and the stretch it ends
- * keeps its rest if it lasted sleep_time or more (its mean speed over the
- * stretch was under sleep_speed), else its rest starts again. Measured
+ * keeps its rest if its mean speed over it was under sleep_speed (so it
+ * lasted sleep_time or more; one long step that jumps far does not), else
+ * its rest starts again. Measured
  * (README "Sleeping"), this tells the three kinds of slow motion apart:
  * - a rattle (a loose particle in the cavity of a settled pile, 0.1–0.5
  *   m/s) stays inside a cage of 1 cm for ever: it rests, where a test on
@@ -384,14 +398,15 @@ static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *rea
     const uint64_t was = s->seen[i];
     s->seen[i] = s->tick;
     if (w->inv_mass[i] == 0.0) return; /* asleep, pinned or removed */
-    const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i];
+    const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i], d2 = dx * dx + dy * dy;
     const double lim = s->speed * s->time;
-    const bool out = dx * dx + dy * dy > lim * lim;
+    const bool out = d2 > lim * lim;
     if (was + 1 != s->tick) { /* free since it was last held: its rest starts here */
         s->rest[i] = s->held[i] = 0.0;
     } else {
         s->held[i] += dt;
-        if (!out || s->held[i] >= s->time) {
+        const double slow = s->speed * s->held[i]; /* out at a mean speed under sleep_speed: its stretch lasted sleep_time or more */
+        if (!out || d2 <= slow * slow) {
             s->rest[i] += dt;
             *ready |= s->rest[i] >= s->time;
         } else {

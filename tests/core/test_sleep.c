@@ -92,8 +92,13 @@ TEST(sleep_pile_falls_asleep_where_the_awake_pile_rests)
     tt_world_destroy(off);
 }
 
-TEST(sleep_off_by_default_and_turned_off_wakes_all)
+TEST(sleep_on_by_default_and_turned_off_wakes_all)
 {
+    tt_world_def d = tt_world_def_default();
+    ENSURE(d.sleep && d.sleep_speed == 0.01 && d.sleep_time == 1.0);
+    tt_world *w0 = tt_world_create(&d);
+    ENSURE(tt_world_get_sleep(w0, NULL, NULL));
+    tt_world_destroy(w0);
     tt_particle a[N];
     tt_world *w = pile(false, a, N);
     ENSURE(w);
