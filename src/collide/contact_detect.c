@@ -266,7 +266,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
      * to carry a particle into a shape during the sweeps (the guard's job),
      * so nothing to prepare. (Verlet: the others keep the substep's start
      * positions for the next, whether in contact or not.) */
-    if (!pairs && !c->nbullets && !c->terr && w->group_count == 1 && w->integrator == TT_VERLET &&
+    if (!pairs && !c->nbullets && !c->terr && tt__groups_relaxing(w) == 1 && w->integrator == TT_VERLET &&
         tt__shapes_out_of_reach(w, c, n))
         return;
     /* The velocities the substep starts from are read only where there are
