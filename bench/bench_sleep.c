@@ -79,7 +79,8 @@ static bool build(const ts_scene *sc, bool sleep, ts_tether *t)
         printf("sleep: %s\n", why);
         return false;
     }
-    if (sleep) tt_world_set_sleep(t->world, true, 0.05, 0.5);
+    const tt_world_def d = tt_world_def_default();
+    if (sleep) tt_world_set_sleep(t->world, true, d.sleep_speed, d.sleep_time);
     else tt_world_set_sleep(t->world, false, 0.0, 0.0);
     return true;
 }

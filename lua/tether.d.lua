@@ -52,9 +52,9 @@ local tether = {}
 ---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
----@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default false
----@field sleep_speed? number a particle rests while slower than this, m/s, in [0, 1e12]; default 0.05
----@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 0.5
+---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default true
+---@field sleep_speed? number a particle rests while it stays within sleep_speed·sleep_time of where it was (or leaves slower than this), m/s, in [0, 1e12]; default 0.01
+---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 1
 ---@field fixed_point? boolean|number positions on a fixed-point lattice, so `w:reverse()` runs back bit for bit: true for the quantum 2^-32 m (range ±2^19 m), or the quantum itself, a power of two 2^-k, k = 1..60 (range ±2^51 quanta); positions given are rounded onto it, one outside the range raises; needs integrator "verlet"; default false
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
 ---@field file? string a snapshot file (w:save(path), tt_world_save_file): the new world is the saved one; a file that cannot be read or is damaged raises; no other option may be given
@@ -532,8 +532,8 @@ function world:sleep() end
 
 ---Sleeping on or off; off wakes every sleeper.
 ---@param on boolean
----@param speed? number m/s, in [0, 1e12]; default 0.05
----@param time? number s, in [0, 1e12]; default 0.5
+---@param speed? number m/s, in [0, 1e12]; default 0.01
+---@param time? number s, in [0, 1e12]; default 1
 function world:set_sleep(on, speed, time) end
 
 ---@param name tether.solver_name

@@ -114,7 +114,7 @@ typedef struct tt_collision_stats {
     uint32_t shapes;            ///< live shapes
     uint32_t pair_contacts;     ///< particle pairs found by the broadphase (last substep, incl. margin)
     uint32_t shape_contacts;    ///< particle–shape contacts (last substep)
-    uint32_t cells;             ///< cells of the particle grid (last build)
+    uint32_t cells;             ///< cells of the grid the last substep found its pairs in; 0 when it built none
     uint32_t static_rebuilds;   ///< times the static index was built since creation
     size_t broadphase_bytes;    ///< particle grid arrays, bytes
     double broadphase_bytes_per_particle; ///< broadphase_bytes / particles in the grid

@@ -56,7 +56,7 @@ tt_result tt_world_get_collision_stats(const tt_world *w, tt_collision_stats *ou
     out->shapes = c->shapes_alive;
     out->pair_contacts = c->npairs;
     out->shape_contacts = c->nsc;
-    out->cells = c->grid.ncell;
+    out->cells = c->cells_used;
     out->static_rebuilds = c->static_rebuilds;
     out->broadphase_bytes = tt__grid_bytes(&c->grid);
     out->broadphase_bytes_per_particle = c->grid.n ? (double)out->broadphase_bytes / c->grid.n : 0.0;

@@ -189,7 +189,7 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
         c->grid.epoch = UINT64_MAX;
     } else {
         ok = tt__grid_build(w, &c->grid, c->set.cell_size) && tt__grid_pairs(w, c);
-        c->cells_used = c->grid.ncell;
+        c->cells_used = c->grid.ncell; /* the stat: a probe's grid (no_pair_near) is not the pairs' */
         grid_built = ok;
     }
     c->bp_ms += tt__now_ms() - t0;
@@ -249,6 +249,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     tt__collide *c = self;
     c->npairs = 0;
     c->nsc = 0;
+    c->cells_used = 0;
     c->batched = false;
     c->guard = false; /* until this substep's start positions are copied */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
@@ -265,7 +266,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
      * to carry a particle into a shape during the sweeps (the guard's job),
      * so nothing to prepare. (Verlet: the others keep the substep's start
      * positions for the next, whether in contact or not.) */
-    if (!pairs && !c->nbullets && !c->terr && w->group_count == 1 && w->integrator == TT_VERLET &&
+    if (!pairs && !c->nbullets && !c->terr && tt__groups_relaxing(w) == 1 && w->integrator == TT_VERLET &&
         tt__shapes_out_of_reach(w, c, n))
         return;
     /* The velocities the substep starts from are read only where there are

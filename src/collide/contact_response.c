@@ -152,7 +152,7 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
     double *X = w->px, *Y = w->py;
     size_t st = 1;
     if (c->batched) { /* Gauss-Seidel, several sweeps */
-        err = tt__batches_sweep(w, &c->bat, w->group_count == 1); /* rows kept while nothing else sweeps */
+        err = tt__batches_sweep(w, &c->bat, tt__groups_relaxing(w) == 1); /* rows kept while nothing else sweeps */
         if (c->bat.live) {
             X = c->bat.xy;
             Y = c->bat.xy + 1;

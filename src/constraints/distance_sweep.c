@@ -383,7 +383,7 @@ double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h)
     }
 #ifdef TT_SIMD_X86
     /* keep the rows only while this sweep is all the solver does to positions */
-    const bool keep = g->ngen == 0 && w->group_count == 1;
+    const bool keep = g->ngen == 0 && tt__groups_relaxing(w) == 1;
     return sweep_planned(w, g, h, kind == TT__SIMD_AVX512 ? runs_avx512 : runs_avx2, keep);
 #else
     return 0.0;

@@ -260,6 +260,14 @@ void tt__springs_free(tt_world *w);
 int tt__group_add(tt_world *w, const tt__group_ops *ops, void *self);
 /* The group registered with ops, or NULL. */
 void *tt__group_find(const tt_world *w, const tt__group_ops *ops);
+/* Groups with sweeps (relax): a group without (sleeping's) moves no
+ * particle, so the fast paths for "nothing else sweeps" ignore it. */
+static inline int tt__groups_relaxing(const tt_world *w)
+{
+    int k = 0;
+    for (int g = 0; g < w->group_count; g++) k += w->groups[g].ops->relax != NULL;
+    return k;
+}
 /* Unregisters and destroys the group registered with ops, if any: a call
  * that registered it and then failed takes it back, since a group, even
  * empty, is swept and hashed. */

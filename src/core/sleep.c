@@ -5,8 +5,9 @@
  * area, collinear), found by union-find. Pinned particles, shapes, pins and
  * bounds join nothing: they do not move, so they carry no motion from one
  * particle to another. An island falls asleep when every particle in it has
- * rested for sleep_time: stayed within sleep_speed·sleep_time of where its
- * rest began (a mean speed under sleep_speed); it wakes whole. Islands
+ * rested for sleep_time (rest_one: a window of sleep_speed·sleep_time
+ * that a rattle stays in, a creep leaves slowly and a swing leaves
+ * fast); it wakes whole. Islands
  * rather than grid cells: a cell boundary cuts a pile in two, and the awake
  * half would lean on a frozen half that ought to give way; an island is
  * everything that can push on everything else, so nothing in it is left
@@ -26,7 +27,7 @@
  *
  * The feature is a solver group without sweeps (rank after contacts): its
  * hooks are the step's, its section of the snapshot ('SLEP') holds the
- * settings, each particle's time at rest and island, so a restored world
+ * settings, each particle's time at rest, anchor and island, so a restored world
  * falls asleep and wakes exactly as the original would. */
 #include "internal.h"
 #include "stream.h"
@@ -43,8 +44,11 @@ typedef struct tt__sleep {
     uint32_t asleep;
     uint32_t cap;
     double *rest;         /* per slot: seconds at rest (awake particles) */
-    double *ax, *ay;      /* per slot: where its rest began (awake particles) */
+    double *held;         /* per slot: seconds since its anchor was set (awake particles) */
+    double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
     uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
+    uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
+    uint64_t tick;        /* steps since sleeping went on, from 2 (0 in seen: never held) */
     uint32_t *parent;     /* union-find scratch */
     double *minrest;      /* per root: the least time at rest in its island */
     uint32_t *wake;       /* islands to wake at the end of the step */
@@ -66,21 +70,34 @@ static bool grow(tt__sleep *s, uint32_t n)
     uint32_t *is = realloc(s->island, (size_t)cap * sizeof *is);
     if (!is) return false;
     s->island = is;
+    uint64_t *sn = realloc(s->seen, (size_t)cap * sizeof *sn);
+    if (!sn) return false;
+    s->seen = sn;
     uint32_t *p = realloc(s->parent, (size_t)cap * sizeof *p);
     if (!p) return false;
     s->parent = p;
     double *m = realloc(s->minrest, (size_t)cap * sizeof *m);
     if (!m) return false;
     s->minrest = m;
+    double *hd = realloc(s->held, (size_t)cap * sizeof *hd);
+    if (!hd) return false;
+    s->held = hd;
     double *x = realloc(s->ax, (size_t)cap * sizeof *x);
     if (!x) return false;
     s->ax = x;
     double *y = realloc(s->ay, (size_t)cap * sizeof *y);
     if (!y) return false;
     s->ay = y;
+    if (s->wake_cap < cap) { /* an island per particle at most: waking at a step allocates nothing */
+        uint32_t *k = realloc(s->wake, (size_t)cap * sizeof *k);
+        if (!k) return false;
+        s->wake = k;
+        s->wake_cap = cap;
+    }
     for (uint32_t i = s->cap; i < cap; i++) {
-        s->rest[i] = s->ax[i] = s->ay[i] = 0.0;
+        s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = 0.0;
         s->island[i] = 0;
+        s->seen[i] = 0;
     }
     s->cap = cap;
     return true;
@@ -103,7 +120,7 @@ static uint32_t covered(const tt_world *w, const tt__sleep *s)
 static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
 {
     s->island[i] = 0;
-    s->rest[i] = 0.0;
+    s->rest[i] = s->held[i] = 0.0;
     s->ax[i] = w->px[i];
     s->ay[i] = w->py[i];
     w->flags[i] &= (uint16_t)~TT__PF_ASLEEP;
@@ -135,6 +152,13 @@ static void list_wake(tt_world *w, tt__sleep *s, uint32_t k)
 {
     for (uint32_t j = 0; j < s->nwake && j < 8; j++)
         if (s->wake[s->nwake - 1 - j] == k) return; /* the common repeat: the same island again */
+    if (s->nwake == s->wake_cap && s->nwake) { /* full of repeats? each island once: no more than sleepers */
+        qsort(s->wake, s->nwake, sizeof *s->wake, cmp_u32);
+        uint32_t m = 1;
+        for (uint32_t j = 1; j < s->nwake; j++)
+            if (s->wake[j] != s->wake[m - 1]) s->wake[m++] = s->wake[j];
+        s->nwake = m;
+    }
     if (s->nwake == s->wake_cap) {
         uint32_t cap = s->wake_cap ? s->wake_cap * 2 : 16;
         uint32_t *p = realloc(s->wake, (size_t)cap * sizeof *p);
@@ -294,7 +318,7 @@ static void unite_all(const tt_world *w, tt__sleep *s)
 static void fall_asleep(tt_world *w, tt__sleep *s, uint32_t i, uint32_t island)
 {
     s->island[i] = island;
-    s->rest[i] = 0.0;
+    s->rest[i] = s->held[i] = 0.0;
     w->flags[i] |= TT__PF_ASLEEP;
     w->inv_mass[i] = 0.0;
     if (w->integrator == TT_VERLET) {
@@ -318,7 +342,8 @@ static void settle(tt_world *w, tt__sleep *s)
     for (uint32_t i = 0; i < n; i++) {
         if (!dynamic(w, i) || s->island[i]) continue;
         uint32_t r = find(s->parent, i);
-        if (s->rest[i] < s->minrest[r]) s->minrest[r] = s->rest[i];
+        const double rest = s->seen[i] == s->tick ? s->rest[i] : 0.0; /* nothing held it: in flight, not at rest */
+        if (rest < s->minrest[r]) s->minrest[r] = rest;
     }
     /* island ids in slot order of their roots: the same world sleeps the same way */
     for (uint32_t i = 0; i < n; i++) {
@@ -347,33 +372,93 @@ static bool anything_holds(const tt_world *w)
     return false; /* (a query's idle collision state holds nothing: reading a world keeps its hash) */
 }
 
-/* Rest is measured on the mean velocity, not the last step's: a particle
- * rests while it stays within sleep_speed·sleep_time of where its rest
- * began. In a deep pile a few particles rattle in place at 0.1–0.2 m/s
- * (found in the reference pour: 115 of 10 000 over 0.05 m/s after 40 s, none
- * of them 1 mm from where they were half a second before); by their last
- * velocity they would keep the whole pile awake for ever. */
+/* The rest test. A particle rests while it stays within a window of
+ * L = sleep_speed·sleep_time of its anchor (where its present stretch
+ * began); when it leaves, the anchor moves there, and the stretch it ends
+ * keeps its rest if its mean speed over it was under sleep_speed (so it
+ * lasted sleep_time or more; one long step that jumps far does not), else
+ * its rest starts again. Measured
+ * (README "Sleeping"), this tells the three kinds of slow motion apart:
+ * - a rattle (a loose particle in the cavity of a settled pile, 0.1–0.5
+ *   m/s) stays inside a cage of 1 cm for ever: it rests, where a test on
+ *   the last step's speed keeps the pile awake for ever;
+ * - creep (the deep pile compacting, 0.2 mm/s after 50 s) leaves any window
+ *   in the end, but slowly: its stretches are long and keep their rest,
+ *   where restarting the rest on each exit kept a few of 10 000 particles
+ *   resting less than sleep_time at any moment, and the pile awake;
+ * - a swing dwells near a turning point within a window L for only about
+ *   2·sqrt(2L/a) (a its acceleration there), then leaves it in a stretch
+ *   shorter than sleep_time: it never rests long. With the defaults (1 cm,
+ *   1 s) a 1 m pendulum swinging 2 cm or more, a 4 m one swinging 5 cm, a
+ *   particle at the top of its throw or a ball rolling at 1 cm/s or more
+ *   stay awake; a swing whose whole arc fits in the window is at rest. */
+static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *ready)
+{
+    if (i >= w->ppool.count || s->seen[i] == s->tick) return; /* (made since the last step: none of its arrays) */
+    const uint64_t was = s->seen[i];
+    s->seen[i] = s->tick;
+    if (w->inv_mass[i] == 0.0) return; /* asleep, pinned or removed */
+    const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i], d2 = dx * dx + dy * dy;
+    const double lim = s->speed * s->time;
+    const bool out = d2 > lim * lim;
+    if (was + 1 != s->tick) { /* free since it was last held: its rest starts here */
+        s->rest[i] = s->held[i] = 0.0;
+    } else {
+        s->held[i] += dt;
+        const double slow = s->speed * s->held[i]; /* out at a mean speed under sleep_speed: its stretch lasted sleep_time or more */
+        if (!out || d2 <= slow * slow) {
+            s->rest[i] += dt;
+            *ready |= s->rest[i] >= s->time;
+        } else {
+            s->rest[i] = 0.0;
+        }
+    }
+    if (out || was + 1 != s->tick) {
+        s->held[i] = 0.0;
+        s->ax[i] = w->px[i];
+        s->ay[i] = w->py[i];
+    }
+}
+
+/* Only what something holds can rest: a free particle under gravity never
+ * does, and testing it would make one spring elsewhere cost a pass over
+ * every particle (the pay-only table). The holders are the last substep's
+ * contacts (pairs, shapes, terrain), springs and constraints (bounds over
+ * every particle hold every particle). */
+static void rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready)
+{
+    s->tick++;
+    const tt__collide *c = feature(w, ID_CONTACTS);
+    for (uint32_t k = 0; c && k < c->npairs; k++) {
+        rest_one(w, s, c->pairs[k].a, dt, ready);
+        rest_one(w, s, c->pairs[k].b, dt, ready);
+    }
+    for (uint32_t k = 0; c && k < c->nsc; k++) rest_one(w, s, c->sc[k].a, dt, ready);
+    for (uint32_t k = 0; k < w->spool.count; k++)
+        if (w->springs[k].alive) rest_one(w, s, w->springs[k].a, dt, ready), rest_one(w, s, w->springs[k].b, dt, ready);
+    const tt__cgroup *g = feature(w, ID_CONSTRAINTS);
+    for (uint32_t k = 0; g && k < g->pool.count; k++) {
+        if (!g->slots[k].kind) continue;
+        uint32_t ids[3];
+        const uint32_t *list;
+        uint32_t n = constraint_parts(g, k, ids, &list);
+        const tt__gcon *b = g->slots[k].kind == TT_CONSTRAINT_DISTANCE ? NULL : &g->gen[g->slots[k].dense];
+        if (b && b->kind == TT_CONSTRAINT_BOUNDS) {
+            n = b->n ? b->n : w->ppool.count;
+            for (uint32_t j = 0; j < n; j++) rest_one(w, s, b->n ? b->list[j] : j, dt, ready);
+            continue;
+        }
+        for (uint32_t j = 0; j < n; j++) rest_one(w, s, list ? list[j] : ids[j], dt, ready);
+    }
+}
+
 static void after_step(tt_world *w, void *self)
 {
     tt__sleep *s = self;
     wake_touched(w, s);
     if (!anything_holds(w)) return;
-    const uint32_t n = w->ppool.count;
-    const double dt = w->dt_prev * w->substeps;
-    const double lim = s->speed * s->time, lim2 = lim * lim;
     bool ready = false;
-    for (uint32_t i = 0; i < n; i++) {
-        if (w->inv_mass[i] == 0.0) continue; /* asleep, pinned or removed */
-        const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i];
-        if (dx * dx + dy * dy <= lim2) {
-            s->rest[i] += dt;
-            ready |= s->rest[i] >= s->time;
-        } else {
-            s->rest[i] = 0.0;
-            s->ax[i] = w->px[i];
-            s->ay[i] = w->py[i];
-        }
-    }
+    rest_held(w, s, w->dt_prev * w->substeps, &ready);
     if (ready) settle(w, s);
 }
 
@@ -381,7 +466,7 @@ static void particle_removed(tt_world *w, void *self, uint32_t i)
 {
     tt__sleep *s = self;
     tt__sleep_touch(w, i); /* what rested on it falls */
-    if (i < s->cap) s->rest[i] = 0.0;
+    if (i < s->cap) s->rest[i] = s->held[i] = 0.0;
 }
 
 static void save(const tt_world *w, const void *self, tt__sink *snk)
@@ -393,9 +478,11 @@ static void save(const tt_world *w, const void *self, tt__sink *snk)
     for (uint32_t i = 0; i < w->ppool.count; i++) {
         if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         tt__put_f64(snk, i < s->cap ? s->rest[i] : 0.0);
+        tt__put_f64(snk, i < s->cap ? s->held[i] : 0.0);
         tt__put_f64(snk, i < s->cap ? s->ax[i] : 0.0);
         tt__put_f64(snk, i < s->cap ? s->ay[i] : 0.0);
         tt__put_u32(snk, i < s->cap ? s->island[i] : 0);
+        tt__put_u32(snk, i < s->cap && s->seen[i] == s->tick); /* held in the last step */
     }
 }
 
@@ -404,7 +491,7 @@ static void destroy(tt_world *w, void *self)
     (void)w;
     tt__sleep *s = self;
     if (!s) return;
-    free(s->rest); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
+    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
     free(s);
 }
 
@@ -418,16 +505,21 @@ static void *load(tt_world *w, tt__source *src)
     }
     s->speed = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep speed");
     s->time = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep time");
+    s->tick = 2;
     s->next_island = tt__get_u32(src);
     if (s->next_island == 0) tt__src_fail(src, "sleep: island counter 0");
     for (uint32_t i = 0; i < w->ppool.count && !src->failed; i++) {
         if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         s->rest[i] = tt__get_num(src, 0.0, TT_MAX_VALUE, "time at rest");
-        s->ax[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "where rest began");
-        s->ay[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "where rest began");
+        s->held[i] = tt__get_num(src, 0.0, TT_MAX_VALUE, "time since the anchor");
+        s->ax[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
+        s->ay[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
         s->island[i] = tt__get_u32(src);
+        const uint32_t held = tt__get_u32(src);
+        if (held > 1) tt__src_fail(src, "sleep: particle %u held flag %u", i, held);
+        s->seen[i] = held ? 2 : 0;
         const bool asleep = (w->flags[i] & TT__PF_ASLEEP) != 0;
-        if (asleep != (s->island[i] != 0) || (asleep && s->rest[i] != 0.0))
+        if (asleep != (s->island[i] != 0) || (asleep && (s->rest[i] != 0.0 || s->held[i] != 0.0)))
             tt__src_fail(src, "sleep: particle %u is %s but its island is %u", i, asleep ? "asleep" : "awake", s->island[i]);
         s->asleep += asleep;
     }
@@ -442,7 +534,7 @@ static size_t memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__sleep *s = self;
-    return sizeof *s + (size_t)s->cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t);
+    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t);
 }
 
 static const tt__group_ops sleep_ops = {
@@ -471,6 +563,7 @@ bool tt__sleep_enable(tt_world *w, double speed, double time)
             return false;
         }
         s->next_island = 1;
+        s->tick = 2;
     }
     s->speed = speed;
     s->time = time;

@@ -31,13 +31,14 @@ bool tt__solver_reserve(tt_world *w)
 {
     if (w->group_count == 0) return true;
     const uint32_t n = w->ppool.count;
-    if (w->order == TT_JACOBI && w->jcap < n) {
+    const bool sweeps = tt__groups_relaxing(w) > 0; /* sleeping's group alone needs no sweep arrays */
+    if (sweeps && w->order == TT_JACOBI && w->jcap < n) {
         if (!grow_to((void **)&w->jx, sizeof(double), w->pcap) || !grow_to((void **)&w->jy, sizeof(double), w->pcap) ||
             !grow_to((void **)&w->jn, sizeof(uint32_t), w->pcap))
             return false;
         w->jcap = w->pcap;
     }
-    if (w->bcap < n) { /* every integrator: the guard's start of the substep */
+    if (sweeps && w->bcap < n) { /* every integrator: the guard's start of the substep */
         if (!grow_to((void **)&w->bx, sizeof(double), w->pcap) || !grow_to((void **)&w->by, sizeof(double), w->pcap))
             return false;
         w->bcap = w->pcap;

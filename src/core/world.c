@@ -55,9 +55,9 @@ tt_world_def tt_world_def_default(void)
     d.iterations = 10;
     d.tolerance = 1e-6;
     d.order = TT_GAUSS_SEIDEL;
-    d.sleep = false;
-    d.sleep_speed = 0.05;
-    d.sleep_time = 0.5;
+    d.sleep = true;
+    d.sleep_speed = 0.01; /* Box2D's linear sleep tolerance; a 1 cm rest window with sleep_time (sleep.c rest_one) */
+    d.sleep_time = 1.0;
     return d;
 }
 

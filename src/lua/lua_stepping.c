@@ -171,7 +171,7 @@ static int w_sleep(lua_State *L)
     return 3;
 }
 
-/* w:set_sleep(on [, speed = 0.05, time = 0.5]) */
+/* w:set_sleep(on [, speed = 0.01, time = 1]) */
 static int w_set_sleep(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);

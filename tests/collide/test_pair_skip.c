@@ -81,3 +81,34 @@ TEST(a_particle_teleported_near_another_ends_the_pair_skip_at_once)
     ENSURE(run_twins(6, &touching, &after) >= 5);
     ENSURE(after > 0); /* the pair was found in the step right after */
 }
+
+/* stats.cells counts the grid the last substep found its pairs in, not the
+ * probe that found none (it showed the probe's wide cells, or a grid of
+ * long ago, after a substep that built no pair grid). */
+TEST(cells_stat_counts_the_pair_grid_not_the_probe)
+{
+    tt_world_def d = tt_world_def_default();
+    tt_world *w = tt_world_create(&d);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.2;
+    tt_particle p = tt_particle_create(w, &pd);
+    pd.position = (tt_vec2){50.0, 0.0};
+    tt_particle q = tt_particle_create(w, &pd);
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    tt_collision_stats st;
+    for (int s = 0; s < 3; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE_OK(tt_world_get_collision_stats(w, &st));
+    ENSURE(st.pair_contacts == 0 && st.cells == 0); /* apart: no pair grid (a probe, or the bound) */
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    ENSURE_OK(tt_particle_set_position(w, q, (tt_vec2){x.x + 0.3, x.y}, TT_MOVE_KEEP_VELOCITY));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE_OK(tt_world_get_collision_stats(w, &st));
+    ENSURE(st.pair_contacts == 1 && st.cells > 0 && st.cells == tt__collide_peek(w)->grid.ncell);
+    ENSURE_OK(tt_particle_set_position(w, q, (tt_vec2){x.x + 50.0, x.y}, TT_MOVE_KEEP_VELOCITY));
+    for (int s = 0; s < 3; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE_OK(tt_world_get_collision_stats(w, &st));
+    ENSURE(st.pair_contacts == 0 && st.cells == 0);
+    tt_world_destroy(w);
+}

@@ -10,7 +10,11 @@
  * pinned again at the merge, main's own build giving the same positions.
  * The pour and zoo scenes moved when the velocity pass began to end with
  * the bottom-up pass (contact_lift.c, issue 21): a pile no longer throws
- * its own layers up. */
+ * its own layers up. Sleeping on by default (issue 22): the zoo's piles
+ * fall asleep (its positions moved); in the others nothing sleeps within
+ * 300 steps (the pour still flows, the cloth flaps in the wind, the
+ * integrators' spring swings): their positions stay, their hashes moved
+ * (the hash covers the sleep section). */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -22,10 +26,10 @@ static const struct {
     uint64_t positions;
     uint64_t hash;
 } golden[SCENE_COUNT] = {
-    [SCENE_POUR] = {0x2731670a18504128ull, 0x61a266120cbb0570ull},
-    [SCENE_CLOTH] = {0xb5c92190124ff72cull, 0x2df33b8cb8f8c25bull},
-    [SCENE_ZOO] = {0x381fb89329f89338ull, 0x4d5756d15bb1d344ull},
-    [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0xf37b3f16a0d686ceull},
+    [SCENE_POUR] = {0x2731670a18504128ull, 0x2ca617e1e831bde9ull},
+    [SCENE_CLOTH] = {0xb5c92190124ff72cull, 0x5bb5ab99fbcef78bull},
+    [SCENE_ZOO] = {0x892b725129dad019ull, 0xe8bf27cc98123094ull},
+    [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0x1993a9d54ff44dedull},
 };
 
 TEST(golden_scenes_keep_their_positions_and_hashes)

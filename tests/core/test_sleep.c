@@ -92,8 +92,13 @@ TEST(sleep_pile_falls_asleep_where_the_awake_pile_rests)
     tt_world_destroy(off);
 }
 
-TEST(sleep_off_by_default_and_turned_off_wakes_all)
+TEST(sleep_on_by_default_and_turned_off_wakes_all)
 {
+    tt_world_def d = tt_world_def_default();
+    ENSURE(d.sleep && d.sleep_speed == 0.01 && d.sleep_time == 1.0);
+    tt_world *w0 = tt_world_create(&d);
+    ENSURE(tt_world_get_sleep(w0, NULL, NULL));
+    tt_world_destroy(w0);
     tt_particle a[N];
     tt_world *w = pile(false, a, N);
     ENSURE(w);
@@ -277,31 +282,146 @@ TEST(sleep_snapshot_round_trip)
     tt_world_destroy(w);
 }
 
-/* A pendulum swinging 5 cm (period 2 s) dwells 0.65 s within 2.5 cm of a
- * turning point: the default window (0.05 m/s · 0.5 s) puts it to sleep
- * there, found when sleeping went on by default. At 0.01 m/s (Box2D's
- * tolerance; a 5 mm window) it swings on; that setting keeps the deepest
- * reference pour awake (README "Sleeping"), hence the default. */
-TEST(sleep_a_slow_pendulum_swings_on_at_a_small_speed)
+/* Slow motions never sleep mid-motion at the default rest test (a 1 cm
+ * window, 1 s; sleep.c rest_one): each runs with sleeping on and must
+ * still be moving at the end (no test that cannot fail: the swings keep
+ * their amplitude, so an island that slept would be caught by the count). */
+static tt_world *sleepy(double g)
 {
     tt_world_def d = tt_world_def_default();
     d.sleep = true;
-    d.sleep_speed = 0.01;
-    tt_world *w = tt_world_create(&d);
+    d.gravity = (tt_vec2){0.0, -g};
+    return tt_world_create(&d);
+}
+
+/* A pendulum 1 m long swinging `amp` rad (period 2 s): it dwells near a
+ * turning point, but leaves the 1 cm window there within 0.5 s (2 cm
+ * swing: 0.72 s, the closest; the old 2.5 cm window, 0.5 s, slept a 5 cm
+ * swing there). Returns the least x it reached in
+ * the last period (the swing still there), NAN if anything ever slept. */
+static double pendulum(double amp, int seconds)
+{
+    tt_world *w = sleepy(9.81);
     tt_particle_def pd = tt_particle_def_default();
     pd.pinned = true;
     tt_particle top = tt_particle_create(w, &pd);
     pd.pinned = false;
-    pd.position = (tt_vec2){sin(0.05), -cos(0.05)};
+    pd.position = (tt_vec2){sin(amp), -cos(amp)};
     tt_particle bob = tt_particle_create(w, &pd);
     tt_distance_def dd = tt_distance_def_default();
     dd.a = top, dd.b = bob;
     dd.length = 1.0;
-    ENSURE(tt_constraint_is_valid(w, tt_distance_create(w, &dd)));
-    for (int s = 0; s < 12 * 60; s++) {
+    tt_distance_create(w, &dd);
+    double least = INFINITY;
+    bool slept = false;
+    for (int s = 0; s < seconds * 60; s++) {
+        tt_world_step(w, 1.0 / 60.0);
+        slept |= sleeping(w) != 0;
+        tt_vec2 p;
+        tt_particle_get_position(w, bob, &p);
+        if (s >= (seconds - 2) * 60) least = fmin(least, p.x);
+    }
+    tt_world_destroy(w);
+    return slept ? NAN : least;
+}
+
+TEST(sleep_a_slow_pendulum_swings_on)
+{
+    /* the world's default damping takes 8 % of the swing a second: 5 cm
+     * swings 2.0 cm after 12 s, 2 cm 1.3 cm after 6 s (and once the whole
+     * arc fits in the window, about 1 cm, it is at rest and sleeps) */
+    ENSURE(pendulum(0.05, 12) < -0.018); /* swung on, to the other side */
+    ENSURE(pendulum(0.02, 6) < -0.012);
+}
+
+/* A rope of 8 links hanging from a pin, its lower end pulled 20 cm aside
+ * and let go: it swings slowly (its bottom moves about 0.3 m/s at most,
+ * the joints near the pin a few cm/s) for 10 s. */
+TEST(sleep_a_slowly_swinging_rope_swings_on)
+{
+    tt_world *w = sleepy(9.81);
+    tt_particle p[9];
+    for (int k = 0; k < 9; k++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.pinned = k == 0;
+        pd.position = (tt_vec2){0.2 * (k / 8.0) * (k / 8.0), -0.25 * k};
+        p[k] = tt_particle_create(w, &pd);
+        if (k) {
+            tt_distance_def dd = tt_distance_def_default();
+            dd.a = p[k - 1], dd.b = p[k];
+            ENSURE(tt_constraint_is_valid(w, tt_distance_create(w, &dd)));
+        }
+    }
+    double least = INFINITY;
+    for (int s = 0; s < 600; s++) {
+        tt_world_step(w, 1.0 / 60.0);
+        ENSURE(sleeping(w) == 0);
+        tt_vec2 q;
+        tt_particle_get_position(w, p[8], &q);
+        if (s >= 480) least = fmin(least, q.x);
+    }
+    ENSURE(least < -0.05); /* still swinging to the other side */
+    tt_world_destroy(w);
+}
+
+/* A ball let go at rest on a frictionless slope of 1° (it gathers speed at
+ * 0.17 m/s², leaving the 1 cm window in 0.34 s): it rolls, never sleeping,
+ * down the whole slope. */
+TEST(sleep_a_ball_rolling_slowly_down_a_gentle_slope_rolls_on)
+{
+    tt_world *w = sleepy(9.81);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = cs.friction_kinetic = 0.0;
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    const double th = 1.0 * M_PI / 180.0;
+    tt_shape_def g = tt_shape_def_default();
+    g.type = TT_SHAPE_SEGMENT;
+    g.a = (tt_vec2){0.0, 0.0}, g.b = (tt_vec2){10.0 * cos(th), -10.0 * sin(th)};
+    g.friction_static = g.friction_kinetic = 0.0;
+    tt_shape_create(w, &g);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.1;
+    pd.position = (tt_vec2){0.5 - 0.1 * sin(th), -0.5 * tan(th) + 0.1 / cos(th)};
+    tt_particle ball = tt_particle_create(w, &pd);
+    for (int s = 0; s < 240; s++) {
         tt_world_step(w, 1.0 / 60.0);
         ENSURE(sleeping(w) == 0);
     }
+    tt_vec2 q;
+    tt_particle_get_position(w, ball, &q);
+    /* x = x0 + g sinθ t²/2 cosθ over 4 s: 1.37 m */
+    ENSURE_NEAR(q.x - 0.5, 0.5 * 9.81 * sin(th) * cos(th) * 16.0, 0.05);
+    tt_world_destroy(w);
+}
+
+/* A particle thrown up at 1 m/s under g = 1 m/s² (over a floor, so contacts
+ * can hold: the rest test runs) is at the top of its arc at 1 s and 0.5 m,
+ * dwelling within 1 cm of it for 0.28 s: it must not sleep up there. */
+TEST(sleep_a_particle_at_the_top_of_its_throw_falls_back)
+{
+    tt_world *w = sleepy(1.0);
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    tt_shape_def g = tt_shape_def_default();
+    g.type = TT_SHAPE_AABB;
+    g.a = (tt_vec2){-5.0, -1.0}, g.b = (tt_vec2){5.0, 0.0};
+    tt_shape_create(w, &g);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.1;
+    pd.position = (tt_vec2){0.0, 0.1};
+    pd.velocity = (tt_vec2){0.0, 1.0};
+    tt_particle p = tt_particle_create(w, &pd);
+    double top = 0.0;
+    for (int s = 0; s < 110; s++) {
+        tt_world_step(w, 1.0 / 60.0);
+        ENSURE(sleeping(w) == 0);
+        tt_vec2 q;
+        tt_particle_get_position(w, p, &q);
+        top = fmax(top, q.y);
+    }
+    ENSURE_NEAR(top, 0.6, 0.02);
+    /* landed, it rests and sleeps */
+    ENSURE(settle(w, 1, 300) < 300);
     tt_world_destroy(w);
 }
 

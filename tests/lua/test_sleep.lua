@@ -26,9 +26,11 @@ local function settle(w, n, max)
   return max + 1
 end
 
-T.test("sleeping is off by default; a world made with sleep = true puts a settled pile to sleep", function()
+T.test("sleeping is on by default (1 cm, 1 s), off with sleep = false; a settled pile sleeps", function()
   local w0 = pile()
   local on, speed, time = w0:sleep()
+  T.eq(on, true); T.eq(speed, 0.01); T.eq(time, 1)
+  on, speed, time = pile({ sleep = false }):sleep()
   T.eq(on, false); T.eq(speed, 0); T.eq(time, 0)
   local w, ps = pile { sleep = true, sleep_speed = 0.05, sleep_time = 0.5 }
   on, speed, time = w:sleep()
@@ -45,7 +47,7 @@ T.test("sleeping is off by default; a world made with sleep = true puts a settle
 end)
 
 T.test("set_sleep turns it on and off; off wakes everything", function()
-  local w, ps = pile()
+  local w, ps = pile { sleep = false }
   w:set_sleep(true)
   T.ok(settle(w, #ps, 1200) <= 1200)
   w:set_sleep(false)
@@ -71,7 +73,7 @@ T.test("sleep options and calls refuse bad input", function()
   T.checkerror("bad argument #4 to 'set_sleep'", w.set_sleep, w, true, 0.1, 0 / 0)
   T.checkerror("sleep_speed", tether.world, { sleep = true, sleep_speed = -1 })
   T.checkerror("sleep", tether.world, { sleep = 1 })
-  T.eq((w:sleep()), false, "a refused call changed nothing")
+  T.eq((w:sleep()), true, "a refused call changed nothing (on by default)")
   local p = w:particle(0, 0)
   w:remove(p)
   T.checkerror("bad argument #2 to 'asleep' (stale particle handle)", w.asleep, w, p)
