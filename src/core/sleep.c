@@ -49,6 +49,14 @@ typedef struct tt__sleep {
     double *minrest;      /* per root: the least time at rest in its island */
     uint32_t *wake;       /* islands to wake at the end of the step */
     uint32_t nwake, wake_cap;
+    /* the step's undo (step_undo.c): the per-slot state as the step began,
+     * copied at the step's first waking (scratch) */
+    struct {
+        bool taken;
+        uint32_t asleep, cap;
+        double *rest, *ax, *ay;
+        uint32_t *island;
+    } undo;
 } tt__sleep;
 
 static const tt__group_ops sleep_ops;
@@ -100,8 +108,65 @@ static uint32_t covered(const tt_world *w, const tt__sleep *s)
     return w->ppool.count < s->cap ? w->ppool.count : s->cap;
 }
 
+/* ---- the step's undo: a step that runs out of memory is put back as it
+ * began; here only a waking in its first substep changes anything before
+ * that can happen (falling asleep comes after the step, which no longer
+ * fails then), so the copy is taken at the first waking. */
+
+static bool undo_reserve(tt_world *w, void *self)
+{
+    (void)w;
+    tt__sleep *s = self;
+    if (s->undo.cap >= s->cap) return true;
+    double **d[] = {&s->undo.rest, &s->undo.ax, &s->undo.ay};
+    for (int k = 0; k < 3; k++) {
+        double *p = realloc(*d[k], (size_t)s->cap * sizeof *p);
+        if (!p) return false;
+        *d[k] = p;
+    }
+    uint32_t *p = realloc(s->undo.island, (size_t)s->cap * sizeof *p);
+    if (!p) return false;
+    s->undo.island = p;
+    s->undo.cap = s->cap;
+    return true;
+}
+
+static void undo_mark(tt_world *w, void *self)
+{
+    (void)w;
+    tt__sleep *s = self;
+    s->undo.taken = false;
+    s->undo.asleep = s->asleep;
+}
+
+static void undo_take(tt_world *w, tt__sleep *s)
+{
+    const size_t n = covered(w, s) < s->undo.cap ? covered(w, s) : s->undo.cap;
+    tt__undo_flags(w);
+    tt__copy(s->undo.rest, s->rest, n * sizeof *s->rest);
+    tt__copy(s->undo.ax, s->ax, n * sizeof *s->ax);
+    tt__copy(s->undo.ay, s->ay, n * sizeof *s->ay);
+    tt__copy(s->undo.island, s->island, n * sizeof *s->island);
+    s->undo.taken = true;
+}
+
+static void undo(tt_world *w, void *self)
+{
+    tt__sleep *s = self;
+    s->asleep = s->undo.asleep;
+    s->nwake = 0;
+    if (!s->undo.taken) return;
+    const size_t n = covered(w, s) < s->undo.cap ? covered(w, s) : s->undo.cap;
+    tt__copy(s->rest, s->undo.rest, n * sizeof *s->rest);
+    tt__copy(s->ax, s->undo.ax, n * sizeof *s->ax);
+    tt__copy(s->ay, s->undo.ay, n * sizeof *s->ay);
+    tt__copy(s->island, s->undo.island, n * sizeof *s->island);
+    s->undo.taken = false;
+}
+
 static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
 {
+    if (w->undo.on && !s->undo.taken) undo_take(w, s);
     s->island[i] = 0;
     s->rest[i] = 0.0;
     s->ax[i] = w->px[i];
@@ -405,6 +470,7 @@ static void destroy(tt_world *w, void *self)
     tt__sleep *s = self;
     if (!s) return;
     free(s->rest); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
+    free(s->undo.rest); free(s->undo.ax); free(s->undo.ay); free(s->undo.island);
     free(s);
 }
 
@@ -442,7 +508,8 @@ static size_t memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__sleep *s = self;
-    return sizeof *s + (size_t)s->cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t);
+    return sizeof *s + (size_t)s->cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t) +
+           (size_t)s->undo.cap * (3 * sizeof(double) + sizeof(uint32_t));
 }
 
 static const tt__group_ops sleep_ops = {
@@ -451,6 +518,9 @@ static const tt__group_ops sleep_ops = {
     .reserve = reserve,
     .begin = begin,
     .after_step = after_step,
+    .undo_reserve = undo_reserve,
+    .undo_mark = undo_mark,
+    .undo = undo,
     .particle_removed = particle_removed,
     .id = TT__ID('S', 'L', 'E', 'P'),
     .save = save,
