@@ -70,7 +70,7 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
         w->py[i] = y0 + (y1 - y0) * t;
         c->ccd_prim[i] = prim;
         if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) {
-            tt__step_oom(w, "a bullet's contact (it stops at the shape without its bounce)");
+            tt__step_oom(w, "a bullet's contact");
             continue;
         }
         double cx = 0.0, cy = 0.0;

@@ -191,6 +191,22 @@ typedef struct tt__record {  /* one contact of the step, for events */
     tt_contact_event ev;
 } tt__record;
 
+/* What a step changes of the collision state besides the particles, as
+ * the step began (contact_undo.c): the end positions the next substep
+ * starts from (velocity integrators, while valid) and contact_skip.c's and
+ * contact_reach.c's bounds with the epochs they hold for. Scratch. */
+typedef struct tt__collide_undo {
+    double *sx0, *sy0;
+    uint32_t cap;
+    bool ends;            /* sx0, sy0 hold the end positions */
+    uint64_t s_epoch, clear_epoch, reach_epoch;
+    uint32_t s_count, probe_wait, probe_fails, reach_n;
+    bool clear_ok, quiet_last;
+    double clear_gap, clear_used, clear_scale;
+    uint8_t reach_side;
+    float reach_rmax;
+} tt__collide_undo;
+
 /* State: what contacts.c saves (settings, shapes, materials, bullets,
  * switched-off pairs, the last step's records and events, and the last
  * substep's end positions while valid). The primitives and static index,
@@ -262,6 +278,7 @@ typedef struct tt__collide {
     uint32_t reach_n;
     uint64_t reach_epoch;
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
+    tt__collide_undo undo;
 } tt__collide;
 
 /* The contacts group's hook table and the collision state's accessor
@@ -292,6 +309,13 @@ void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);
 void tt__contacts_after_step(tt_world *w, void *self);
 size_t tt__contacts_memory(const tt_world *w, const void *self);
+/* The step's undo (contact_undo.c; tt__group_ops), and the room for the
+ * events after_step publishes (contact_events.c). */
+bool tt__contacts_fallible(const tt_world *w, const void *self);
+bool tt__contacts_undo_reserve(tt_world *w, void *self);
+void tt__contacts_undo_mark(tt_world *w, void *self);
+void tt__contacts_undo(tt_world *w, void *self);
+bool tt__contacts_after_reserve(tt_world *w, void *self);
 void tt__contacts_destroy(tt_world *w, void *self);
 /* The group's section of the snapshot stream (contacts.c). */
 void tt__contacts_save(const tt_world *w, const void *self, struct tt__sink *s);

@@ -193,12 +193,12 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
         grid_built = ok;
     }
     c->bp_ms += tt__now_ms() - t0;
-    if (!ok) tt__step_oom(w, "contact pairs (some were skipped)");
+    if (!ok) tt__step_oom(w, "contact pairs");
     /* batches pay for their planning from the second sweep on */
     c->batched = false;
     if (w->order == TT_GAUSS_SEIDEL && w->iterations > 1) {
         c->batched = tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, w->inv_mass, n);
-        if (!c->batched) tt__step_oom(w, "contact batches (pairs were solved in list order)");
+        if (!c->batched) tt__step_oom(w, "contact batches");
     }
     return grid_built;
 }
@@ -222,7 +222,7 @@ static void detect_shapes(tt_world *w, tt__collide *c, uint32_t n, bool grid_bui
         if (!tt__sgrid_near(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m)) continue;
         tt__sgrid_query(c, d.x - r - m, d.y - r - m, d.x + r + m, d.y + r + m, detect_visit, &d);
         if (!d.ok) {
-            tt__step_oom(w, "shape contacts (some were skipped)");
+            tt__step_oom(w, "shape contacts");
             break;
         }
     }
@@ -278,7 +278,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
-    if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts (some were skipped)");
+    if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->npairs || c->nsc)) substep_start(w, c, h, n);
     c->quiet_last = c->npairs == 0 && c->nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */

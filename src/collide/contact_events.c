@@ -11,7 +11,7 @@ void tt__record_contact(tt_world *w, tt__collide *c, uint64_t key, uint32_t a, u
                         double nx, double ny, double impulse)
 {
     if (!tt__grow((void **)&c->rec, &c->reccap, c->nrec + 1, sizeof *c->rec)) {
-        tt__step_oom(w, "contact events (a contact went unrecorded)");
+        tt__step_oom(w, "contact events");
         return;
     }
     tt__record *r = &c->rec[c->nrec++];
@@ -41,13 +41,23 @@ static void push_event(tt_world *w, tt__collide *c, const tt_contact_event *ev, 
 {
     if (!(c->set.events & kind)) return;
     if (!tt__grow((void **)&c->events, &c->evcap, c->nevents + 1, sizeof *c->events)) {
-        tt__step_oom(w, "contact events (some were dropped)");
+        tt__step_oom(w, "contact events"); /* after_reserve made the room: never here */
         return;
     }
     c->events[c->nevents] = *ev;
     c->events[c->nevents].kind = kind;
     if (kind == TT_EVENT_END) c->events[c->nevents].impulse = 0.0;
     c->nevents++;
+}
+
+/* Room for every event after_step can publish: a begin or persist per
+ * record, an end per record of the last step. */
+bool tt__contacts_after_reserve(tt_world *w, void *self)
+{
+    (void)w;
+    tt__collide *c = self;
+    if (!c->set.events) return true;
+    return tt__grow((void **)&c->events, &c->evcap, c->nrec + c->nprev, sizeof *c->events);
 }
 
 void tt__contacts_after_step(tt_world *w, void *self)

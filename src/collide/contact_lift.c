@@ -71,7 +71,7 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
     if (!tt__grow((void **)&c->lift_start, &cap2, want, sizeof *c->lift_start) ||
         !tt__grow((void **)&c->lift_order, &cap3, want, sizeof *c->lift_order) ||
         !tt__grow((void **)&c->lift, &c->lift_cap, want, sizeof *c->lift)) {
-        tt__step_oom(w, "the bottom-up velocity pass (a pile may gain energy this step)");
+        tt__step_oom(w, "the bottom-up velocity pass");
         return;
     }
     for (uint32_t k = 0; k < m; k++) {

@@ -77,6 +77,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
     b += (size_t)c->runs_cap * sizeof *c->runs + c->near_cap;
     b += ((size_t)c->reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
+    b += (size_t)c->undo.cap * 2 * sizeof(double);
     return b + tt__terrains_bytes(c->terr);
 }
 
@@ -93,6 +94,7 @@ void tt__contacts_destroy(tt_world *w, void *self)
     free(c->pairs); free(c->sc); free(c->runs); free(c->near);
     tt__batches_free(&c->bat);
     free(c->rec); free(c->prev); free(c->events);
+    free(c->undo.sx0); free(c->undo.sy0);
     tt__terrains_free(c->terr);
     free(c);
 }
@@ -106,6 +108,11 @@ const tt__group_ops tt__contacts_ops = {
     .sweeps_done = tt__contacts_sweeps_done,
     .end = tt__contacts_end,
     .after_step = tt__contacts_after_step,
+    .fallible = tt__contacts_fallible,
+    .undo_reserve = tt__contacts_undo_reserve,
+    .undo_mark = tt__contacts_undo_mark,
+    .undo = tt__contacts_undo,
+    .after_reserve = tt__contacts_after_reserve,
     .particle_removed = particle_removed,
     .memory = tt__contacts_memory,
     .destroy = tt__contacts_destroy,

@@ -38,14 +38,14 @@ void tt__terrains_free(tt__terrains *ts)
         if (ts->t[i].alive) tt__terrain_free_one(&ts->t[i]);
     tt__pool_destroy(&ts->pool);
     free(ts->t);
-    free(ts->scr);
+    free(ts->scr.buf);
     free(ts);
 }
 
 size_t tt__terrains_bytes(const tt__terrains *ts)
 {
     if (!ts) return 0;
-    size_t b = sizeof *ts + tt__pool_bytes(&ts->pool) + (size_t)ts->cap * sizeof *ts->t + ts->scap;
+    size_t b = sizeof *ts + tt__pool_bytes(&ts->pool) + (size_t)ts->cap * sizeof *ts->t + ts->scr.cap;
     for (uint32_t i = 0; i < ts->pool.count; i++) {
         const tt__terrain *T = &ts->t[i];
         if (T->alive) b += tt_mask_footprint(T->m->w, T->m->h) + (size_t)T->m->w * (size_t)T->m->h * sizeof(float);

@@ -71,7 +71,7 @@ static void regions(const tt__terrain *T, int x0, int y0, int x1, int y1, region
     g->R = (region){rx0, ry0, rx1 - rx0 + 1, ry1 - ry0 + 1};
 }
 
-/* The scratch of one update, carved from ts->scr. */
+/* The scratch of one update, carved from ts->scr.buf. */
 typedef struct scratch_t {
     int nw;             /* words per row of R */
     size_t gw;          /* bytes per row of g: 64·nw and PAD each side */
@@ -128,11 +128,11 @@ bool tt__terrain_reserve(tt__terrains *ts, const tt__terrain *T, int x0, int y0,
     scratch_t s;
     regions(T, x0, y0, x1, y1, &g);
     const size_t n = layout(&g, NULL, &s);
-    if (ts->scap >= n) return true;
-    void *p = realloc(ts->scr, n);
+    if (ts->scr.cap >= n) return true;
+    void *p = realloc(ts->scr.buf, n);
     if (!p) return false;
-    ts->scr = p;
-    ts->scap = n;
+    ts->scr.buf = p;
+    ts->scr.cap = n;
     return true;
 }
 
@@ -361,7 +361,7 @@ static void raw_row(const tt__terrains *ts, const regions_t *rg, int y, int B, c
         if (need & solid) search(ge + i, need & solid, B, be);
         if (need & ~solid) search(gs + i, need & ~solid, B, bs);
         for (int k = 0; k < LANES; k++) {
-            const int32_t r = (need >> k) & 1u ? ts->lut[be[k] + bs[k]] : far;
+            const int32_t r = (need >> k) & 1u ? ts->scr.lut[be[k] + bs[k]] : far;
             out[k] = (solid >> k) & 1u ? -r : r;
         }
     }
@@ -415,13 +415,13 @@ static void down(tt__terrain *T, const regions_t *rg, const scratch_t *s)
 /* The raw distance of a squared distance n (in pixels²), in 1/2^QBITS pixel. */
 static void make_lut(tt__terrains *ts, int B)
 {
-    if (ts->lut_band == B) return;
-    for (int n = 0; n < (int)(sizeof ts->lut / sizeof *ts->lut); n++) {
+    if (ts->scr.lut_band == B) return;
+    for (int n = 0; n < (int)(sizeof ts->scr.lut / sizeof *ts->scr.lut); n++) {
         const double d = sqrt((double)n) - 0.5;
-        ts->lut[n] = d >= B ? B << QBITS : (int32_t)floor(d * (1 << QBITS) + 0.5);
+        ts->scr.lut[n] = d >= B ? B << QBITS : (int32_t)floor(d * (1 << QBITS) + 0.5);
     }
-    ts->lut_band = B;
-    for (unsigned b = 0; b < 256; b++) ts->spread8[b] = spread(b);
+    ts->scr.lut_band = B;
+    for (unsigned b = 0; b < 256; b++) ts->scr.spread8[b] = spread(b);
 }
 
 bool tt__terrain_update(tt__terrains *ts, tt__terrain *T, int x0, int y0, int x1, int y1)
@@ -431,9 +431,9 @@ bool tt__terrain_update(tt__terrains *ts, tt__terrain *T, int x0, int y0, int x1
     const int B = T->def.band;
     regions(T, x0, y0, x1, y1, &g);
     if (!tt__terrain_reserve(ts, T, x0, y0, x1, y1)) return false;
-    layout(&g, ts->scr, &s);
+    layout(&g, ts->scr.buf, &s);
     make_lut(ts, B);
-    read_bits(T->m, &g.R, &s, ts->spread8);
+    read_bits(T->m, &g.R, &s, ts->scr.spread8);
     columns(&g, B, &s);
     for (int y = g.E.y0; y < g.E.y0 + g.E.h; y++) {
         raw_row(ts, &g, y, B, &s);

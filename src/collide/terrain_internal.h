@@ -25,17 +25,23 @@ typedef struct tt__terrain {
     double lox, loy, hix, hiy; /* world rectangle */
 } tt__terrain;
 
+/* What the distance update (terrain_band.c) works in and keeps between
+ * updates: scratch, neither saved nor hashed (terrain_state.c saves the
+ * terrains' state, the rest of tt__terrains). */
+typedef struct tt__terrain_scratch {
+    unsigned char *buf;
+    size_t cap;
+    /* raw distances by squared distance for the band it was made for */
+    int32_t lut[(TT_TERRAIN_MAX_BAND + 1) * (TT_TERRAIN_MAX_BAND + 1) + 1];
+    int lut_band;
+    uint64_t spread8[256]; /* byte k: 0xFF where bit k of the index is set */
+} tt__terrain_scratch;
+
 typedef struct tt__terrains {
     tt__pool pool;
     tt__terrain *t;
     uint32_t cap, alive;
-    /* scratch of the distance update (terrain_band.c), and its table of
-     * raw distances by squared distance for the band it was made for */
-    unsigned char *scr;
-    size_t scap;
-    int32_t lut[(TT_TERRAIN_MAX_BAND + 1) * (TT_TERRAIN_MAX_BAND + 1) + 1];
-    int lut_band;
-    uint64_t spread8[256]; /* byte k: 0xFF where bit k of the index is set */
+    tt__terrain_scratch scr;
 } tt__terrains;
 
 bool tt__terrain_ok(const tt__collide *c, tt_terrain t);

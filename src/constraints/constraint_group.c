@@ -141,7 +141,7 @@ size_t tt__cgroup_memory(const tt_world *w, const void *self)
     b += ((size_t)g->plan_cap + g->stamp_cap) * sizeof(uint32_t) + (size_t)g->pk_cap * 4 * sizeof(double);
     b += (size_t)g->hot_cap * (4 * sizeof(double) + 2 * sizeof(uint32_t));
     b += (size_t)g->moving_cap * sizeof(tt__mover);
-    return b + tt__composites_memory(g);
+    return b + tt__composites_memory(g) + tt__cgroup_undo_bytes(g);
 }
 
 void tt__cgroup_destroy(tt_world *w, void *self)
@@ -158,6 +158,7 @@ void tt__cgroup_destroy(tt_world *w, void *self)
     free(g->ev_pub);
     free(g->grad);
     free(g->moving);
+    tt__cgroup_undo_free(g);
     free(g->refs);
     free(g->plan);
     free(g->stamp);

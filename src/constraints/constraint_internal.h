@@ -63,6 +63,25 @@ typedef struct tt__mover {
     double end[2];     /* where this step ends: `to`, or as far toward it as max_rate allows */
 } tt__mover;
 
+/* What a step changes of the group, as the step began (constraint_undo.c,
+ * for the step's undo in core/step_undo.c): the moving targets, copied at
+ * the step's start, and the links with everything a break changes, copied
+ * at the step's first break (most steps break nothing). Scratch. */
+typedef struct tt__cundo {
+    bool broke;           /* the links are copied: a link broke in this step */
+    uint32_t nnew, nmoving;
+    tt__mover *moving;
+    double *eff;          /* per moving target: its constraint's lo, hi (distance) or anchor (pin) */
+    uint32_t moving_cap, eff_cap;
+    tt__dist *dist;
+    tt__dist_x *dx;
+    tt__cslot *slots;
+    uint32_t *gen, *free_list, *refs, *pair_n;
+    uint64_t *pair_key;
+    uint32_t dist_cap, dx_cap, slot_cap, gen_cap, free_cap, refs_cap, key_cap, n_cap; /* of each array */
+    uint32_t ndist, nbreakable, nxpbd, alive, free_count, pair_used, pair_cap;
+} tt__cundo;
+
 typedef struct tt__composite {
     bool alive;
     uint32_t np, nc, ccap;
@@ -120,6 +139,8 @@ typedef struct tt__cgroup {
 
     double *grad;      /* scratch gradients for area constraints */
     uint32_t grad_cap;
+
+    tt__cundo undo;    /* per-step scratch (constraint_undo.c) */
 
     /* composites (composites.c) */
     tt__pool cpool;
@@ -199,6 +220,15 @@ bool tt__target_move(tt__cgroup *g, uint32_t slot, const double to[2]);
 void tt__targets_substep(tt_world *w, tt__cgroup *g, double h);
 /* The slot's constraint goes: forget its move. */
 void tt__target_forget(tt__cgroup *g, uint32_t slot); /* constraint_group.c */
+
+/* ---- the step's undo (constraint_undo.c) --------------------------------- */
+bool tt__cgroup_undo_reserve(tt_world *w, void *self);
+void tt__cgroup_undo_mark(tt_world *w, void *self);
+void tt__cgroup_undo(tt_world *w, void *self);
+/* Before the step's first break: the links as the step began. */
+void tt__cgroup_undo_links(tt_world *w, tt__cgroup *g);
+void tt__cgroup_undo_free(tt__cgroup *g);
+size_t tt__cgroup_undo_bytes(const tt__cgroup *g);
 
 /* ---- breaking (constraint_breaks.c) ---------------------------------------- */
 void tt__cgroup_break_links(tt_world *w, tt__cgroup *g);

@@ -88,6 +88,23 @@ typedef struct tt__group_ops {
      * nothing and change no world state; a Verlet substep whose groups are
      * all quiet skips them (tt__solve) */
     bool (*quiet)(const tt_world *w, const void *self);
+    /* Out of memory inside a step (step_undo.c): the step stops and the
+     * world goes back to where it began, so every group that changes state
+     * in a step can put it back. fallible (optional): whether this step can
+     * run out of memory in the group (the contacts' arrays follow the
+     * contacts, which no count known before the step bounds); a world whose
+     * groups all say no keeps no copy, and calls none of the others.
+     * undo_reserve, before the step: room for the copies (false on no
+     * memory). undo_mark, at the step's start: notes what undo needs (or
+     * arms a copy taken at the first change, for changes most steps do not
+     * make); undo puts the group as it was at undo_mark, allocating nothing.
+     * after_reserve: room for what after_step writes, before any group's
+     * after_step runs, so that no after_step can fail. */
+    bool (*fallible)(const tt_world *w, const void *self);
+    bool (*undo_reserve)(tt_world *w, void *self);
+    void (*undo_mark)(tt_world *w, void *self);
+    void (*undo)(tt_world *w, void *self);
+    bool (*after_reserve)(tt_world *w, void *self);
     size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
     void (*destroy)(tt_world *w, void *self);
 } tt__group_ops;
@@ -107,6 +124,24 @@ typedef struct tt__journal_hooks {
     void (*after)(tt_journal *j, const tt_world *w, double dt); /* at its end */
     void (*gone)(tt_journal *j);                                /* the world is being destroyed */
 } tt__journal_hooks;
+
+/* The step's undo (step_undo.c): what a step changes of the world, as it
+ * was when the step began, so that running out of memory inside the step
+ * can put the world back. Positions and velocity state are copied at the
+ * step's start (only in a world where some group is fallible); flags and
+ * inverse masses, which few steps change, at their first change. Not
+ * state: never saved or hashed. */
+typedef struct tt__undo {
+    bool on;              /* this step keeps a copy (undo_mark ran) */
+    bool flags_taken;     /* flags and inv_mass are copied */
+    double *px, *py, *qx, *qy;
+    uint16_t *flags;
+    double *inv_mass;
+    uint32_t cap;         /* slots in each array */
+    tt_stats stats;
+    double dt_prev;
+    uint32_t fresh_count;
+} tt__undo;
 
 /* What of a world is state (saved, restored, hashed) and what is per-step
  * scratch (rebuilt) is decided in one place per part: snapshot.c's
@@ -145,7 +180,7 @@ struct tt_world {
 
     /* relaxation solver (solver.c) */
     uint32_t substeps, iterations;
-    const char *step_oom; /* what memory a step ran without (tt__step_oom), NULL: none */
+    const char *step_oom; /* what memory was refused inside the step (tt__step_oom), NULL: none */
     uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
     double tolerance;
     tt_solver_order order;
@@ -174,6 +209,8 @@ struct tt_world {
      * state: a restore keeps it, and it is in no stream */
     tt_journal *journal;
     const tt__journal_hooks *journal_hooks;
+
+    tt__undo undo;        /* per-step scratch: the world as the step began (step_undo.c) */
 
     tt_stats stats;
     uint64_t epoch;       /* bumped when particles appear, move or change radius outside a step, and by each step (query caches) */
@@ -244,9 +281,27 @@ double *tt__scratch(tt_world *w, int which);
  * before it changes anything; false on no memory. */
 bool tt__integrate_reserve(tt_world *w);
 bool tt__solver_reserve(tt_world *w);
-/* Memory refused inside a step, where nothing can be put back: the step goes
- * on without what was refused and tt_world_step returns TT_ENOMEM. */
+/* Memory refused inside a step: noted (the first says the most); the step
+ * stops after the substep it is in and the world is put back as the step
+ * began (step_undo.c), and tt_world_step returns TT_ENOMEM. */
 void tt__step_oom(tt_world *w, const char *what);
+
+/* The step's undo (step_undo.c). reserve: room for the copies, before the
+ * step (false on no memory); mark: at the step's start; flags: before the
+ * step's first change of a flag or an inverse mass (cheap when done);
+ * after_reserve: the groups' after_reserve hooks; restore: the world as
+ * the step began; free: its memory. */
+bool tt__undo_reserve(tt_world *w);
+void tt__undo_mark(tt_world *w);
+void tt__undo_take_flags(tt_world *w);
+static inline void tt__undo_flags(tt_world *w)
+{
+    if (TT_UNLIKELY(w->undo.on && !w->undo.flags_taken)) tt__undo_take_flags(w);
+}
+bool tt__undo_after_reserve(tt_world *w);
+void tt__undo_restore(tt_world *w);
+void tt__undo_free(tt_world *w);
+size_t tt__undo_bytes(const tt_world *w);
 
 /* Springs. */
 void tt__springs_detach(tt_world *w, uint32_t particle);

@@ -32,28 +32,13 @@
 #include "internal.h"
 #include "stream.h"
 #include "collide/collide_internal.h"
+#include "sleep_internal.h"
 #include "constraints/constraint_internal.h"
 
 #include <stdlib.h>
 
 enum { TT__RANK_SLEEP = 15 }; /* begin before the contacts detect: woken particles are detected this substep */
 
-typedef struct tt__sleep {
-    double speed, time;   /* m/s: the mean speed under which a particle rests; s at rest before its island sleeps */
-    uint32_t next_island; /* ids are never reused while anything sleeps under them */
-    uint32_t asleep;
-    uint32_t cap;
-    double *rest;         /* per slot: seconds at rest (awake particles) */
-    double *held;         /* per slot: seconds since its anchor was set (awake particles) */
-    double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
-    uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
-    uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
-    uint64_t tick;        /* steps since sleeping went on, from 2 (0 in seen: never held) */
-    uint32_t *parent;     /* union-find scratch */
-    double *minrest;      /* per root: the least time at rest in its island */
-    uint32_t *wake;       /* islands to wake at the end of the step */
-    uint32_t nwake, wake_cap;
-} tt__sleep;
 
 static const tt__group_ops sleep_ops;
 
@@ -110,15 +95,10 @@ static inline bool dynamic(const tt_world *w, uint32_t i)
     return (w->flags[i] & (TT__PF_ALIVE | TT__PF_PINNED)) == TT__PF_ALIVE;
 }
 
-/* Slots the arrays cover: particles made since the last step lie past
- * them, and none of those sleeps. */
-static uint32_t covered(const tt_world *w, const tt__sleep *s)
-{
-    return w->ppool.count < s->cap ? w->ppool.count : s->cap;
-}
 
 static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
 {
+    if (w->undo.on && !s->undo.taken) tt__sleep_undo_take(w, s);
     s->island[i] = 0;
     s->rest[i] = s->held[i] = 0.0;
     s->ax[i] = w->px[i];
@@ -139,7 +119,7 @@ static void wake_listed(tt_world *w, tt__sleep *s)
 {
     if (s->nwake == 0) return;
     qsort(s->wake, s->nwake, sizeof *s->wake, cmp_u32);
-    for (uint32_t i = 0; i < covered(w, s) && s->asleep; i++) {
+    for (uint32_t i = 0; i < tt__sleep_covered(w, s) && s->asleep; i++) {
         uint32_t k = s->island[i];
         if (k && bsearch(&k, s->wake, s->nwake, sizeof k, cmp_u32)) wake_one(w, s, i);
     }
@@ -163,7 +143,7 @@ static void list_wake(tt_world *w, tt__sleep *s, uint32_t k)
         uint32_t cap = s->wake_cap ? s->wake_cap * 2 : 16;
         uint32_t *p = realloc(s->wake, (size_t)cap * sizeof *p);
         if (!p) {
-            for (uint32_t i = 0; i < covered(w, s); i++)
+            for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++)
                 if (s->island[i] == k) wake_one(w, s, i);
             return;
         }
@@ -186,7 +166,7 @@ void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double
 {
     tt__sleep *s = peek(w);
     if (!s || s->asleep == 0) return;
-    for (uint32_t i = 0; i < covered(w, s); i++) {
+    for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++) {
         if (!s->island[i]) continue;
         const double r = w->radius[i], x = w->px[i], y = w->py[i];
         if (x + r >= lox && x - r <= hix && y + r >= loy && y - r <= hiy) list_wake(w, s, s->island[i]);
@@ -492,6 +472,7 @@ static void destroy(tt_world *w, void *self)
     tt__sleep *s = self;
     if (!s) return;
     free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
+    free(s->undo.rest); free(s->undo.held); free(s->undo.ax); free(s->undo.ay); free(s->undo.island);
     free(s);
 }
 
@@ -534,7 +515,8 @@ static size_t memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__sleep *s = self;
-    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t);
+    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t) +
+           (size_t)s->undo.cap * (4 * sizeof(double) + sizeof(uint32_t));
 }
 
 static const tt__group_ops sleep_ops = {
@@ -543,6 +525,9 @@ static const tt__group_ops sleep_ops = {
     .reserve = reserve,
     .begin = begin,
     .after_step = after_step,
+    .undo_reserve = tt__sleep_undo_reserve,
+    .undo_mark = tt__sleep_undo_mark,
+    .undo = tt__sleep_undo,
     .particle_removed = particle_removed,
     .id = TT__ID('S', 'L', 'E', 'P'),
     .save = save,
@@ -574,7 +559,7 @@ void tt__sleep_disable(tt_world *w)
 {
     tt__sleep *s = peek(w);
     if (!s) return;
-    for (uint32_t i = 0; i < covered(w, s) && s->asleep; i++)
+    for (uint32_t i = 0; i < tt__sleep_covered(w, s) && s->asleep; i++)
         if (s->island[i]) wake_one(w, s, i);
     tt__group_remove(w, &sleep_ops);
 }

@@ -1,6 +1,6 @@
 /* tether — the engine's utilities, a leaf every part may call and that
  * calls none: error messages, the clock for stage timings, array growth,
- * and the note of memory a step ran without. They live apart from the
+ * and the note of memory refused inside a step. They live apart from the
  * features so that no feature depends on world.c (tests/layout.sh). */
 #include "internal.h"
 

@@ -127,6 +127,7 @@ void tt_world_destroy(tt_world *w)
     tt__solver_free(w);
     tt__particles_free(w);
     tt__springs_free(w);
+    tt__undo_free(w);
     free(w);
 }
 
@@ -140,10 +141,11 @@ tt_result tt_world_step(tt_world *w, double dt)
     /* the world as the calls left it, before the step's own preparations touch it */
     if (w->journal) w->journal_hooks->before(w->journal, w);
     /* Everything the step's counts call for, before anything changes. */
-    if (!tt__integrate_reserve(w) || !tt__solver_reserve(w))
+    if (!tt__integrate_reserve(w) || !tt__solver_reserve(w) || !tt__undo_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
     w->step_oom = NULL;
-    if (w->ox) tt__interp_step_begin(w);
+    tt__undo_mark(w); /* what the step changes, where it may run out of memory half way */
+    if (w->ox && !w->undo.on) tt__interp_step_begin(w);
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
@@ -159,7 +161,19 @@ tt_result tt_world_step(tt_world *w, double dt)
         w->dt_prev = h;      /* from here on x − x_old spans h: velocity reads inside the solve are exact */
         tt__solve(w, h);     /* detect → relax → velocity pass; nothing when no group is registered */
         if (w->fixed_point != 0.0 && w->group_count) tt__fixed_after_solve(w);
+        if (w->step_oom) break; /* the rest would be undone */
     }
+    if (!w->step_oom && !tt__undo_after_reserve(w)) tt__step_oom(w, "the step's events");
+    if (w->step_oom) {
+        tt__undo_restore(w);
+        return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory inside the step for %s; the world is as it "
+                        "was before the step", w->step_oom);
+    }
+    if (w->ox && w->undo.on) { /* the positions as the step began, kept in the undo */
+        tt__copy(w->ox, w->undo.px, (size_t)w->ppool.count * sizeof *w->ox);
+        tt__copy(w->oy, w->undo.py, (size_t)w->ppool.count * sizeof *w->oy);
+    }
+    w->undo.on = false; /* nothing after this can fail */
     tt__solver_after_step(w); /* events, gathered outside every loop */
 
     if (w->forces_pending) {
@@ -172,8 +186,6 @@ tt_result tt_world_step(tt_world *w, double dt)
     w->epoch++;
     w->stats.step_ms = tt__now_ms() - t0;
     if (w->journal) w->journal_hooks->after(w->journal, w, dt);
-    if (w->step_oom)
-        return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory for %s; the step ran without it", w->step_oom);
     if (w->stats.diverged)
         tt__fail(w, TT_OK, "tt_world_step: %u particle(s) passed |x| or |v| > %g and were stopped",
                  w->stats.diverged, TT_DIVERGED);
@@ -340,7 +352,7 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);
     total += (size_t)w->fresh_cap * sizeof(uint32_t) + (size_t)w->ends_cap * sizeof(uint32_t);
     total += (size_t)w->scap * sizeof(tt__spring) + tt__pool_bytes(&w->spool);
-    total += tt__solver_memory(w);
+    total += tt__solver_memory(w) + tt__undo_bytes(w);
     out->total = total;
     out->particles = particles;
     out->capacity = w->pcap;

@@ -1,0 +1,96 @@
+/* tether — the collision state's part of the step's undo (core/step_undo.c):
+ * a step that runs out of memory for its contacts is put back as it began.
+ * The particles are the world's to put back; what the step changes here
+ * besides scratch is the end positions the velocity integrators start the
+ * next substep from, and the bounds contact_skip.c and contact_reach.c keep
+ * with the epoch they hold for. The contact records of the failed step are
+ * dropped; the events published by the last step were not touched (that
+ * happens after the step, which no longer fails then). */
+#include "collide_internal.h"
+
+#include <stdlib.h>
+
+/* Whether begin detects anything: then the contact arrays may have to grow
+ * inside the step. */
+bool tt__contacts_fallible(const tt_world *w, const void *self)
+{
+    (void)w;
+    const tt__collide *c = self;
+    return c->set.particles || c->nprim || c->terr;
+}
+
+static bool ends_valid(const tt_world *w, const tt__collide *c)
+{
+    return w->integrator != TT_VERLET && c->sx0 && c->s_epoch == w->epoch && c->s_count == w->ppool.count;
+}
+
+bool tt__contacts_undo_reserve(tt_world *w, void *self)
+{
+    tt__collide_undo *u = &((tt__collide *)self)->undo;
+    if (w->integrator == TT_VERLET || u->cap >= w->pcap) return true;
+    double *x = realloc(u->sx0, (size_t)w->pcap * sizeof *x);
+    if (!x) return false;
+    u->sx0 = x;
+    double *y = realloc(u->sy0, (size_t)w->pcap * sizeof *y);
+    if (!y) return false;
+    u->sy0 = y;
+    u->cap = w->pcap;
+    return true;
+}
+
+void tt__contacts_undo_mark(tt_world *w, void *self)
+{
+    tt__collide *c = self;
+    tt__collide_undo *u = &c->undo;
+    u->ends = ends_valid(w, c) && u->cap >= c->s_count;
+    if (u->ends) {
+        tt__copy(u->sx0, c->sx0, (size_t)c->s_count * sizeof *u->sx0);
+        tt__copy(u->sy0, c->sy0, (size_t)c->s_count * sizeof *u->sy0);
+    }
+    u->s_epoch = c->s_epoch;
+    u->s_count = c->s_count;
+    u->clear_ok = c->clear_ok;
+    u->quiet_last = c->quiet_last;
+    u->clear_gap = c->clear_gap;
+    u->clear_used = c->clear_used;
+    u->clear_scale = c->clear_scale;
+    u->clear_epoch = c->clear_epoch;
+    u->probe_wait = c->probe_wait;
+    u->probe_fails = c->probe_fails;
+    u->reach_side = c->reach_side;
+    u->reach_rmax = c->reach_rmax;
+    u->reach_n = c->reach_n;
+    u->reach_epoch = c->reach_epoch;
+}
+
+void tt__contacts_undo(tt_world *w, void *self)
+{
+    (void)w;
+    tt__collide *c = self;
+    const tt__collide_undo *u = &c->undo;
+    if (u->ends) {
+        tt__copy(c->sx0, u->sx0, (size_t)u->s_count * sizeof *c->sx0);
+        tt__copy(c->sy0, u->sy0, (size_t)u->s_count * sizeof *c->sy0);
+    }
+    c->s_epoch = u->s_epoch;
+    c->s_count = u->s_count;
+    c->clear_ok = u->clear_ok;
+    c->quiet_last = u->quiet_last;
+    c->clear_gap = u->clear_gap;
+    c->clear_used = u->clear_used;
+    c->clear_scale = u->clear_scale;
+    c->clear_epoch = u->clear_epoch;
+    c->probe_wait = u->probe_wait;
+    c->probe_fails = u->probe_fails;
+    c->reach_side = u->reach_side;
+    c->reach_rmax = u->reach_rmax;
+    c->reach_n = u->reach_n;
+    c->reach_epoch = u->reach_epoch;
+    c->nrec = 0;
+    c->npairs = 0; /* sleep.c reads the last substep's pairs after a step: this one's are gone */
+    c->nsc = 0;
+    c->grid.epoch = UINT64_MAX; /* built from the undone positions: a query builds its own */
+    /* the moved shapes' primitives were placed along the path: the static
+     * index is rebuilt for the whole path before the next step, as after a load */
+    if (c->any_moved) c->dirty = true;
+}

@@ -1,0 +1,47 @@
+/* tether — sleeping's state, shared by sleep.c (the feature) and
+ * sleep_undo.c (its part of the step's undo). */
+#ifndef TT_SLEEP_INTERNAL_H
+#define TT_SLEEP_INTERNAL_H
+
+#include "internal.h"
+
+typedef struct tt__sleep {
+    double speed, time;   /* m/s: the mean speed under which a particle rests; s at rest before its island sleeps */
+    uint32_t next_island; /* ids are never reused while anything sleeps under them */
+    uint32_t asleep;
+    uint32_t cap;
+    double *rest;         /* per slot: seconds at rest (awake particles) */
+    double *held;         /* per slot: seconds since its anchor was set (awake particles) */
+    double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
+    uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
+    uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
+    uint64_t tick;        /* steps since sleeping went on, from 2 (0 in seen: never held) */
+    uint32_t *parent;     /* union-find scratch */
+    double *minrest;      /* per root: the least time at rest in its island */
+    uint32_t *wake;       /* islands to wake at the end of the step */
+    uint32_t nwake, wake_cap;
+    /* the step's undo (step_undo.c): the per-slot state as the step began,
+     * copied at the step's first waking (scratch) */
+    struct {
+        bool taken;
+        uint32_t asleep, cap;
+        double *rest, *held, *ax, *ay;
+        uint32_t *island;
+    } undo;
+} tt__sleep;
+
+/* Slots the arrays cover: particles made since the last step lie past
+ * them, and none of those sleeps. */
+static inline uint32_t tt__sleep_covered(const tt_world *w, const tt__sleep *s)
+{
+    return w->ppool.count < s->cap ? w->ppool.count : s->cap;
+}
+
+/* The step's undo hooks (sleep_undo.c). */
+bool tt__sleep_undo_reserve(tt_world *w, void *self);
+void tt__sleep_undo_mark(tt_world *w, void *self);
+void tt__sleep_undo(tt_world *w, void *self);
+/* Copies the per-slot state before the step's first waking changes it. */
+void tt__sleep_undo_take(tt_world *w, tt__sleep *s);
+
+#endif
