@@ -65,7 +65,7 @@ static void c_shape_def_default(fz *f)
 static void c_shape_create(fz *f)
 {
     tt_world *w = fz_world_pick(f);
-    tt_vec2 pts[80];
+    tt_vec2 pts[80] = {{0, 0}}; /* a count past the points made reads zeros, not the stack: a seed replays */
     tt_shape_def d = shape_def(f, pts, 80);
     fz_log(f, "tt_shape_create(%s, &(tt_shape_def){type %d, %s, angle %s, a %s, b %s, half %s, radius %s, points %s, %u, "
               "loop %d, material %s %s %s, filter %#x/%#x, sensor %d})", fz_wn(f, w), (int)d.type, fz_v(d.position),

@@ -161,7 +161,7 @@ static void c_lattice_create(fz *f)
 {
     tt_world *w = fz_world_pick(f);
     tt_lattice_def d = tt_lattice_def_default();
-    tt_vec2 pts[80];
+    tt_vec2 pts[80] = {{0, 0}}; /* a count past the points made reads zeros, not the stack: a seed replays */
     d.common = common(f);
     d.center = fz_point(f);
     d.width = fz_real(f, 0.1, 5);
