@@ -6,11 +6,10 @@
 #include <math.h>
 #include <stdlib.h>
 
-/* The worst, over 10 s of steps, of the structural links' mean and max
- * |strain| (the first 2n(n−1) links a cloth makes) of an n² cloth hanging
- * from its top row (or from its two top corners), 2 cm apart, at 1 substep
- * × `sweeps`. */
-static void hang(uint32_t n, bool top_row, bool long_range, uint32_t sweeps, double *mean, double *max)
+/* A world of its own holding an n² cloth of 1 g particles 2 cm apart at
+ * 1 substep × `sweeps`, tolerance 0, hung from its top row or its two top
+ * corners (at y = 0); *c gets the cloth. */
+static tt_world *cloth_world(uint32_t n, bool top_row, bool long_range, uint32_t sweeps, tt_composite *c)
 {
     tt_world_def wd = tt_world_def_default();
     wd.iterations = sweeps;
@@ -22,7 +21,18 @@ static void hang(uint32_t n, bool top_row, bool long_range, uint32_t sweeps, dou
     cd.common.mass = 0.001;
     cd.pin_top_row = top_row;
     cd.long_range = long_range;
-    tt_composite c = tt_cloth_create(w, &cd);
+    *c = tt_cloth_create(w, &cd);
+    return w;
+}
+
+/* The worst, over 10 s of steps, of the structural links' mean and max
+ * |strain| (the first 2n(n−1) links a cloth makes) of an n² cloth hanging
+ * from its top row (or from its two top corners), 2 cm apart, at 1 substep
+ * × `sweeps`. */
+static void hang(uint32_t n, bool top_row, bool long_range, uint32_t sweeps, double *mean, double *max)
+{
+    tt_composite c;
+    tt_world *w = cloth_world(n, top_row, long_range, sweeps, &c);
     uint32_t nc;
     tt_composite_get_constraints(w, c, NULL, 0, &nc);
     tt_constraint *cs = malloc(nc * sizeof *cs);
@@ -77,16 +87,8 @@ TEST(a_cloth_hanging_from_its_two_top_corners_does_not_stretch_with_long_range_a
 TEST(a_cloth_hung_from_two_corners_with_long_range_attachments_can_still_be_thrown_up)
 {
     const uint32_t n = 32;
-    tt_world_def wd = tt_world_def_default();
-    wd.iterations = 4;
-    wd.tolerance = 0;
-    tt_world *w = tt_world_create(&wd);
-    tt_cloth_def cd = tt_cloth_def_default();
-    cd.columns = cd.rows = n;
-    cd.width = cd.height = 0.02 * (n - 1);
-    cd.common.mass = 0.001;
-    cd.long_range = true;
-    tt_composite c = tt_cloth_create(w, &cd);
+    tt_composite c;
+    tt_world *w = cloth_world(n, false, true, 4, &c);
     tt_particle *ps = malloc(n * n * sizeof *ps);
     uint32_t np;
     tt_composite_get_particles(w, c, ps, n * n, &np);
