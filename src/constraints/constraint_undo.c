@@ -77,6 +77,7 @@ static void restore_links(tt_world *w, tt__cgroup *g)
     g->nxpbd = u->nxpbd;
     g->alive = u->alive;
     g->pool.free_count = u->free_count;
+    g->pool.changes++; /* the slots hold what they did: caches of them (sleep_rest.c) are rebuilt */
     g->pairs.used = u->pair_used;
     tt__copy(g->dist, u->dist, (size_t)g->ndist * sizeof *g->dist);
     tt__copy(g->dx, u->dx, (size_t)g->ndist * sizeof *g->dx);

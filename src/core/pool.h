@@ -25,6 +25,7 @@ typedef struct tt__pool {
     uint32_t count;      /* slots ever used (high-water mark) */
     uint32_t cap;
     uint32_t tag;        /* 1…TT_POOL_MAX_TAG, set by the world before first use (0 works, without the cross-world check) */
+    uint64_t changes;    /* bumped by every alloc, free, unalloc and rewind: caches of what the slots hold key on it */
 } tt__pool;
 
 /* Returns a slot index, or UINT32_MAX if the pool cannot grow (limit, the

@@ -73,6 +73,9 @@ static bool grow(tt__sleep *s, uint32_t n)
     double *y = realloc(s->ay, (size_t)cap * sizeof *y);
     if (!y) return false;
     s->ay = y;
+    uint32_t *hl = realloc(s->holders.list, (size_t)cap * sizeof *hl);
+    if (!hl) return false;
+    s->holders.list = hl;
     if (s->wake_cap < cap) { /* an island per particle at most: waking at a step allocates nothing */
         uint32_t *k = realloc(s->wake, (size_t)cap * sizeof *k);
         if (!k) return false;
@@ -182,42 +185,6 @@ uint32_t tt__sleep_count(const tt_world *w)
 
 /* The other features' state, read through the snapshot registry so that
  * this file names none of their symbols (they call tt__sleep_touch). */
-static void *feature(const tt_world *w, uint32_t id)
-{
-    const tt__group_ops *ops = tt__feature_find(id);
-    return ops ? tt__group_find(w, ops) : NULL;
-}
-#define ID_CONTACTS TT__ID('C', 'O', 'L', 'L')
-#define ID_CONSTRAINTS TT__ID('C', 'O', 'N', 'S')
-
-/* The particles of constraint slot s of g (distance, angle, area,
- * collinear; pins and bounds hold to the world, not to a particle): fills
- * out (up to 3, or the area's list) and returns how many. */
-static uint32_t constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t out[3], const uint32_t **list)
-{
-    const tt__cslot *cs = &g->slots[slot];
-    *list = NULL;
-    if (cs->kind == TT_CONSTRAINT_DISTANCE) {
-        out[0] = g->dist[cs->dense].a;
-        out[1] = g->dist[cs->dense].b;
-        return 2;
-    }
-    const tt__gcon *c = &g->gen[cs->dense];
-    if (c->kind == TT_CONSTRAINT_ANGLE || c->kind == TT_CONSTRAINT_COLLINEAR) {
-        out[0] = c->p[0], out[1] = c->p[1], out[2] = c->p[2];
-        return 3;
-    }
-    if (c->kind == TT_CONSTRAINT_AREA) {
-        *list = c->list;
-        return c->n;
-    }
-    if (c->kind == TT_CONSTRAINT_PIN) { /* a moving pin drags its particle: wakes it, joins nothing */
-        out[0] = c->p[0];
-        return 1;
-    }
-    return 0;
-}
-
 /* Before the first substep detects anything: what a moved shape sweeps
  * over (its primitives' boxes hold the whole path then), and what a
  * constraint whose target the script moved drives, wake. */
@@ -226,17 +193,17 @@ static void begin(tt_world *w, void *self, double h)
     (void)h;
     tt__sleep *s = self;
     if (w->substep != 0 || s->asleep == 0) return;
-    const tt__collide *c = feature(w, ID_CONTACTS);
+    const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
     if (c && c->any_moved)
         for (uint32_t k = 0; k < c->nprim; k++) {
             const tt__prim *p = &c->prims[k];
             if (c->shapes[p->shape].moved) tt__sleep_wake_aabb(w, p->lox, p->loy, p->hix, p->hiy);
         }
-    const tt__cgroup *g = feature(w, ID_CONSTRAINTS);
+    const tt__cgroup *g = tt__sleep_feature(w, TT__CONS_ID);
     for (uint32_t k = 0; g && k < g->nmoving; k++) {
         uint32_t ids[3];
         const uint32_t *list;
-        uint32_t n = constraint_parts(g, g->moving[k].slot, ids, &list);
+        uint32_t n = tt__sleep_constraint_parts(g, g->moving[k].slot, ids, &list);
         for (uint32_t j = 0; j < n; j++) tt__sleep_touch(w, list ? list[j] : ids[j]);
     }
 }
@@ -245,7 +212,7 @@ static void begin(tt_world *w, void *self, double h)
  * particle wake the sleeper's island. */
 static void wake_touched(tt_world *w, tt__sleep *s)
 {
-    const tt__collide *c = feature(w, ID_CONTACTS);
+    const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
     if (!c || s->asleep == 0) return;
     for (uint32_t k = 0; k < c->npairs; k++) {
         uint32_t a = c->pairs[k].a, b = c->pairs[k].b;
@@ -281,16 +248,16 @@ static void unite(const tt_world *w, tt__sleep *s, uint32_t a, uint32_t b)
 
 static void unite_all(const tt_world *w, tt__sleep *s)
 {
-    const tt__collide *c = feature(w, ID_CONTACTS);
+    const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
     for (uint32_t k = 0; c && k < c->npairs; k++) unite(w, s, c->pairs[k].a, c->pairs[k].b);
     for (uint32_t k = 0; k < w->spool.count; k++)
         if (w->springs[k].alive) unite(w, s, w->springs[k].a, w->springs[k].b);
-    const tt__cgroup *g = feature(w, ID_CONSTRAINTS);
+    const tt__cgroup *g = tt__sleep_feature(w, TT__CONS_ID);
     for (uint32_t k = 0; g && k < g->pool.count; k++) {
         if (!g->slots[k].kind) continue;
         uint32_t ids[3];
         const uint32_t *list;
-        uint32_t n = constraint_parts(g, k, ids, &list);
+        uint32_t n = tt__sleep_constraint_parts(g, k, ids, &list);
         for (uint32_t j = 1; j < n; j++) unite(w, s, list ? list[0] : ids[0], list ? list[j] : ids[j]);
     }
 }
@@ -352,93 +319,13 @@ static bool anything_holds(const tt_world *w)
     return false; /* (a query's idle collision state holds nothing: reading a world keeps its hash) */
 }
 
-/* The rest test. A particle rests while it stays within a window of
- * L = sleep_speed·sleep_time of its anchor (where its present stretch
- * began); when it leaves, the anchor moves there, and the stretch it ends
- * keeps its rest if its mean speed over it was under sleep_speed (so it
- * lasted sleep_time or more; one long step that jumps far does not), else
- * its rest starts again. Measured
- * (README "Sleeping"), this tells the three kinds of slow motion apart:
- * - a rattle (a loose particle in the cavity of a settled pile, 0.1–0.5
- *   m/s) stays inside a cage of 1 cm for ever: it rests, where a test on
- *   the last step's speed keeps the pile awake for ever;
- * - creep (the deep pile compacting, 0.2 mm/s after 50 s) leaves any window
- *   in the end, but slowly: its stretches are long and keep their rest,
- *   where restarting the rest on each exit kept a few of 10 000 particles
- *   resting less than sleep_time at any moment, and the pile awake;
- * - a swing dwells near a turning point within a window L for only about
- *   2·sqrt(2L/a) (a its acceleration there), then leaves it in a stretch
- *   shorter than sleep_time: it never rests long. With the defaults (1 cm,
- *   1 s) a 1 m pendulum swinging 2 cm or more, a 4 m one swinging 5 cm, a
- *   particle at the top of its throw or a ball rolling at 1 cm/s or more
- *   stay awake; a swing whose whole arc fits in the window is at rest. */
-static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *ready)
-{
-    if (i >= w->ppool.count || s->seen[i] == s->tick) return; /* (made since the last step: none of its arrays) */
-    const uint64_t was = s->seen[i];
-    s->seen[i] = s->tick;
-    if (w->inv_mass[i] == 0.0) return; /* asleep, pinned or removed */
-    const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i], d2 = dx * dx + dy * dy;
-    const double lim = s->speed * s->time;
-    const bool out = d2 > lim * lim;
-    if (was + 1 != s->tick) { /* free since it was last held: its rest starts here */
-        s->rest[i] = s->held[i] = 0.0;
-    } else {
-        s->held[i] += dt;
-        const double slow = s->speed * s->held[i]; /* out at a mean speed under sleep_speed: its stretch lasted sleep_time or more */
-        if (!out || d2 <= slow * slow) {
-            s->rest[i] += dt;
-            *ready |= s->rest[i] >= s->time;
-        } else {
-            s->rest[i] = 0.0;
-        }
-    }
-    if (out || was + 1 != s->tick) {
-        s->held[i] = 0.0;
-        s->ax[i] = w->px[i];
-        s->ay[i] = w->py[i];
-    }
-}
-
-/* Only what something holds can rest: a free particle under gravity never
- * does, and testing it would make one spring elsewhere cost a pass over
- * every particle (the pay-only table). The holders are the last substep's
- * contacts (pairs, shapes, terrain), springs and constraints (bounds over
- * every particle hold every particle). */
-static void rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready)
-{
-    s->tick++;
-    const tt__collide *c = feature(w, ID_CONTACTS);
-    for (uint32_t k = 0; c && k < c->npairs; k++) {
-        rest_one(w, s, c->pairs[k].a, dt, ready);
-        rest_one(w, s, c->pairs[k].b, dt, ready);
-    }
-    for (uint32_t k = 0; c && k < c->nsc; k++) rest_one(w, s, c->sc[k].a, dt, ready);
-    for (uint32_t k = 0; k < w->spool.count; k++)
-        if (w->springs[k].alive) rest_one(w, s, w->springs[k].a, dt, ready), rest_one(w, s, w->springs[k].b, dt, ready);
-    const tt__cgroup *g = feature(w, ID_CONSTRAINTS);
-    for (uint32_t k = 0; g && k < g->pool.count; k++) {
-        if (!g->slots[k].kind) continue;
-        uint32_t ids[3];
-        const uint32_t *list;
-        uint32_t n = constraint_parts(g, k, ids, &list);
-        const tt__gcon *b = g->slots[k].kind == TT_CONSTRAINT_DISTANCE ? NULL : &g->gen[g->slots[k].dense];
-        if (b && b->kind == TT_CONSTRAINT_BOUNDS) {
-            n = b->n ? b->n : w->ppool.count;
-            for (uint32_t j = 0; j < n; j++) rest_one(w, s, b->n ? b->list[j] : j, dt, ready);
-            continue;
-        }
-        for (uint32_t j = 0; j < n; j++) rest_one(w, s, list ? list[j] : ids[j], dt, ready);
-    }
-}
-
 static void after_step(tt_world *w, void *self)
 {
     tt__sleep *s = self;
     wake_touched(w, s);
     if (!anything_holds(w)) return;
     bool ready = false;
-    rest_held(w, s, w->dt_prev * w->substeps, &ready);
+    tt__sleep_rest_held(w, s, w->dt_prev * w->substeps, &ready);
     if (ready) settle(w, s);
 }
 
@@ -471,7 +358,7 @@ static void destroy(tt_world *w, void *self)
     (void)w;
     tt__sleep *s = self;
     if (!s) return;
-    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake);
+    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
     free(s->undo.rest); free(s->undo.held); free(s->undo.ax); free(s->undo.ay); free(s->undo.island);
     free(s);
 }

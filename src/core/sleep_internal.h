@@ -20,6 +20,16 @@ typedef struct tt__sleep {
     double *minrest;      /* per root: the least time at rest in its island */
     uint32_t *wake;       /* islands to wake at the end of the step */
     uint32_t nwake, wake_cap;
+    /* The particles springs and constraints hold (bounds aside), each once:
+     * scratch, rebuilt when a spring or constraint slot was made or freed
+     * since (sleep_rest.c). */
+    struct {
+        uint32_t *list, n;         /* cap: the per-slot arrays' */
+        uint32_t bounds[8], nbounds; /* the bounds constraints' slots, walked each step */
+        const void *group;         /* the constraint group it was made from */
+        uint64_t cons_changes, spring_changes;
+        bool ok;
+    } holders;
     /* the step's undo (step_undo.c): the per-slot state as the step began,
      * copied at the step's first waking (scratch) */
     struct {
@@ -36,6 +46,16 @@ static inline uint32_t tt__sleep_covered(const tt_world *w, const tt__sleep *s)
 {
     return w->ppool.count < s->cap ? w->ppool.count : s->cap;
 }
+
+struct tt__cgroup;
+/* The group of feature id, or NULL (sleep_rest.c). */
+void *tt__sleep_feature(const tt_world *w, uint32_t id);
+/* The particles of constraint slot s of g that it holds (sleep_rest.c): fills
+ * out (up to 3, or *list for an area) and returns how many. */
+uint32_t tt__sleep_constraint_parts(const struct tt__cgroup *g, uint32_t slot, uint32_t out[3], const uint32_t **list);
+/* The rest test of every particle something held in the last step; *ready
+ * when one has rested sleep_time (sleep_rest.c). */
+void tt__sleep_rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready);
 
 /* The step's undo hooks (sleep_undo.c). */
 bool tt__sleep_undo_reserve(tt_world *w, void *self);

@@ -451,3 +451,60 @@ TEST(sleep_wake_with_particles_made_since_the_step)
     ENSURE(sleeping(w) == 0);
     tt_world_destroy(w);
 }
+
+/* What springs and constraints hold is listed once and listed again only
+ * when one is made or removed (sleep_rest.c): a holder made later must be
+ * counted, and a particle that lost its holder (its slot then reused by a
+ * free one) must not be. No gravity: a held particle at rest sleeps, a free
+ * one never does. */
+static tt_particle at_rest(tt_world *w, double x, bool pinned)
+{
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){x, 0.0};
+    pd.pinned = pinned;
+    return tt_particle_create(w, &pd);
+}
+
+static void hold(tt_world *w, tt_particle a, tt_particle b)
+{
+    tt_distance_def dd = tt_distance_def_default();
+    dd.a = a, dd.b = b;
+    ENSURE(tt_constraint_is_valid(w, tt_distance_create(w, &dd)));
+}
+
+static void steps(tt_world *w, int n)
+{
+    for (int s = 0; s < n; s++) tt_world_step(w, 1.0 / 60.0);
+}
+
+TEST(sleep_a_holder_made_later_counts)
+{
+    tt_world *w = sleepy(0.0);
+    tt_particle pin = at_rest(w, 0.0, true), x = at_rest(w, 1.0, false);
+    tt_particle y = at_rest(w, 3.0, false), z = at_rest(w, 5.0, false);
+    hold(w, pin, x);
+    steps(w, 120);
+    ENSURE(sleeping(w) == 1u); /* x: held and at rest; y and z free */
+    hold(w, pin, y);
+    tt_spring_def sd = tt_spring_def_default();
+    sd.a = pin, sd.b = z;
+    ENSURE(tt_spring_is_valid(w, tt_spring_create(w, &sd)));
+    steps(w, 120);
+    ENSURE(sleeping(w) == 3u);
+    tt_world_destroy(w);
+}
+
+TEST(sleep_a_particle_whose_holder_went_is_free_again)
+{
+    tt_world *w = sleepy(0.0);
+    tt_particle pin = at_rest(w, 0.0, true), x = at_rest(w, 1.0, false);
+    hold(w, pin, x);
+    steps(w, 10); /* x listed as held, not asleep yet */
+    ENSURE(sleeping(w) == 0u);
+    ENSURE_OK(tt_particle_destroy(w, x)); /* its constraint goes with it */
+    tt_particle y = at_rest(w, 1.0, false); /* free, in x's slot */
+    ENSURE(y.index == x.index);
+    steps(w, 180);
+    ENSURE(sleeping(w) == 0u);
+    tt_world_destroy(w);
+}
