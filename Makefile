@@ -109,7 +109,7 @@ B2_LUAJIT_MOD := $(BUILD)/luajit/tether_box2d.so
 TEST_B2  := $(BUILD)/test_box2d
 BENCH   := $(BUILD)/bench
 
-.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-payonly bench-love crosscheck atlas install uninstall clean
+.PHONY: all luajit deps demo pictures test test-c test-lua fuzz memcheck bench bench-payonly bench-love crosscheck atlas atlas-cg install uninstall clean
 all: deps $(LIB_A) $(LIB_SO) $(RENDER_A) $(LUA_MOD) $(LUAJIT_MOD) $(RUNNER) $(SCENES_A) $(B2_A) $(B2_MOD) $(B2_LUAJIT_MOD)
 luajit: deps $(LUAJIT_MOD) $(B2_LUAJIT_MOD)
 
@@ -263,6 +263,13 @@ crosscheck: all
 # the small sweep (6 CPU-seconds); the full one about 10 CPU-minutes.
 atlas: deps $(RUNNER)
 	$(RUNNER) atlas $(if $(QUICK),--quick) --out $(BUILD)/atlas
+
+# `make atlas-cg [ONLY=scene]`: the atlas's cost in instructions (callgrind
+# counts each point's steps alone; bench/atlas_cg.sh): a figure the machine's
+# load does not move. The quick sweep by default (a few minutes); ONLY=NAME
+# runs that scene's full sweep (up to an hour under callgrind).
+atlas-cg: deps $(RUNNER)
+	sh bench/atlas_cg.sh $(RUNNER) $(BUILD)/atlas-cg $(if $(ONLY),--only $(ONLY),--quick)
 
 # --- run --------------------------------------------------------------------
 # `make demo` renders DEMO headless to PNG frames in $(BUILD)/demo/ (100 frames,

@@ -28,6 +28,12 @@
 -- point runs `repeats` times, the points alternating (every repeat goes
 -- through all points, in reverse order every other time), and its cost is
 -- the median; the error is the first run's (runs are bit-identical).
+--
+-- `--instructions` (under callgrind: bench/atlas_cg.sh, `make atlas-cg`)
+-- runs each point once and has callgrind count the instructions of its
+-- w:step calls alone and dump them apart, labelled "atlas SCENE I" (I: the
+-- point's row in the scene's CSV): a cost that does not move with the
+-- machine's load, read back by the script.
 local tether = require "tether"
 
 local atlas = {}
@@ -68,7 +74,7 @@ local function grid(scene)
 end
 atlas.grid = grid
 
-local function run_point(scene, cfg, measure)
+local function run_point(scene, cfg, measure, probe)
   local w, ctx = scene.build(cfg)
   w:set_integrator(cfg.integrator)
   w:set_substeps(cfg.substeps)
@@ -81,7 +87,9 @@ local function run_point(scene, cfg, measure)
   while done < steps and ok do
     local k = math.min(chunk, steps - done)
     local t0 = os.clock()
+    if probe then probe.count(true) end
     ok = pcall(w.step, w, cfg.dt, k)
+    if probe then probe.count(false) end
     cpu = cpu + (os.clock() - t0)
     done = done + k
     if ok and measure and scene.sample then scene.sample(w, ctx, done * cfg.dt) end
@@ -136,7 +144,9 @@ end
 atlas.csv_row = csv_row
 
 -- Sweeps one scene; returns its rows. opts: repeats (default 3), log (a
--- function given progress lines, default print).
+-- function given progress lines, default print), probe (the runner's
+-- tether_probe: each point's steps counted and dumped apart, on the first
+-- repeat).
 function atlas.sweep(scene, opts)
   opts = opts or {}
   local repeats = opts.repeats or 3
@@ -149,7 +159,9 @@ function atlas.sweep(scene, opts)
     if rep % 2 == 0 then first, last, step = #points, 1, -1 end
     for i = first, last, step do
       local r = rows[i]
-      local err, cpu, steps, n = run_point(scene, r.cfg, rep == 1 or not scene.sample_first_run_only)
+      local probe = rep == 1 and opts.probe or nil
+      local err, cpu, steps, n = run_point(scene, r.cfg, rep == 1 or not scene.sample_first_run_only, probe)
+      if probe then probe.dump(("atlas %s %d"):format(scene.name, i)) end
       if rep == 1 then r.error, r.steps, r.particles = err, steps, n end
       r.costs[#r.costs + 1] = cpu
     end
@@ -260,7 +272,7 @@ function atlas.summary(scene, rows)
 end
 
 local function usage()
-  return "usage: tether atlas [--quick] [--out DIR] [--repeats N] [--only NAME] [SCRIPT [args…]]\n"
+  return "usage: tether atlas [--quick] [--out DIR] [--repeats N] [--only NAME] [--instructions] [SCRIPT [args…]]\n"
     .. "  SCRIPT returns a scene table (or a list of them): see lua/tether_atlas.lua; without one, the built-in scenes"
 end
 
@@ -273,6 +285,7 @@ local function parse(args)
     elseif a == "--out" then i = i + 1; o.out = args[i]
     elseif a == "--repeats" then i = i + 1; o.repeats = tonumber(args[i])
     elseif a == "--only" then i = i + 1; o.only = args[i]
+    elseif a == "--instructions" then o.instructions = true
     elseif a == "--help" or a == "-h" then return nil, usage()
     elseif a:sub(1, 2) == "--" then return nil, "tether atlas: unknown option " .. a .. "\n" .. usage()
     else
@@ -313,12 +326,21 @@ function atlas.main(...)
     io.stderr:write("tether atlas: ", tostring(scenes), "\n")
     return 1
   end
+  local probe
+  if o.instructions then
+    local found
+    found, probe = pcall(require, "tether_probe")
+    if not found or not probe.running() then
+      io.stderr:write("tether atlas: --instructions counts under callgrind: sh bench/atlas_cg.sh (make atlas-cg)\n")
+      return 2
+    end
+  end
   os.execute("mkdir -p " .. ("%q"):format(o.out))
   local all = { atlas.CSV_HEADER }
   local t0 = os.time()
   for _, scene in ipairs(scenes) do
     if not o.only or o.only == scene.name then
-      local rows = atlas.sweep(scene, { repeats = o.repeats or (o.quick and 1 or 3) })
+      local rows = atlas.sweep(scene, { repeats = probe and 1 or o.repeats or (o.quick and 1 or 3), probe = probe })
       local png = atlas.write(scene, rows, o.out)
       for _, r in ipairs(rows) do all[#all + 1] = csv_row(scene, r) end
       print(atlas.summary(scene, rows))

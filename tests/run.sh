@@ -146,6 +146,26 @@ atlas_ok() {
     [ $? -eq 1 ]
 }
 run_check "runner: tether atlas --quick SCRIPT sweeps a user's scene into CSV; a missing script exits 1" atlas_ok
+# The atlas in instructions: callgrind counts each point's steps alone, so
+# a point with more substeps or sweeps counts more (under the sanitizers
+# Valgrind cannot run: the normal build checks it).
+atlas_cg_ok() {
+    d=$(mktemp -d)
+    sh bench/atlas_cg.sh "$RUNNER" "$d" --quick docs/atlas_example.lua >"$tmp2" 2>&1 || { cat "$tmp2"; rm -rf "$d"; return 1; }
+    cat "$tmp2"
+    # substeps x iterations -> instructions, in the CSV's order
+    awk -F, 'NR > 1 { ir[$5 "x" $6] = $16 } END {
+        ok = length(ir) == 4 && ir["1x2"] > 0 && ir["1x2"] < ir["1x8"] && ir["1x8"] < ir["4x8"] && ir["1x2"] < ir["4x2"] && ir["4x2"] < ir["4x8"]
+        if (!ok) { for (k in ir) print "  " k ": " ir[k]; exit 1 } }' "$d/instructions.csv"
+    r=$?
+    rm -rf "$d"
+    [ $r -eq 0 ] || { echo "the counts do not follow the work"; return 1; }
+    "$RUNNER" atlas --instructions --quick docs/atlas_example.lua >/dev/null 2>&1
+    [ $? -eq 2 ] || { echo "--instructions outside callgrind did not refuse"; return 1; }
+}
+if [ -z "$SANITIZE" ] && command -v valgrind >/dev/null 2>&1; then
+    run_check "runner: bench/atlas_cg.sh counts the instructions of each point of a user's scene (more work, more instructions)" atlas_cg_ok
+fi
 
 # 1b. The layout rules (file and function sizes, no dependency circles).
 run_check "layout: tests/layout.sh" sh tests/layout.sh "$BUILD"

@@ -59,5 +59,7 @@ int tr_run_window(session *s, const options *o);
 int tr_crosscheck(int argc, char **argv);
 /* `tether atlas …` (argv[1] is "atlas"): an exit status. */
 int tr_atlas(int argc, char **argv);
+/* The atlas's instruction counter, the Lua module "tether_probe" (runner_probe.c). */
+int tr_luaopen_probe(lua_State *L);
 
 #endif

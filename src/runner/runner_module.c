@@ -4,7 +4,8 @@
  * the runner itself never links Box2D or libstdc++; `tether atlas [--quick]
  * [--out DIR] [SCRIPT]` runs the speed/accuracy atlas (lua/tether_atlas.lua)
  * with the module built into this program, over the built-in reference
- * scenes or the scene a user's script returns. */
+ * scenes or the scene a user's script returns, with the instruction
+ * counter of runner_probe.c at hand. */
 #include <lauxlib.h>
 #include <lua.h>
 #include <lualib.h>
@@ -37,6 +38,7 @@ typedef struct module_cmd {
     const char *field;  /* package.path or package.cpath, prefixed with … */
     const char *where;  /* … this, where each %s is this program's folder */
     const char *hint;   /* said when the module does not load */
+    lua_CFunction probe; /* preloaded as "tether_probe" when not NULL */
 } module_cmd;
 
 static int run_module(const module_cmd *c, int argc, char **argv)
@@ -50,6 +52,10 @@ static int run_module(const module_cmd *c, int argc, char **argv)
     luaL_getsubtable(L, LUA_REGISTRYINDEX, LUA_PRELOAD_TABLE);
     lua_pushcfunction(L, luaopen_tether);
     lua_setfield(L, -2, "tether");
+    if (c->probe) {
+        lua_pushcfunction(L, c->probe);
+        lua_setfield(L, -2, "tether_probe");
+    }
     lua_pop(L, 1);
     char dir[PATH_MAX];
     own_dir(dir, sizeof dir);
@@ -77,13 +83,13 @@ static int run_module(const module_cmd *c, int argc, char **argv)
 int tr_crosscheck(int argc, char **argv)
 {
     static const module_cmd c = {"crosscheck", "tether_box2d", "cpath", "%s/?.so;%s/../lib/lua/5.4/?.so;",
-                                 "the tether_box2d module (built by make beside " PROGNAME ") did not load: "};
+                                 "the tether_box2d module (built by make beside " PROGNAME ") did not load: ", NULL};
     return run_module(&c, argc, argv);
 }
 
 /* The atlas's Lua files: the source tree's lua/ beside build/, or the installed share/lua/5.4. */
 int tr_atlas(int argc, char **argv)
 {
-    static const module_cmd c = {"atlas", "tether_atlas", "path", "%s/../lua/?.lua;%s/../share/lua/5.4/?.lua;", ""};
+    static const module_cmd c = {"atlas", "tether_atlas", "path", "%s/../lua/?.lua;%s/../share/lua/5.4/?.lua;", "", tr_luaopen_probe};
     return run_module(&c, argc, argv);
 }
