@@ -307,6 +307,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h);
 double tt__contacts_relax(tt_world *w, void *self, double h);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);
+void tt__contacts_stopped(tt_world *w, void *self, uint32_t i);
 void tt__contacts_after_step(tt_world *w, void *self);
 size_t tt__contacts_memory(const tt_world *w, const void *self);
 /* The step's undo (contact_undo.c; tt__group_ops), and the room for the

@@ -457,3 +457,15 @@ void tt__contacts_end(tt_world *w, void *self, double h)
         c->s_epoch = w->epoch; /* after_step moves it past the step's own bump */
     }
 }
+
+/* The guard stopped particle i after the end above took the substep's end
+ * positions: the next substep starts it where it was stopped, not where the
+ * guard refused it to go (up to 1e20 m: a snapshot then held an end
+ * position its own loader refused). */
+void tt__contacts_stopped(tt_world *w, void *self, uint32_t i)
+{
+    tt__collide *c = self;
+    if (w->integrator == TT_VERLET || !c->sx0 || i >= c->s_count || c->s_epoch != w->epoch) return;
+    c->sx0[i] = w->px[i];
+    c->sy0[i] = w->py[i];
+}

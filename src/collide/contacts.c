@@ -107,6 +107,7 @@ const tt__group_ops tt__contacts_ops = {
     .relax = tt__contacts_relax,
     .sweeps_done = tt__contacts_sweeps_done,
     .end = tt__contacts_end,
+    .stopped = tt__contacts_stopped,
     .after_step = tt__contacts_after_step,
     .fallible = tt__contacts_fallible,
     .undo_reserve = tt__contacts_undo_reserve,
@@ -383,7 +384,7 @@ static bool load_particle_data(tt_world *w, tt__collide *c, tt__source *s)
         tt__get(s, c->sx0, (size_t)n * sizeof *c->sx0);
         tt__get(s, c->sy0, (size_t)n * sizeof *c->sy0);
         for (uint32_t i = 0; i < n && !s->failed; i++)
-            if (!(fabs(c->sx0[i]) <= 1e3 * TT_DIVERGED && fabs(c->sy0[i]) <= 1e3 * TT_DIVERGED)) tt__src_fail(s, "end position %u", i);
+            if (!(fabs(c->sx0[i]) <= 1e3 * TT_DIVERGED && fabs(c->sy0[i]) <= 1e3 * TT_DIVERGED)) tt__src_fail(s, "end position %u: (%g, %g)", i, c->sx0[i], c->sy0[i]);
         c->s_count = n;
         c->s_epoch = w->epoch;
     } else {

@@ -65,6 +65,9 @@ typedef struct tt__group_ops {
     void (*sweeps_done)(tt_world *w, void *self);
     /* once per substep after the sweeps and the velocity fix-up (restitution, friction, breaking) */
     void (*end)(tt_world *w, void *self, double h);
+    /* the guard stopped particle index after end (solver.c): what end took
+     * from its position follows it to where it was stopped */
+    void (*stopped)(tt_world *w, void *self, uint32_t index);
     /* after the whole step, outside every loop: gather events (booked as TT_STAGE_EVENTS) */
     void (*after_step)(tt_world *w, void *self);
     void (*particle_removed)(tt_world *w, void *self, uint32_t index); /* drop what refers to it */

@@ -151,6 +151,8 @@ static void guard(tt_world *w, double h)
             w->py[i] = w->by[i];
             w->qx[i] = w->qy[i] = 0.0;
         }
+        for (int g = 0; g < w->group_count; g++)
+            if (w->groups[g].ops->stopped) w->groups[g].ops->stopped(w, w->groups[g].self, i);
         w->stats.diverged++;
     }
 }

@@ -4,6 +4,7 @@
  * guard stays where it was, and nothing the API reports is NaN or Inf. */
 #include "test.h"
 #include "tether.h"
+#include "collide/collide_internal.h"
 
 #include <float.h>
 #include <math.h>
@@ -280,4 +281,45 @@ TEST(guard_stops_a_verlet_particle_whose_x_old_friction_rewrote)
     ENSURE_OK(tt_world_get_stats(w, &st));
     ENSURE(st.diverged > 0);
     tt_world_destroy(w);
+}
+
+/* The velocity integrators' contacts start each substep from the last one's
+ * end positions, which the contacts take as they end the substep; the guard
+ * stops a particle after that, so its end position must follow it there.
+ * Before, it kept the place the guard had refused: the C fuzzer (seed
+ * 20261207, call 373425) made a world whose snapshot held an end position of
+ * 1e20 m, which its own loader refused. Checked on the contacts' state
+ * itself, as nothing the API reads shows it until it is out of range. */
+TEST(guard_a_stopped_particle_ends_its_substep_where_it_stopped)
+{
+    for (int k = 1; k < 5; k++) { /* every integrator but Verlet, which keeps no end positions */
+        tt_world_def d = tt_world_def_default();
+        d.integrator = all_integrators[k];
+        tt_world *w = tt_world_create(&d);
+        tt_collision_settings cs = tt_collision_settings_default();
+        ENSURE_OK(tt_world_set_collision(w, &cs));
+        tt_shape_def floor = tt_shape_def_default();
+        floor.type = TT_SHAPE_AABB;
+        floor.a = (tt_vec2){-10, -1}, floor.b = (tt_vec2){10, 0};
+        ENSURE(tt_shape_is_valid(w, tt_shape_create(w, &floor)));
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = 0.1;
+        pd.position = (tt_vec2){0, 0.1};
+        tt_particle p = tt_particle_create(w, &pd);
+        for (int s = 0; s < 60; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        tt_pin_def pin = tt_pin_def_default();
+        pin.particle = p;
+        tt_constraint c = tt_pin_create(w, &pin);
+        ENSURE_OK(tt_pin_set_anchor(w, c, (tt_vec2){TT_MAX_VALUE, 0.1}));
+        ENSURE_OK(tt_world_step(w, 1e-6)); /* 1e12 m in 1e-6 s: past the speed limit, stopped */
+        tt_stats st;
+        tt_world_get_stats(w, &st);
+        ENSURE(st.diverged == 1);
+        tt_vec2 x;
+        tt_particle_get_position(w, p, &x);
+        const tt__collide *col = tt__group_find(w, &tt__contacts_ops);
+        ENSURE(col && col->sx0 && col->s_count > p.index);
+        ENSURE(col->sx0[p.index] == x.x && col->sy0[p.index] == x.y);
+        tt_world_destroy(w);
+    }
 }
