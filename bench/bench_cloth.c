@@ -5,6 +5,7 @@
  * the structural links (the first 2n(n−1) a cloth makes), mean and max,
  * the worst step of the run. */
 #include "bench.h"
+#include "scenes/scene.h"
 #include "tether.h"
 
 #include <math.h>
@@ -51,18 +52,13 @@ void bench_cloth(const char *dir)
            "worst mean strain", "worst max strain", "target");
     FILE *csv = bench_csv(dir, "cloth_strain.csv", "pins,long_range,iterations,constraints,step_ms,worst_mean_strain,worst_max_strain");
     for (size_t r = 0; r < sizeof rows / sizeof rows[0]; r++) {
-        tt_world_def wd = tt_world_def_default();
-        wd.iterations = rows[r].iterations;
-        wd.tolerance = 0; /* the whole budget every step: fixed work */
-        wd.capacity = N * N;
-        tt_world *w = tt_world_create(&wd);
-        tt_cloth_def cd = tt_cloth_def_default();
-        cd.columns = cd.rows = N;
-        cd.width = cd.height = 0.02 * (N - 1);
-        cd.common.mass = 0.001;
-        cd.pin_top_row = rows[r].top_row;
-        cd.long_range = rows[r].long_range;
-        tt_composite c = tt_cloth_create(w, &cd);
+        ts_hung_cloth d = ts_hung_cloth_default();
+        d.n = N;
+        d.iterations = rows[r].iterations;
+        d.top_row = rows[r].top_row;
+        d.long_range = rows[r].long_range;
+        tt_composite c;
+        tt_world *w = ts_hung_cloth_build(&d, &c);
         uint32_t nc;
         tt_composite_get_constraints(w, c, NULL, 0, &nc);
         tt_constraint *cs = malloc(nc * sizeof *cs);

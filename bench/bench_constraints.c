@@ -3,29 +3,18 @@
  * iterations at equal cost. */
 #include "bench.h"
 #include "bench_accuracy.h"
+#include "scenes/scene.h"
 #include "tether.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+/* The hung cloth (src/scenes/scene_cloth.c), no long-range attachments. */
 static tt_world *cloth_world(uint32_t n, tt_solver_order order, uint32_t substeps, uint32_t iterations, bool top_row, tt_composite *out)
 {
-    tt_world_def wd = tt_world_def_default();
-    wd.order = order;
-    wd.substeps = substeps;
-    wd.iterations = iterations;
-    wd.tolerance = 0; /* the whole budget every step: fixed work */
-    wd.capacity = n * n;
-    tt_world *w = tt_world_create(&wd);
-    tt_cloth_def cd = tt_cloth_def_default();
-    cd.columns = cd.rows = n;
-    cd.width = cd.height = 0.02 * (n - 1); /* 2 cm between particles */
-    cd.common.mass = 0.001;
-    cd.pin_top_row = top_row;
-    tt_composite c = tt_cloth_create(w, &cd);
-    if (out) *out = c;
-    return w;
+    const ts_hung_cloth d = {n, order, substeps, iterations, top_row, false};
+    return ts_hung_cloth_build(&d, out);
 }
 
 /* Mean relative stretch of the structural links (the first 2n(n−1) links). */

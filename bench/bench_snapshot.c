@@ -1,39 +1,15 @@
-/* tether — snapshots of the 10 000-circle reference pour: how long a save
+/* tether — snapshots of the 10 000-circle reference pour (src/scenes/, the
+ * scene every comparison of piles uses): how long a save
  * (tt_world_save into a buffer the caller keeps), a restore in place and a
  * load into a new world take, and the world hash (the hash of the same
  * stream). Target: save and restore each ≤ 1 ms. */
 #include "bench.h"
+#include "scenes/scene.h"
 #include "tether.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* 10 000 circles r 0.5, 89 a row 1.1 apart (odd rows +0.05), in a box 100
- * wide with walls to 400; g = 10, friction 0.3, restitution 0. */
-static tt_world *reference_pour(void)
-{
-    tt_world_def wd = tt_world_def_default();
-    wd.gravity = (tt_vec2){0, -10};
-    tt_world *w = tt_world_create(&wd);
-    tt_collision_settings cs = tt_collision_settings_default();
-    cs.friction_static = cs.friction_kinetic = 0.3;
-    cs.restitution = 0.0;
-    tt_world_set_collision(w, &cs);
-    tt_shape_def sd = tt_shape_def_default();
-    sd.type = TT_SHAPE_AABB;
-    sd.a = (tt_vec2){-51, -1}; sd.b = (tt_vec2){51, 0}; tt_shape_create(w, &sd);
-    sd.a = (tt_vec2){-51, 0}; sd.b = (tt_vec2){-50, 400}; tt_shape_create(w, &sd);
-    sd.a = (tt_vec2){50, 0}; sd.b = (tt_vec2){51, 400}; tt_shape_create(w, &sd);
-    tt_particle_def pd = tt_particle_def_default();
-    pd.radius = 0.5;
-    for (int i = 0; i < 10000; i++) {
-        int row = i / 89, col = i % 89;
-        pd.position = (tt_vec2){-48.4 + col * 1.1 + (row % 2) * 0.05, 0.6 + row * 1.1};
-        tt_particle_create(w, &pd);
-    }
-    return w;
-}
 
 static void report(FILE *csv, const char *what, double *ms, int n)
 {
@@ -52,7 +28,22 @@ void bench_snapshot(const char *dir)
     enum { RUNS = 21 };
     printf("\n== snapshots of the 10 000-circle reference pour (after 120 steps of 1/60 s) ==\n");
     printf("target: save <= 1 ms, restore in place <= 1 ms\n");
-    tt_world *w = reference_pour();
+    ts_scene sc;
+    ts_scene_pour(&sc, 10000, 100);
+    ts_tether t;
+    const char *why = NULL;
+    ts_tether_settings set = ts_tether_settings_default();
+    const tt_result built = ts_tether_build(&sc, &set, &t, &why);
+    ts_scene_free(&sc);
+    if (built != TT_OK) {
+        printf("snapshot: cannot build the pour: %s\n", why);
+        return;
+    }
+    tt_world *w = t.world;
+    /* the builder switches sleeping off (the Box2D comparisons run without
+     * it); a game's world has it on, and its stream holds the sleep section */
+    const tt_world_def d = tt_world_def_default();
+    tt_world_set_sleep(w, true, d.sleep_speed, d.sleep_time);
     for (int s = 0; s < 120; s++) tt_world_step(w, 1.0 / 60);
     size_t n = 0;
     tt_world_save(w, NULL, 0, &n);
@@ -60,7 +51,7 @@ void bench_snapshot(const char *dir)
     if (!buf || tt_world_save(w, buf, n, &n) != TT_OK) {
         printf("snapshot: cannot save: %s\n", tt_last_error(w));
         free(buf);
-        tt_world_destroy(w);
+        ts_tether_free(&t);
         return;
     }
     const uint64_t h0 = tt_world_hash(w);
@@ -98,5 +89,5 @@ void bench_snapshot(const char *dir)
     report(csv, "hash (tt_world_hash)", hash_ms, RUNS);
     fclose(csv);
     free(buf);
-    tt_world_destroy(w);
+    ts_tether_free(&t);
 }

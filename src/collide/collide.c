@@ -71,10 +71,8 @@ tt_result tt_particle_set_material(tt_world *w, tt_particle p, double e, double 
 {
     const char *fn = "tt_particle_set_material";
     tt_result r = tt__particle_check(w, p, fn);
+    if (r == TT_OK) r = tt__material_check(w, e, fs, fk, TT__PARTICLE_MAX_FRICTION, fn);
     if (r != TT_OK) return r;
-    if (!tt__in_range(e, 0.0, 1.0)) return tt__fail(w, TT_EINVAL, "%s: restitution must be in [0, 1], got %g", fn, e);
-    if (!tt__in_range(fs, 0.0, 1e30)) return tt__fail(w, TT_EINVAL, "%s: static friction must be >= 0 and finite, got %g", fn, fs);
-    if (!tt__in_range(fk, 0.0, 1e30)) return tt__fail(w, TT_EINVAL, "%s: kinetic friction must be >= 0 and finite, got %g", fn, fk);
     tt__collide *c = tt__collide_get(w, true, fn);
     if (!c) return TT_ENOMEM;
     if (c->matcap < w->pcap) {

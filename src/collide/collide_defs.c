@@ -44,11 +44,11 @@ tt_shape_def tt_shape_def_default(void)
     return d;
 }
 
-tt_result tt__material_check(const tt_world *w, double e, double fs, double fk, const char *fn)
+tt_result tt__material_check(const tt_world *w, double e, double fs, double fk, double max_friction, const char *fn)
 {
     if (!tt__in_range(e, 0.0, 1.0)) return tt__fail(w, TT_EINVAL, "%s: restitution must be in [0, 1], got %g", fn, e);
-    if (!tt__in_range(fs, 0.0, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: static friction must be in [0, %g], got %g", fn, TT_MAX_VALUE, fs);
-    if (!tt__in_range(fk, 0.0, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: kinetic friction must be in [0, %g], got %g", fn, TT_MAX_VALUE, fk);
+    if (!tt__in_range(fs, 0.0, max_friction)) return tt__fail(w, TT_EINVAL, "%s: static friction must be in [0, %g], got %g", fn, max_friction, fs);
+    if (!tt__in_range(fk, 0.0, max_friction)) return tt__fail(w, TT_EINVAL, "%s: kinetic friction must be in [0, %g], got %g", fn, max_friction, fk);
     return TT_OK;
 }
 
@@ -79,7 +79,7 @@ tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const ch
     /* even where the type does not use them: they are kept, saved and loaded (the loader takes |x| <= 1e300) */
     if (!(fabs(d->radius) <= 1e300 && fabs(d->half_extents.x) <= 1e300 && fabs(d->half_extents.y) <= 1e300))
         return tt__fail(w, TT_EINVAL, "%s: radius and half_extents must be finite, even where the type does not use them", fn);
-    tt_result r = tt__material_check(w, d->restitution, d->friction_static, d->friction_kinetic, fn);
+    tt_result r = tt__material_check(w, d->restitution, d->friction_static, d->friction_kinetic, TT_MAX_VALUE, fn);
     if (r != TT_OK) return r;
     switch (d->type) {
     case TT_SHAPE_AABB:

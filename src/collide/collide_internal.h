@@ -403,9 +403,13 @@ bool tt__brute_pairs(tt_world *w, tt__collide *c);
 tt_result tt__shapes_rebuild(tt_world *w, tt__collide *c);
 /* What tt_shape_create accepts (a snapshot's shapes pass the same test). */
 tt_result tt__shape_check_def(const tt_world *w, const tt_shape_def *d, const char *fn);
-/* A restitution in [0, 1] and frictions in [0, TT_MAX_VALUE], as shapes
- * and terrains take them. */
-tt_result tt__material_check(const tt_world *w, double e, double fs, double fk, const char *fn);
+/* A restitution in [0, 1] and frictions in [0, max_friction]: every
+ * public call that takes a material checks it here (shapes and terrains up
+ * to TT_MAX_VALUE, particles up to TT__PARTICLE_MAX_FRICTION). */
+tt_result tt__material_check(const tt_world *w, double e, double fs, double fk, double max_friction, const char *fn);
+/* tt_particle_set_material has always taken friction up to 1e30, more than
+ * shapes take; the stream reader takes what the setter takes. */
+#define TT__PARTICLE_MAX_FRICTION 1e30
 /* Places the shapes the script moved where they are at the end of the
  * world's current substep, on their way from `from` to their def's
  * transform (the static index holds their whole path: no rebuild). */

@@ -351,7 +351,7 @@ static bool load_particle_data(tt_world *w, tt__collide *c, tt__source *s)
         for (uint32_t i = 0; i < 3 * cap; i++) c->mat[i] = -1.0f;
         tt__get(s, c->mat, (size_t)n * 3 * sizeof *c->mat);
         for (uint32_t i = 0; i < 3 * n && !s->failed; i++)
-            if (!(c->mat[i] == -1.0f || (c->mat[i] >= 0.0f && c->mat[i] <= 1e30f)) || /* tt_particle_set_material takes up to 1e30 */
+            if (!(c->mat[i] == -1.0f || (c->mat[i] >= 0.0f && c->mat[i] <= (float)TT__PARTICLE_MAX_FRICTION)) ||
                 (c->mat[i] != -1.0f && i % 3 == 0 && c->mat[i] > 1.0f))
                 tt__src_fail(s, "particle %u: material %g", i / 3, c->mat[i]);
     }

@@ -113,7 +113,7 @@ tt_result tt_shape_get_transform(const tt_world *w, tt_shape s, tt_vec2 *positio
 tt_result tt_shape_set_material(tt_world *w, tt_shape s, double e, double fs, double fk)
 {
     TT__SHAPE_CHECK("tt_shape_set_material");
-    tt_result r = tt__material_check(w, e, fs, fk, "tt_shape_set_material");
+    tt_result r = tt__material_check(w, e, fs, fk, TT_MAX_VALUE, "tt_shape_set_material");
     if (r != TT_OK) return r;
     sh->def.restitution = e;
     sh->def.friction_static = fs;

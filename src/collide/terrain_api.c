@@ -31,7 +31,7 @@ static tt_result check_def(const tt_world *w, const tt_terrain_def *d, const cha
         return tt__fail(w, TT_EINVAL, "%s: pixel must be in [1e-9, %g / side] m, got %g", fn, TT_MAX_VALUE, d->pixel);
     if (d->band < 5 || d->band > TT_TERRAIN_MAX_BAND)
         return tt__fail(w, TT_EINVAL, "%s: band must be in [5, %d] pixels, got %d", fn, TT_TERRAIN_MAX_BAND, d->band);
-    return tt__material_check(w, d->restitution, d->friction_static, d->friction_kinetic, fn);
+    return tt__material_check(w, d->restitution, d->friction_static, d->friction_kinetic, TT_MAX_VALUE, fn);
 }
 
 /* Makes slot i's terrain from def; false on no memory (nothing kept). */
@@ -252,7 +252,8 @@ tt_result tt_terrain_set_material(tt_world *w, tt_terrain t, double restitution,
                                   double friction_kinetic)
 {
     TERRAIN_CHECK("tt_terrain_set_material");
-    tt_result r = tt__material_check(w, restitution, friction_static, friction_kinetic, "tt_terrain_set_material");
+    tt_result r = tt__material_check(w, restitution, friction_static, friction_kinetic, TT_MAX_VALUE,
+                                     "tt_terrain_set_material");
     if (r != TT_OK) return r;
     T->def.restitution = restitution;
     T->def.friction_static = friction_static;

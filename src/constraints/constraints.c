@@ -27,7 +27,7 @@ const tt__group_ops tt__constraints_ops = {
     .particle_removed = tt__cgroup_particle_removed,
     .memory = tt__cgroup_memory,
     .destroy = tt__cgroup_destroy,
-    .id = TT__ID('C', 'O', 'N', 'S'),
+    .id = TT__CONS_ID,
     .save = tt__cgroup_save,
     .load = tt__cgroup_load,
 };

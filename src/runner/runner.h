@@ -1,6 +1,6 @@
-/* tether — the runner's pieces shared between runner.c (options, the Lua
- * session, the plain fixed-step loop) and runner_view.c (headless PNG frames
- * and the SDL2 window). */
+/* tether — the runner's pieces shared between runner.c (options, the plain
+ * fixed-step loop), runner_session.c (the Lua session both ways of running
+ * use) and runner_view.c (headless PNG frames and the SDL2 window). */
 #ifndef TETHER_RUNNER_H
 #define TETHER_RUNNER_H
 
@@ -34,9 +34,13 @@ typedef struct session {
     char **argv;
 } session;
 
+/* runner_session.c */
 extern volatile sig_atomic_t g_interrupted;
 extern bool g_quit;
 
+int luaopen_tether(lua_State *L);
+/* Ctrl-C from now on stops the script or the loop cleanly; a second one kills. */
+void tr_catch_interrupt(void);
 /* Makes the state, loads the module, runs the script; false (message
  * printed, nothing left open) on failure. */
 bool tr_session_open(session *s, const options *o, int argc, char **argv);
@@ -51,8 +55,6 @@ double tr_now_s(void);
 double tr_median(double *v, size_t n);
 
 /* runner_view.c */
-/* Adds the runner-only drawing functions (tether.gfx.load_image) to the module at stack index module. */
-void tr_register_gfx(lua_State *L, int module);
 int tr_run_frames(session *s, const options *o);
 int tr_run_window(session *s, const options *o);
 /* runner_module.c: `tether crosscheck …` (argv[1] is "crosscheck"): an exit status. */

@@ -17,8 +17,6 @@
 
 #include "runner.h"
 
-int luaopen_tether(lua_State *L);
-
 /* The folder this program is in; "." when unknown. */
 static void own_dir(char *buf, size_t n)
 {

@@ -11,7 +11,6 @@
 #include <unistd.h>
 
 #include <SDL.h>
-#include <lauxlib.h>
 
 #include "lua/lua_render.h"
 #include "runner.h"
@@ -184,29 +183,6 @@ done:
     tt_canvas_destroy(c);
     tt_headless_destroy(hl);
     return status;
-}
-
-/* tether.gfx.load_image(path) → image, or nil and a message (runner only: it needs libpng) */
-static int l_load_image(lua_State *L)
-{
-    const char *path = tl_checkstring(L, 1);
-    char err[512];
-    tt_image *img = tt_image_load_png(path, err, sizeof err);
-    if (!img) {
-        lua_pushnil(L);
-        lua_pushstring(L, err);
-        return 2;
-    }
-    tl_push_image(L, img);
-    return 1;
-}
-
-void tr_register_gfx(lua_State *L, int module)
-{
-    static const luaL_Reg funcs[] = { { "load_image", l_load_image }, { NULL, NULL } };
-    lua_getfield(L, module, "gfx");
-    tl_setfuncs(L, funcs, "tether.gfx.");
-    lua_pop(L, 1);
 }
 
 /* --- the window --------------------------------------------------------------- */

@@ -98,6 +98,24 @@ void ts_scene_pour(ts_scene *s, uint32_t n, double width);
 /* A 1 × 1 box of friction mu resting on a static slope of `degrees`. */
 void ts_scene_slope(ts_scene *s, double degrees, double mu);
 
+/* --- the hung cloth (scene_cloth.c) ----------------------------------------- */
+
+/* An n × n cloth 2 cm apart, 1 g a particle, hanging under default gravity
+ * from its top row or its two top corners, the world at tolerance 0 (every
+ * sweep runs: fixed work); ts_hung_cloth_default() gives n = 128, Gauss-Seidel,
+ * 1 substep, 10 sweeps, top row, no long-range attachments. */
+typedef struct ts_hung_cloth {
+    uint32_t n;                         /* particles along a side, at least 2 */
+    tt_solver_order order;
+    uint32_t substeps, iterations;
+    bool top_row;                       /* false: the two top corners */
+    bool long_range;                    /* tt_cloth_def.long_range */
+} ts_hung_cloth;
+ts_hung_cloth ts_hung_cloth_default(void);
+/* A new world holding the cloth (its handle in *cloth when not NULL); NULL
+ * when it cannot be made. */
+tt_world *ts_hung_cloth_build(const ts_hung_cloth *d, tt_composite *cloth);
+
 /* --- measures shared by the bench and the cross-check (scene_metrics.c) --- */
 
 typedef struct ts_pile {

@@ -1,28 +1,23 @@
 /* Cloth that does not stretch: the long-range attachments
  * (tt_cloth_def.long_range) against the same cloth without them. */
 #include "test.h"
+#include "scenes/scene.h"
 #include "tether.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-/* A world of its own holding an n² cloth of 1 g particles 2 cm apart at
- * 1 substep × `sweeps`, tolerance 0, hung from its top row or its two top
- * corners (at y = 0); *c gets the cloth. */
+/* A world of its own holding the hung cloth (src/scenes/scene_cloth.c): an
+ * n² cloth of 1 g particles 2 cm apart at 1 substep × `sweeps`, tolerance
+ * 0, hung from its top row or its two top corners (at y = 0); *c gets it. */
 static tt_world *cloth_world(uint32_t n, bool top_row, bool long_range, uint32_t sweeps, tt_composite *c)
 {
-    tt_world_def wd = tt_world_def_default();
-    wd.iterations = sweeps;
-    wd.tolerance = 0;
-    tt_world *w = tt_world_create(&wd);
-    tt_cloth_def cd = tt_cloth_def_default();
-    cd.columns = cd.rows = n;
-    cd.width = cd.height = 0.02 * (n - 1);
-    cd.common.mass = 0.001;
-    cd.pin_top_row = top_row;
-    cd.long_range = long_range;
-    *c = tt_cloth_create(w, &cd);
-    return w;
+    ts_hung_cloth d = ts_hung_cloth_default();
+    d.n = n;
+    d.iterations = sweeps;
+    d.top_row = top_row;
+    d.long_range = long_range;
+    return ts_hung_cloth_build(&d, c);
 }
 
 /* The worst, over 10 s of steps, of the structural links' mean and max

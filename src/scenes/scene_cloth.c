@@ -1,0 +1,35 @@
+/* tether — the hung cloth of issue 21: the scene the cloth strain bench,
+ * the constraint solver bench and the cloth tests all measure, built in one
+ * place so their figures are about the same cloth. */
+#include "scene.h"
+
+ts_hung_cloth ts_hung_cloth_default(void)
+{
+    ts_hung_cloth d = {128, TT_GAUSS_SEIDEL, 1, 10, true, false};
+    return d;
+}
+
+tt_world *ts_hung_cloth_build(const ts_hung_cloth *d, tt_composite *cloth)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.order = d->order;
+    wd.substeps = d->substeps;
+    wd.iterations = d->iterations;
+    wd.tolerance = 0; /* the whole budget every step: fixed work */
+    wd.capacity = d->n * d->n;
+    tt_world *w = tt_world_create(&wd);
+    if (!w) return NULL;
+    tt_cloth_def cd = tt_cloth_def_default();
+    cd.columns = cd.rows = d->n;
+    cd.width = cd.height = 0.02 * (d->n - 1); /* 2 cm between particles */
+    cd.common.mass = 0.001;
+    cd.pin_top_row = d->top_row;
+    cd.long_range = d->long_range;
+    const tt_composite c = tt_cloth_create(w, &cd);
+    if (c.gen == 0) {
+        tt_world_destroy(w);
+        return NULL;
+    }
+    if (cloth) *cloth = c;
+    return w;
+}
