@@ -36,7 +36,7 @@ void tt__cgroup_break_links(tt_world *w, tt__cgroup *g)
         /* A denormal rest overflows len / rest: the strain is as unbounded as a zero rest's. */
         tt_break_event e = {tt__cgroup_handle(g, x->slot), tt__cgroup_particle(w, d->a), tt__cgroup_particle(w, d->b),
                             len, rest > 0.0 ? fmin(len / rest - 1.0, TT_MAX_VALUE) : TT_MAX_VALUE};
-        if (w->undo.on && !g->undo.broke) tt__cgroup_undo_links(w, g);
+        if (w->scr.undo.on && !g->undo.broke) tt__cgroup_undo_links(w, g);
         if (!event_push(g, e)) tt__step_oom(w, "break events");
         tt__cgroup_dist_remove(g, i);
     }

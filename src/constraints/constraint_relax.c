@@ -138,7 +138,7 @@ static void plan(const tt__cgroup *g, tt__mover *m, double dt)
 
 void tt__targets_substep(tt_world *w, tt__cgroup *g, double h)
 {
-    const uint32_t s = w->substep, n = w->substeps;
+    const uint32_t s = w->scr.substep, n = w->substeps;
     const bool last = s + 1 == n;
     const double f = (double)(s + 1) / n;
     for (uint32_t k = g->nmoving; k-- > 0;) { /* backwards: an arrived one is swapped out */
@@ -266,7 +266,7 @@ static double relax_collinear(tt_world *w, tt__gcon *c, double h)
 double tt__cgroup_relax(tt_world *w, void *self, double h)
 {
     tt__cgroup *g = self;
-    bool jacobi = w->jn && w->order == TT_JACOBI;
+    bool jacobi = w->scr.jn && w->order == TT_JACOBI;
     double err = jacobi ? tt__distance_sweep_jacobi(w, g, h) : tt__distance_sweep_gs(w, g, h);
     g->first_sweep = false;
     for (uint32_t i = 0; i < g->ngen; i++) {
