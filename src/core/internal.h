@@ -106,6 +106,10 @@ typedef struct tt__group_ops {
     void (*undo)(tt_world *w, void *self);
     bool (*after_reserve)(tt_world *w, void *self);
     size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
+    /* optional: frees the group's per-step scratch between two steps (the
+     * next step's reserve sizes it again), changing nothing else: what the
+     * test of the split (tests/core/test_scratch.c) drops */
+    void (*scratch_free)(tt_world *w, void *self);
     void (*destroy)(tt_world *w, void *self);
 } tt__group_ops;
 
@@ -226,7 +230,8 @@ struct tt_world {
     char error[256];
 };
 
-/* The step's scratch freed: the next step sizes it again (world.c). */
+/* The step's scratch freed, the world's and every group's (their
+ * scratch_free hooks): the next step sizes it again (world.c). */
 void tt__world_scratch_free(tt_world *w);
 
 /* A new world from a stream (snapshot.c), its epoch given: a world that is

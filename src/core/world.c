@@ -140,6 +140,8 @@ void tt__world_scratch_free(tt_world *w)
     free(s->ends);
     tt__undo_free(w);
     *s = (tt__world_scratch){0};
+    for (int g = 0; g < w->group_count; g++)
+        if (w->groups[g].ops->scratch_free) w->groups[g].ops->scratch_free(w, w->groups[g].self);
 }
 
 /* The pipeline, top to bottom. Each stage runs only if the world uses it;

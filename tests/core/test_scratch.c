@@ -6,6 +6,7 @@
  * integrator, Jacobi and Gauss-Seidel, springs, each constraint kind,
  * tearing, contacts, sleeping). */
 #include "test.h"
+#include "constraints/constraint_internal.h"
 #include "core/internal.h"
 #include "core/scenes.h"
 
@@ -42,6 +43,36 @@ static void world_garbage(tt_world *w)
     s->step_oom = "garbage";
 }
 
+/* The constraint group's scratch as garbage: the sweep's packed rows,
+ * the plan builder's stamps, the area gradients, the break events' buffer,
+ * the undo's copies, and lambda in every link. The plan and its hot copies
+ * are a cache valid while plan_ok (setters keep it current): losing them
+ * is freeing them, which world_free does. */
+static void constraints_garbage(tt_world *w)
+{
+    tt__cgroup *g = tt__cgroup_find(w);
+    if (!g) return;
+    tt__cscratch *s = &g->scr;
+    fill(s->pk, (size_t)s->pk_cap * 4 * sizeof(double));
+    fill(s->stamp, (size_t)s->stamp_cap * sizeof(uint32_t));
+    fill(s->grad, (size_t)s->grad_cap * 2 * sizeof(double));
+    fill(s->ev_new, (size_t)s->cap_new * sizeof *s->ev_new);
+    tt__cundo *u = &s->undo;
+    fill(u->moving, (size_t)u->moving_cap * sizeof *u->moving);
+    fill(u->eff, (size_t)u->eff_cap * sizeof(double));
+    fill(u->dist, (size_t)u->dist_cap * sizeof *u->dist);
+    fill(u->dx, (size_t)u->dx_cap * sizeof *u->dx);
+    fill(u->slots, (size_t)u->slot_cap * sizeof *u->slots);
+    fill(u->gen, (size_t)u->gen_cap * sizeof(uint32_t));
+    fill(u->free_list, (size_t)u->free_cap * sizeof(uint32_t));
+    fill(u->refs, (size_t)u->refs_cap * sizeof(uint32_t));
+    fill(u->pair_n, (size_t)u->n_cap * sizeof(uint32_t));
+    fill(u->pair_key, (size_t)u->key_cap * sizeof(uint64_t));
+    s->first_sweep = true;
+    for (uint32_t i = 0; i < g->ndist; i++) fill(&g->dx[i].lambda, sizeof g->dx[i].lambda);
+    for (uint32_t i = 0; i < g->ngen; i++) fill(&g->gen[i].lambda, sizeof g->gen[i].lambda);
+}
+
 static void world_free(tt_world *w) { tt__world_scratch_free(w); }
 
 /* Every scene stepped twice, one of the twins losing its scratch (lose)
@@ -69,8 +100,15 @@ static int twins(void (*lose)(tt_world *w), const char *how)
     return bad;
 }
 
+/* world_free frees every part's scratch: the world's and each group's
+ * (their scratch_free hooks). */
 TEST(a_world_whose_step_scratch_is_lost_between_steps_steps_the_same)
 {
     ENSURE(twins(world_free, "freed") == 0);
     ENSURE(twins(world_garbage, "garbage") == 0);
+}
+
+TEST(a_constraint_group_whose_scratch_and_lambdas_are_garbage_between_steps_steps_the_same)
+{
+    ENSURE(twins(constraints_garbage, "of the constraints, garbage") == 0);
 }
