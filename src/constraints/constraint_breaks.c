@@ -5,8 +5,8 @@
 
 static bool event_push(tt__cgroup *g, tt_break_event e)
 {
-    if (!tt__grow((void **)&g->ev_new, &g->cap_new, g->nnew + 1, sizeof *g->ev_new)) return false;
-    g->ev_new[g->nnew++] = e;
+    if (!tt__grow((void **)&g->scr.ev_new, &g->scr.cap_new, g->scr.nnew + 1, sizeof *g->scr.ev_new)) return false;
+    g->scr.ev_new[g->scr.nnew++] = e;
     return true;
 }
 
@@ -17,8 +17,9 @@ bool tt__cgroup_reserve(tt_world *w, void *self)
 {
     tt__cgroup *g = self;
     if (!tt__distance_plan_reserve(w, g)) return false;
+    if (!g->scr.grad_cap && !tt__cgroup_grad_reserve(g)) return false; /* the scratch was freed */
     if (!g->nbreakable) return true;
-    return tt__grow((void **)&g->ev_new, &g->cap_new, g->nnew + g->nbreakable, sizeof *g->ev_new) &&
+    return tt__grow((void **)&g->scr.ev_new, &g->scr.cap_new, g->scr.nnew + g->nbreakable, sizeof *g->scr.ev_new) &&
            tt__pool_reserve_free(&g->pool, g->nbreakable);
 }
 
@@ -36,7 +37,7 @@ void tt__cgroup_break_links(tt_world *w, tt__cgroup *g)
         /* A denormal rest overflows len / rest: the strain is as unbounded as a zero rest's. */
         tt_break_event e = {tt__cgroup_handle(g, x->slot), tt__cgroup_particle(w, d->a), tt__cgroup_particle(w, d->b),
                             len, rest > 0.0 ? fmin(len / rest - 1.0, TT_MAX_VALUE) : TT_MAX_VALUE};
-        if (w->undo.on && !g->undo.broke) tt__cgroup_undo_links(w, g);
+        if (w->scr.undo.on && !g->scr.undo.broke) tt__cgroup_undo_links(w, g);
         if (!event_push(g, e)) tt__step_oom(w, "break events");
         tt__cgroup_dist_remove(g, i);
     }
@@ -49,12 +50,12 @@ void tt__cgroup_after_step(tt_world *w, void *self)
     /* publish: the gathered list becomes the readable one, the old one is reused */
     tt_break_event *e = g->ev_pub;
     uint32_t cap = g->cap_pub;
-    g->ev_pub = g->ev_new;
-    g->cap_pub = g->cap_new;
-    g->npub = g->nnew;
-    g->ev_new = e;
-    g->cap_new = cap;
-    g->nnew = 0;
+    g->ev_pub = g->scr.ev_new;
+    g->cap_pub = g->scr.cap_new;
+    g->npub = g->scr.nnew;
+    g->scr.ev_new = e;
+    g->scr.cap_new = cap;
+    g->scr.nnew = 0;
 }
 
 tt_result tt_world_get_break_events(const tt_world *w, const tt_break_event **events, uint32_t *count)

@@ -140,7 +140,7 @@ tt_constraint tt_distance_create(tt_world *w, const tt_distance_def *d)
     g->dx[g->ndist] = (tt__dist_x){0.0, len, d->break_strain, slot, (uint8_t)d->mode, d->collide};
     g->slots[slot].max_rate = d->max_rate;
     g->ndist++;
-    g->plan_ok = false;
+    g->scr.plan_ok = false;
     g->refs[c->a]++;
     g->refs[c->b]++;
     tt__sleep_touch(w, c->a); /* a new link changes what rests */
@@ -329,7 +329,7 @@ tt_constraint tt_area_create(tt_world *w, const tt_area_def *d)
     if (!list) return NONE;
     const bool had = tt__cgroup_peek(w) != NULL;
     tt__cgroup *g = tt__cgroup_make(w);
-    if (!g || !tt__grow((void **)&g->grad, &g->grad_cap, d->count, 2 * sizeof(double))) {
+    if (!g || !tt__grow((void **)&g->scr.grad, &g->scr.grad_cap, d->count, 2 * sizeof(double))) {
         free(list);
         tt__cgroup_unmake(w, had);
         tt__fail(w, TT_ENOMEM, "%s: out of memory", fn);

@@ -64,7 +64,7 @@ void tt__cgroup_dist_remove(tt__cgroup *g, uint32_t d)
     g->slots[x->slot].kind = 0;
     tt__pool_free(&g->pool, x->slot);
     g->alive--;
-    g->plan_ok = false;
+    g->scr.plan_ok = false;
     uint32_t last = --g->ndist;
     if (d != last) {
         g->dist[d] = g->dist[last];
@@ -136,12 +136,24 @@ size_t tt__cgroup_memory(const tt_world *w, const void *self)
     for (uint32_t i = 0; i < g->ngen; i++)
         if (g->gen[i].list) b += (size_t)g->gen[i].n * sizeof(uint32_t);
     b += tt__pair_set_bytes(&g->pairs);
-    b += (size_t)(g->cap_new + g->cap_pub) * sizeof(tt_break_event);
-    b += (size_t)g->grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
-    b += ((size_t)g->plan_cap + g->stamp_cap) * sizeof(uint32_t) + (size_t)g->pk_cap * 4 * sizeof(double);
-    b += (size_t)g->hot_cap * (4 * sizeof(double) + 2 * sizeof(uint32_t));
+    b += (size_t)(g->scr.cap_new + g->cap_pub) * sizeof(tt_break_event);
+    b += (size_t)g->scr.grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
+    b += ((size_t)g->scr.plan_cap + g->scr.stamp_cap) * sizeof(uint32_t) + (size_t)g->scr.pk_cap * 4 * sizeof(double);
+    b += (size_t)g->scr.hot_cap * (4 * sizeof(double) + 2 * sizeof(uint32_t));
     b += (size_t)g->moving_cap * sizeof(tt__mover);
     return b + tt__composites_memory(g) + tt__cgroup_undo_bytes(g);
+}
+
+void tt__cgroup_scratch_free(tt_world *w, void *self)
+{
+    (void)w;
+    tt__cgroup *g = self;
+    tt__cscratch *s = &g->scr;
+    free(s->plan); free(s->stamp); free(s->pk); free(s->h_lo); /* h_lo: the hot copies' one block */
+    free(s->grad);
+    free(s->ev_new);
+    tt__cgroup_undo_free(g);
+    *s = (tt__cscratch){0};
 }
 
 void tt__cgroup_destroy(tt_world *w, void *self)
@@ -154,16 +166,10 @@ void tt__cgroup_destroy(tt_world *w, void *self)
     free(g->dx);
     free(g->slots);
     tt__pair_set_free(&g->pairs);
-    free(g->ev_new);
     free(g->ev_pub);
-    free(g->grad);
     free(g->moving);
-    tt__cgroup_undo_free(g);
     free(g->refs);
-    free(g->plan);
-    free(g->stamp);
-    free(g->pk);
-    free(g->h_lo);
+    tt__cgroup_scratch_free(w, g);
     tt__pool_destroy(&g->pool);
     tt__composites_free(g);
     free(g);
@@ -222,4 +228,13 @@ bool tt__constraint_pairs_any(const tt_world *w)
 {
     const tt__cgroup *g = tt__cgroup_peek(w);
     return g && g->pairs.used;
+}
+
+/* Room for the gradients of the largest area constraint (constraint_relax.c). */
+bool tt__cgroup_grad_reserve(tt__cgroup *g)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < g->ngen; i++)
+        if (g->gen[i].kind == TT_CONSTRAINT_AREA && g->gen[i].n > n) n = g->gen[i].n;
+    return !n || tt__grow((void **)&g->scr.grad, &g->scr.grad_cap, n, 2 * sizeof(double));
 }

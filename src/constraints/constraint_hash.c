@@ -221,7 +221,7 @@ static void load_gen(tt_world *w, tt__cgroup *g, tt__source *s)
             { tt__src_fail(s, "constraint %u (kind %u) is not valid", i, c->kind); return; }
         tt__cgroup_gen_refs(g, c, +1);
         /* the area sweep's gradients, sized at creation for the largest polygon */
-        if (c->kind == TT_CONSTRAINT_AREA && !tt__grow((void **)&g->grad, &g->grad_cap, c->n, 2 * sizeof(double)))
+        if (c->kind == TT_CONSTRAINT_AREA && !tt__grow((void **)&g->scr.grad, &g->scr.grad_cap, c->n, 2 * sizeof(double)))
             tt__src_fail(s, "out of memory");
     }
 }

@@ -90,29 +90,12 @@ typedef struct tt__composite {
     double *rest;      /* 2·np: rest offsets from the rest centre of mass */
 } tt__composite;
 
-/* State: what constraint_hash.c saves (pool, slots, links and their cold
- * halves but lambda, the other kinds, moving targets, published break
- * events, composites). Everything else here is derived (counts, refs,
- * excluded pairs) or per-step scratch (plan, pk, hot copies, grad, new
- * events), rebuilt after a restore. */
-typedef struct tt__cgroup {
-    tt__pool pool;
-    tt__cslot *slots;
-    uint32_t slot_cap, alive;
-
-    tt__dist *dist;
-    tt__dist_x *dx;
-    uint32_t ndist, dist_cap, dx_cap, nbreakable, nxpbd;
-
-    tt__gcon *gen;
-    uint32_t ngen, gen_cap;
-
-    tt__pair_set pairs;   /* pairs joined by a link with collide = false, one reference per link */
-
-    /* break events: gathered during the step, published after it */
-    tt_break_event *ev_new, *ev_pub;
-    uint32_t nnew, npub, cap_new, cap_pub;
-
+/* What the sweeps and the step work in: neither saved nor hashed, and its
+ * loss between two steps (tt__cgroup_scratch_free) changes nothing
+ * (tests/core/test_scratch.c): the group's reserve sizes it again and the
+ * plan is rebuilt while plan_ok is false. Between steps pk_live is false
+ * and nnew 0. */
+typedef struct tt__cscratch {
     /* Gauss-Seidel vector plan: the links in order as pairs (scalar run
      * length, vector block count), each block plan_w consecutive links that
      * share no particle, so solving them side by side equals the sequential
@@ -129,6 +112,39 @@ typedef struct tt__cgroup {
     bool plan_ok;
     bool pk_live;      /* pk holds the positions, w->px/py are stale until sweeps_done */
     bool first_sweep;  /* the substep's first: linked particles on one spot part (group_begin sets it) */
+    double *grad;      /* gradients of an area constraint: room for the largest */
+    uint32_t grad_cap;
+    tt_break_event *ev_new; /* break events gathered during the step, published after it */
+    uint32_t nnew, cap_new;
+    tt__cundo undo;    /* the group as the step began (constraint_undo.c) */
+} tt__cscratch;
+
+/* State: what constraint_hash.c saves (pool, slots, links and their cold
+ * halves but lambda, the other kinds, moving targets, published break
+ * events, composites). Everything else here is derived (counts, refs,
+ * excluded pairs) or per-step scratch (scr), rebuilt after a restore.
+ * lambda (tt__dist_x, tt__gcon), the XPBD multiplier, is scratch too: begin
+ * zeroes it every substep before a sweep reads it, and nothing else reads
+ * it; it stays inside the links the sweeps stride through, which a
+ * separate array would make them read twice over. */
+typedef struct tt__cgroup {
+    tt__pool pool;
+    tt__cslot *slots;
+    uint32_t slot_cap, alive;
+
+    tt__dist *dist;
+    tt__dist_x *dx;
+    uint32_t ndist, dist_cap, dx_cap, nbreakable, nxpbd;
+
+    tt__gcon *gen;
+    uint32_t ngen, gen_cap;
+
+    tt__pair_set pairs;   /* pairs joined by a link with collide = false, one reference per link */
+
+    /* break events published by the last step (gathered in scr.ev_new) */
+    tt_break_event *ev_pub;
+    uint32_t npub, cap_pub;
+
     uint8_t simd;      /* tt__simd_mode */
 
     uint32_t *refs;    /* per particle slot: how many constraint entries name it (0: removal skips the scan) */
@@ -137,10 +153,7 @@ typedef struct tt__cgroup {
     tt__mover *moving; /* only the constraints whose target moves: nothing else pays */
     uint32_t nmoving, moving_cap;
 
-    double *grad;      /* scratch gradients for area constraints */
-    uint32_t grad_cap;
-
-    tt__cundo undo;    /* per-step scratch (constraint_undo.c) */
+    tt__cscratch scr;  /* what the sweeps and the step work in: not state */
 
     /* composites (composites.c) */
     tt__pool cpool;
@@ -169,6 +182,8 @@ void tt__cgroup_dist_remove(tt__cgroup *g, uint32_t d);
 void tt__cgroup_slot_remove(tt__cgroup *g, uint32_t s);
 void tt__cgroup_particle_removed(tt_world *w, void *self, uint32_t index);
 size_t tt__cgroup_memory(const tt_world *w, const void *self);
+void tt__cgroup_scratch_free(tt_world *w, void *self);
+bool tt__cgroup_grad_reserve(tt__cgroup *g); /* room for the largest area's gradients; false on no memory */
 static inline tt_constraint tt__cgroup_handle(const tt__cgroup *g, uint32_t slot)
 {
     return (tt_constraint){slot, g->pool.gen[slot]};

@@ -138,7 +138,7 @@ static void plan(const tt__cgroup *g, tt__mover *m, double dt)
 
 void tt__targets_substep(tt_world *w, tt__cgroup *g, double h)
 {
-    const uint32_t s = w->substep, n = w->substeps;
+    const uint32_t s = w->scr.substep, n = w->substeps;
     const bool last = s + 1 == n;
     const double f = (double)(s + 1) / n;
     for (uint32_t k = g->nmoving; k-- > 0;) { /* backwards: an arrived one is swapped out */
@@ -165,7 +165,7 @@ void tt__cgroup_begin(tt_world *w, void *self, double h)
     if (g->nxpbd)
         for (uint32_t i = 0; i < g->ndist; i++) g->dx[i].lambda = 0.0;
     for (uint32_t i = 0; i < g->ngen; i++) g->gen[i].lambda = 0.0;
-    g->first_sweep = true;
+    g->scr.first_sweep = true;
 }
 
 /* PBD / XPBD step of a scalar constraint C with gradients grad[2k] over particles idx[k]. */
@@ -237,7 +237,7 @@ static double relax_angle(tt_world *w, tt__gcon *c, double h)
 static double relax_area(tt_world *w, tt__cgroup *g, tt__gcon *c, double h)
 {
     const uint32_t n = c->n, *p = c->list;
-    double *grad = g->grad, perim = 0.0;
+    double *grad = g->scr.grad, perim = 0.0;
     for (uint32_t k = 0; k < n; k++) {
         uint32_t prev = p[k == 0 ? n - 1 : k - 1], next = p[k + 1 == n ? 0 : k + 1];
         grad[2 * k] = 0.5 * (w->py[next] - w->py[prev]);
@@ -266,9 +266,9 @@ static double relax_collinear(tt_world *w, tt__gcon *c, double h)
 double tt__cgroup_relax(tt_world *w, void *self, double h)
 {
     tt__cgroup *g = self;
-    bool jacobi = w->jn && w->order == TT_JACOBI;
+    bool jacobi = w->scr.jn && w->order == TT_JACOBI;
     double err = jacobi ? tt__distance_sweep_jacobi(w, g, h) : tt__distance_sweep_gs(w, g, h);
-    g->first_sweep = false;
+    g->scr.first_sweep = false;
     for (uint32_t i = 0; i < g->ngen; i++) {
         tt__gcon *c = &g->gen[i];
         double e = 0.0;

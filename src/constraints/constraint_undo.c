@@ -16,7 +16,7 @@
 bool tt__cgroup_undo_reserve(tt_world *w, void *self)
 {
     tt__cgroup *g = self;
-    tt__cundo *u = &g->undo;
+    tt__cundo *u = &g->scr.undo;
     if (g->nmoving && !(GROW(moving, moving_cap, g->nmoving) && GROW(eff, eff_cap, 2 * g->nmoving))) return false;
     if (!g->nbreakable) return true;
     return GROW(dist, dist_cap, g->ndist) && GROW(dx, dx_cap, g->ndist) && GROW(slots, slot_cap, g->pool.count) &&
@@ -35,9 +35,9 @@ void tt__cgroup_undo_mark(tt_world *w, void *self)
 {
     (void)w;
     tt__cgroup *g = self;
-    tt__cundo *u = &g->undo;
+    tt__cundo *u = &g->scr.undo;
     u->broke = false;
-    u->nnew = g->nnew;
+    u->nnew = g->scr.nnew;
     u->nmoving = g->nmoving;
     tt__copy(u->moving, g->moving, (size_t)g->nmoving * sizeof *u->moving);
     for (uint32_t k = 0; k < g->nmoving; k++) { /* where each target is in effect (the sweeps read it there) */
@@ -50,7 +50,7 @@ void tt__cgroup_undo_mark(tt_world *w, void *self)
 
 void tt__cgroup_undo_links(tt_world *w, tt__cgroup *g)
 {
-    tt__cundo *u = &g->undo;
+    tt__cundo *u = &g->scr.undo;
     u->broke = true;
     u->ndist = g->ndist;
     u->nbreakable = g->nbreakable;
@@ -71,7 +71,7 @@ void tt__cgroup_undo_links(tt_world *w, tt__cgroup *g)
 
 static void restore_links(tt_world *w, tt__cgroup *g)
 {
-    const tt__cundo *u = &g->undo;
+    const tt__cundo *u = &g->scr.undo;
     g->ndist = u->ndist;
     g->nbreakable = u->nbreakable;
     g->nxpbd = u->nxpbd;
@@ -87,16 +87,16 @@ static void restore_links(tt_world *w, tt__cgroup *g)
     tt__copy(g->refs, u->refs, (size_t)refs_count(w, g) * sizeof *g->refs);
     tt__copy(g->pairs.key, u->pair_key, (size_t)g->pairs.cap * sizeof *g->pairs.key);
     tt__copy(g->pairs.n, u->pair_n, (size_t)g->pairs.cap * sizeof *g->pairs.n);
-    g->plan_ok = false; /* the sweep's plan and hot copies are rebuilt from the links */
+    g->scr.plan_ok = false; /* the sweep's plan and hot copies are rebuilt from the links */
 }
 
 void tt__cgroup_undo(tt_world *w, void *self)
 {
     tt__cgroup *g = self;
-    tt__cundo *u = &g->undo;
+    tt__cundo *u = &g->scr.undo;
     if (u->broke) restore_links(w, g);
     u->broke = false;
-    g->nnew = u->nnew;
+    g->scr.nnew = u->nnew;
     /* the moving targets as the step began, each effective where it then was */
     g->nmoving = u->nmoving;
     tt__copy(g->moving, u->moving, (size_t)g->nmoving * sizeof *g->moving);
@@ -106,7 +106,7 @@ void tt__cgroup_undo(tt_world *w, void *self)
         if (sl->kind == TT_CONSTRAINT_DISTANCE) {
             g->dist[sl->dense].lo = u->eff[2 * k];
             g->dist[sl->dense].hi = u->eff[2 * k + 1];
-            g->plan_ok = false; /* the sweep's copies of the links follow */
+            g->scr.plan_ok = false; /* the sweep's copies of the links follow */
         } else {
             g->gen[sl->dense].v[0] = u->eff[2 * k];
             g->gen[sl->dense].v[1] = u->eff[2 * k + 1];
@@ -116,7 +116,7 @@ void tt__cgroup_undo(tt_world *w, void *self)
 
 void tt__cgroup_undo_free(tt__cgroup *g)
 {
-    tt__cundo *u = &g->undo;
+    tt__cundo *u = &g->scr.undo;
     free(u->moving); free(u->eff); free(u->dist); free(u->dx); free(u->slots); free(u->gen);
     free(u->free_list); free(u->refs); free(u->pair_key); free(u->pair_n);
     *u = (tt__cundo){0};
@@ -124,7 +124,7 @@ void tt__cgroup_undo_free(tt__cgroup *g)
 
 size_t tt__cgroup_undo_bytes(const tt__cgroup *g)
 {
-    const tt__cundo *u = &g->undo;
+    const tt__cundo *u = &g->scr.undo;
     return (size_t)u->moving_cap * sizeof *u->moving + (size_t)u->eff_cap * sizeof(double) + (size_t)u->dist_cap * sizeof *u->dist +
            (size_t)u->dx_cap * sizeof *u->dx + (size_t)u->slot_cap * sizeof *u->slots +
            ((size_t)u->gen_cap + u->free_cap + u->refs_cap + u->n_cap) * sizeof(uint32_t) +

@@ -27,6 +27,7 @@ const tt__group_ops tt__constraints_ops = {
     .particle_removed = tt__cgroup_particle_removed,
     .memory = tt__cgroup_memory,
     .destroy = tt__cgroup_destroy,
+    .scratch_free = tt__cgroup_scratch_free,
     .id = TT__CONS_ID,
     .save = tt__cgroup_save,
     .load = tt__cgroup_load,

@@ -10,11 +10,11 @@
 /* Link i's lo, hi, k or alpha changed: its copy follows (a stale plan is rebuilt whole). */
 void tt__distance_hot_sync(tt__cgroup *g, uint32_t i)
 {
-    if (!g->plan_ok) return;
-    g->h_lo[i] = g->dist[i].lo;
-    g->h_hi[i] = g->dist[i].hi;
-    g->h_k[i] = g->dist[i].k;
-    g->h_alpha[i] = g->dist[i].alpha;
+    if (!g->scr.plan_ok) return;
+    g->scr.h_lo[i] = g->dist[i].lo;
+    g->scr.h_hi[i] = g->dist[i].hi;
+    g->scr.h_k[i] = g->dist[i].k;
+    g->scr.h_alpha[i] = g->dist[i].alpha;
 }
 
 /* Part of a sweep over the distance constraints: links [i, n), err the
@@ -44,7 +44,7 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
              * get one from those; still together when the substep's sweeps
              * begin, they may never get one (two particles at rest), so b
              * parts to +x of a. */
-            if (!g->first_sweep) continue;
+            if (!g->scr.first_sweep) continue;
             dx = 1.0;
             dy = 0.0;
             len = 1.0;
@@ -88,22 +88,22 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
 /* Room for the plan of n links over particles [0, np). */
 static bool plan_reserve(tt__cgroup *g, uint32_t n, uint32_t np, uint32_t W)
 {
-    if (!tt__grow((void **)&g->stamp, &g->stamp_cap, np, sizeof *g->stamp) ||
-        !tt__grow((void **)&g->plan, &g->plan_cap, 2 * (n / W + 1), sizeof *g->plan))
+    if (!tt__grow((void **)&g->scr.stamp, &g->scr.stamp_cap, np, sizeof *g->scr.stamp) ||
+        !tt__grow((void **)&g->scr.plan, &g->scr.plan_cap, 2 * (n / W + 1), sizeof *g->scr.plan))
         return false;
-    if (!tt__rows_reserve(&g->pk, &g->pk_cap, np)) return false;
-    if (n > g->hot_cap) { /* one block: four double arrays, then two uint32 ones */
+    if (!tt__rows_reserve(&g->scr.pk, &g->scr.pk_cap, np)) return false;
+    if (n > g->scr.hot_cap) { /* one block: four double arrays, then two uint32 ones */
         uint32_t cap = n > UINT32_MAX / 2 ? n : n + n / 2;
         double *h = malloc((size_t)cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)));
         if (!h) return false;
-        free(g->h_lo);
-        g->h_lo = h;
-        g->h_hi = h + cap;
-        g->h_k = h + 2 * (size_t)cap;
-        g->h_alpha = h + 3 * (size_t)cap;
-        g->h_ra = (uint32_t *)(h + 4 * (size_t)cap);
-        g->h_rb = g->h_ra + cap;
-        g->hot_cap = cap;
+        free(g->scr.h_lo);
+        g->scr.h_lo = h;
+        g->scr.h_hi = h + cap;
+        g->scr.h_k = h + 2 * (size_t)cap;
+        g->scr.h_alpha = h + 3 * (size_t)cap;
+        g->scr.h_ra = (uint32_t *)(h + 4 * (size_t)cap);
+        g->scr.h_rb = g->scr.h_ra + cap;
+        g->scr.hot_cap = cap;
     }
     return true;
 }
@@ -127,17 +127,17 @@ static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
     }
     if (!plan_reserve(g, n, np, W)) return false;
     /* stamp[p]: 1 + the last link naming p; done: links planned; r, s: first link of the run, of the block */
-    uint32_t *stamp = g->stamp, *plan = g->plan, m = 0, done = 0, r = 0, s = 0;
+    uint32_t *stamp = g->scr.stamp, *plan = g->scr.plan, m = 0, done = 0, r = 0, s = 0;
     memset(stamp, 0, (size_t)np * sizeof *stamp);
     for (uint32_t j = 0; j < n; j++) {
         const tt__dist *d = &g->dist[j];
         const uint32_t a = d->a, b = d->b;
-        g->h_lo[j] = d->lo;
-        g->h_hi[j] = d->hi;
-        g->h_k[j] = d->k;
-        g->h_alpha[j] = d->alpha;
-        g->h_ra[j] = 4 * a; /* indices < 2^24 (TT_HANDLE_MAX_SLOTS): no overflow */
-        g->h_rb[j] = 4 * b;
+        g->scr.h_lo[j] = d->lo;
+        g->scr.h_hi[j] = d->hi;
+        g->scr.h_k[j] = d->k;
+        g->scr.h_alpha[j] = d->alpha;
+        g->scr.h_ra[j] = 4 * a; /* indices < 2^24 (TT_HANDLE_MAX_SLOTS): no overflow */
+        g->scr.h_rb[j] = 4 * b;
         const uint32_t lim = s - r >= (D - 1) * W ? s - (D - 1) * W : r; /* j must share no particle with [lim, j) */
         uint32_t k1 = stamp[a] > stamp[b] ? stamp[a] : stamp[b];
         if (a == b) k1 = j + 1; /* never made, but then no lane may hold it */
@@ -159,10 +159,10 @@ static bool plan_build(tt__cgroup *g, uint32_t W, uint32_t D)
         plan[m++] = n - done;
         plan[m++] = 0;
     }
-    g->nplan = m;
-    g->plan_w = W;
-    g->plan_np = np;
-    g->plan_ok = true;
+    g->scr.nplan = m;
+    g->scr.plan_w = W;
+    g->scr.plan_np = np;
+    g->scr.plan_ok = true;
     return true;
 }
 
@@ -326,24 +326,24 @@ static const run_fn runs_avx512[4] = {run_avx512_gg, run_avx512_gr, run_avx512_x
  * stay live until sweeps_done (saves ~8 % of a 128² cloth step). */
 TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const run_fn *runs, bool keep)
 {
-    double *pk = g->pk;
-    if (!g->pk_live) tt__rows_pack(pk, w->px, w->py, w->inv_mass, g->plan_np);
+    double *pk = g->scr.pk;
+    if (!g->scr.pk_live) tt__rows_pack(pk, w->px, w->py, w->inv_mass, g->scr.plan_np);
     const int xpbd = g->nxpbd > 0; /* else no lane has alpha > 0: the kernels without that branch */
     double err = 0.0;
     uint32_t i = 0;
-    for (uint32_t k = 0; k < g->nplan; k += 2) {
-        const uint32_t ns = g->plan[k], nb = g->plan[k + 1] & ~PLAN_RIGID;
+    for (uint32_t k = 0; k < g->scr.nplan; k += 2) {
+        const uint32_t ns = g->scr.plan[k], nb = g->scr.plan[k + 1] & ~PLAN_RIGID;
         err = sweep_distance(w, g, h, false, pk, pk + 1, pk + 2, 4, i, i + ns, err);
         i += ns;
         if (!nb) continue;
-        const kern_in in = {pk, g->h_lo + i, g->h_hi + i, g->h_k + i, g->h_alpha + i, g->h_ra + i, g->h_rb + i,
-                            g->dx + i, 1.0 / (h * h), g->first_sweep};
-        double e = runs[2 * xpbd + (g->plan[k + 1] >= PLAN_RIGID)](&in, nb);
+        const kern_in in = {pk, g->scr.h_lo + i, g->scr.h_hi + i, g->scr.h_k + i, g->scr.h_alpha + i, g->scr.h_ra + i, g->scr.h_rb + i,
+                            g->dx + i, 1.0 / (h * h), g->scr.first_sweep};
+        double e = runs[2 * xpbd + (g->scr.plan[k + 1] >= PLAN_RIGID)](&in, nb);
         if (e > err) err = e; /* a max: the order it is taken in does not matter */
         i += 4 * nb;
     }
-    g->pk_live = keep;
-    if (!keep) tt__rows_unpack(pk, w->px, w->py, g->plan_np);
+    g->scr.pk_live = keep;
+    if (!keep) tt__rows_unpack(pk, w->px, w->py, g->scr.plan_np);
     return err;
 }
 #endif
@@ -352,11 +352,11 @@ TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const 
 static void rows_release(tt_world *w, tt__cgroup *g)
 {
 #ifdef TT_SIMD_X86
-    if (g->pk_live) tt__rows_unpack(g->pk, w->px, w->py, g->plan_np);
+    if (g->scr.pk_live) tt__rows_unpack(g->scr.pk, w->px, w->py, g->scr.plan_np);
 #else
     (void)w;
 #endif
-    g->pk_live = false;
+    g->scr.pk_live = false;
 }
 
 void tt__cgroup_sweeps_done(tt_world *w, void *self) { rows_release(w, self); }
@@ -367,13 +367,13 @@ void tt__cgroup_sweeps_done(tt_world *w, void *self) { rows_release(w, self); }
 bool tt__distance_plan_reserve(tt_world *w, tt__cgroup *g)
 {
     if (w->order != TT_GAUSS_SEIDEL || tt__simd_kind(g->simd) == TT__SIMD_SCALAR || g->ndist < 8) return true;
-    return (g->plan_ok && g->plan_w == 4) || plan_build(g, 4, 2);
+    return (g->scr.plan_ok && g->scr.plan_w == 4) || plan_build(g, 4, 2);
 }
 
 double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h)
 {
     uint8_t kind = tt__simd_kind(g->simd);
-    if (kind != TT__SIMD_SCALAR && g->ndist >= 8 && !(g->plan_ok && g->plan_w == 4)) {
+    if (kind != TT__SIMD_SCALAR && g->ndist >= 8 && !(g->scr.plan_ok && g->scr.plan_w == 4)) {
         rows_release(w, g); /* a new plan may move the rows */
         if (!plan_build(g, 4, 2)) kind = TT__SIMD_SCALAR;
     }

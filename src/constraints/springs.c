@@ -177,8 +177,5 @@ void tt__springs_free(tt_world *w)
 {
     free(w->springs);
     w->springs = NULL;
-    free(w->ends);
-    w->ends = NULL;
-    w->ends_cap = 0;
     tt__pool_destroy(&w->spool);
 }

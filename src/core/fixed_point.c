@@ -55,8 +55,8 @@ void tt__fixed_after_solve(tt_world *w)
         if (w->inv_mass[i] == 0.0) continue;
         double x = tt__fixed_snap(q, w->px[i]), y = tt__fixed_snap(q, w->py[i]);
         if (TT_UNLIKELY(!(fabs(x) <= r && fabs(y) <= r))) {
-            x = w->qx[i] = w->bx[i];
-            y = w->qy[i] = w->by[i];
+            x = w->qx[i] = w->scr.bx[i];
+            y = w->qy[i] = w->scr.by[i];
             w->stats.diverged++;
         }
         w->px[i] = x;

@@ -107,14 +107,14 @@ static uint32_t ends_accel(tt_world *w, double *ax, double *ay)
     double t0 = tt__now_ms();
     uint32_t k = 0;
     for (uint32_t s = 0; s < w->spool.count; s++)
-        if (w->springs[s].alive) w->ends[k++] = w->springs[s].a, w->ends[k++] = w->springs[s].b;
-    qsort(w->ends, k, sizeof *w->ends, cmp_u32);
+        if (w->springs[s].alive) w->scr.ends[k++] = w->springs[s].a, w->scr.ends[k++] = w->springs[s].b;
+    qsort(w->scr.ends, k, sizeof *w->scr.ends, cmp_u32);
     uint32_t m = 0;
     for (uint32_t j = 0; j < k; j++)
-        if (m == 0 || w->ends[j] != w->ends[m - 1]) w->ends[m++] = w->ends[j];
+        if (m == 0 || w->scr.ends[j] != w->scr.ends[m - 1]) w->scr.ends[m++] = w->scr.ends[j];
     const double *inv = w->inv_mass;
     for (uint32_t j = 0; j < m; j++) {
-        const uint32_t i = w->ends[j];
+        const uint32_t i = w->scr.ends[j];
         if (inv[i] == 0.0) ax[i] = ay[i] = 0.0;
         else ax[i] = w->gravity.x + inv[i] * w->wind.x, ay[i] = w->gravity.y + inv[i] * w->wind.y;
     }
@@ -158,7 +158,7 @@ static uint32_t verlet_few(tt_world *w, double dt)
 {
     double *ax = tt__scratch(w, TT_SCRATCH_AX), *ay = tt__scratch(w, TT_SCRATCH_AY);
     if (!ax || !ay) return 0; /* reserved before the step: not reached */
-    const uint32_t m = ends_accel(w, ax, ay), *ends = w->ends;
+    const uint32_t m = ends_accel(w, ax, ay), *ends = w->scr.ends;
     const double *inv = w->inv_mass;
     const double cx = w->gravity.x + w->wind.x, cy = w->gravity.y + w->wind.y;
     for (uint32_t k = 0; k < w->fresh_count; k++) { /* as in verlet() */
@@ -185,7 +185,7 @@ static uint32_t verlet_few(tt_world *w, double dt)
 
 static uint32_t verlet(tt_world *w, double dt, bool forces)
 {
-    if (forces && few_forces(w) && w->ends_cap >= 2 * w->springs_alive) return verlet_few(w, dt);
+    if (forces && few_forces(w) && w->scr.ends_cap >= 2 * w->springs_alive) return verlet_few(w, dt);
     const uint32_t n = w->ppool.count;
     double *px = w->px, *py = w->py, *qx = w->qx, *qy = w->qy;
     const double *inv = w->inv_mass;
@@ -398,11 +398,11 @@ bool tt__integrate_reserve(tt_world *w)
 {
     if (!tt__has_forces(w)) return true; /* gravity alone needs no arrays */
     if (w->ppool.count == 0) return true; /* nothing to integrate: no arrays (tt__scratch gives NULL for none) */
-    if (few_forces(w) && w->ends_cap < 2 * w->springs_alive) {
-        uint32_t *e = realloc(w->ends, (size_t)w->spool.count * 2 * sizeof *e);
+    if (few_forces(w) && w->scr.ends_cap < 2 * w->springs_alive) {
+        uint32_t *e = realloc(w->scr.ends, (size_t)w->spool.count * 2 * sizeof *e);
         if (!e) return false;
-        w->ends = e;
-        w->ends_cap = 2 * w->spool.count;
+        w->scr.ends = e;
+        w->scr.ends_cap = 2 * w->spool.count;
     }
     const int stages = w->integrator == TT_RK4 ? 8 : w->integrator == TT_LEAPFROG ? 2 : 0;
     if (!tt__scratch(w, TT_SCRATCH_AX) || !tt__scratch(w, TT_SCRATCH_AY)) return false;

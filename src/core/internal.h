@@ -109,6 +109,10 @@ typedef struct tt__group_ops {
     void (*undo)(tt_world *w, void *self);
     bool (*after_reserve)(tt_world *w, void *self);
     size_t (*memory)(const tt_world *w, const void *self);             /* bytes held */
+    /* optional: frees the group's per-step scratch between two steps (the
+     * next step's reserve sizes it again), changing nothing else: what the
+     * test of the split (tests/core/test_scratch.c) drops */
+    void (*scratch_free)(tt_world *w, void *self);
     void (*destroy)(tt_world *w, void *self);
 } tt__group_ops;
 
@@ -146,6 +150,25 @@ typedef struct tt__undo {
     uint32_t fresh_count;
 } tt__undo;
 
+/* What a step works in, apart from the world's state: neither saved,
+ * hashed nor restored (a restore keeps the world's own), sized before each
+ * step from the world's counts and rewritten before it is read, so that
+ * its loss between two steps (tt__world_scratch_free) changes nothing
+ * (tests/core/test_scratch.c). Between steps undo.on is false. */
+typedef struct tt__world_scratch {
+    double *buf[TT_SCRATCH_COUNT]; /* integrators' arrays (tt__scratch) */
+    uint32_t buf_cap[TT_SCRATCH_COUNT];
+    double *jx, *jy;      /* Jacobi: summed corrections per particle (only while sweeping Jacobi) */
+    uint32_t *jn;         /* Jacobi: how many corrections each particle got */
+    uint32_t jcap;
+    double *bx, *by;      /* positions before the sweeps: the velocity fix-up and the guard's fallback */
+    uint32_t bcap;
+    uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */
+    const char *step_oom; /* what memory was refused inside the step (tt__step_oom), NULL: none */
+    uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
+    tt__undo undo;        /* the world as the step began (step_undo.c) */
+} tt__world_scratch;
+
 /* What of a world is state (saved, restored, hashed) and what is per-step
  * scratch (rebuilt) is decided in one place per part: snapshot.c's
  * save_settings/save_particles/save_springs for this struct, each group's
@@ -175,31 +198,21 @@ struct tt_world {
     double *fx, *fy;      /* force accumulator (apply_force) */
     bool forces_pending;  /* some force was applied since the last step */
     uint64_t *user;
-    double *scratch[TT_SCRATCH_COUNT];
-    uint32_t scratch_cap[TT_SCRATCH_COUNT];
     double *ox, *oy;      /* interpolation.c: positions as the last step began; NULL while not asked for */
     uint32_t *fresh;      /* Verlet particles whose velocity was set exactly since the last step */
     uint32_t fresh_count, fresh_cap;
 
     /* relaxation solver (solver.c) */
     uint32_t substeps, iterations;
-    const char *step_oom; /* what memory was refused inside the step (tt__step_oom), NULL: none */
-    uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
     double tolerance;
     tt_solver_order order;
     tt__group groups[TT_MAX_GROUPS];
     int group_count;
-    double *jx, *jy;      /* Jacobi: summed corrections per particle (only while sweeping Jacobi) */
-    uint32_t *jn;         /* Jacobi: how many corrections each particle got */
-    uint32_t jcap;
-    double *bx, *by;      /* positions before the sweeps, for the velocity fix-up of non-Verlet integrators */
-    uint32_t bcap;
 
     /* springs */
     tt__pool spool;
     tt__spring *springs;
     uint32_t scap, springs_alive;
-    uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */
     /* Removing a particle reaches its springs through this (set by
      * tt_world_create), so particles.c does not depend on springs.c. */
     void (*springs_detach)(tt_world *w, uint32_t particle);
@@ -213,12 +226,16 @@ struct tt_world {
     tt_journal *journal;
     const tt__journal_hooks *journal_hooks;
 
-    tt__undo undo;        /* per-step scratch: the world as the step began (step_undo.c) */
+    tt__world_scratch scr; /* the step's scratch, not state */
 
     tt_stats stats;
     uint64_t epoch;       /* bumped when particles appear, move or change radius outside a step, and by each step (query caches) */
     char error[256];
 };
+
+/* The step's scratch freed, the world's and every group's (their
+ * scratch_free hooks): the next step sizes it again (world.c). */
+void tt__world_scratch_free(tt_world *w);
 
 /* A new world from a stream (snapshot.c), its epoch given: a world that is
  * to take another's place (tt__world_take) needs a later epoch than that
@@ -299,7 +316,7 @@ void tt__undo_mark(tt_world *w);
 void tt__undo_take_flags(tt_world *w);
 static inline void tt__undo_flags(tt_world *w)
 {
-    if (TT_UNLIKELY(w->undo.on && !w->undo.flags_taken)) tt__undo_take_flags(w);
+    if (TT_UNLIKELY(w->scr.undo.on && !w->scr.undo.flags_taken)) tt__undo_take_flags(w);
 }
 bool tt__undo_after_reserve(tt_world *w);
 void tt__undo_restore(tt_world *w);
@@ -344,10 +361,10 @@ void tt__solver_free(tt_world *w);
  * (inverse mass 0) must not be passed a non-zero move. */
 static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
 {
-    if (w->jn && w->order == TT_JACOBI) {
-        w->jx[i] += dx;
-        w->jy[i] += dy;
-        w->jn[i]++;
+    if (w->scr.jn && w->order == TT_JACOBI) {
+        w->scr.jx[i] += dx;
+        w->scr.jy[i] += dy;
+        w->scr.jn[i]++;
     } else {
         w->px[i] += dx;
         w->py[i] += dy;

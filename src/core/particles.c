@@ -47,7 +47,6 @@ void tt__particles_free(tt_world *w)
     free(w->flags); free(w->category); free(w->mask);
     free(w->fx); free(w->fy); free(w->user); free(w->fresh);
     free(w->ox); free(w->oy);
-    for (int k = 0; k < TT_SCRATCH_COUNT; k++) free(w->scratch[k]);
     tt__pool_destroy(&w->ppool);
 }
 
@@ -75,13 +74,13 @@ static tt_result need_user(tt_world *w)
 double *tt__scratch(tt_world *w, int which)
 {
     uint32_t n = w->ppool.count;
-    if (w->scratch_cap[which] < n) {
-        double *p = realloc(w->scratch[which], (size_t)w->pcap * sizeof(double));
+    if (w->scr.buf_cap[which] < n) {
+        double *p = realloc(w->scr.buf[which], (size_t)w->pcap * sizeof(double));
         if (!p) return NULL;
-        w->scratch[which] = p;
-        w->scratch_cap[which] = w->pcap;
+        w->scr.buf[which] = p;
+        w->scr.buf_cap[which] = w->pcap;
     }
-    return w->scratch[which];
+    return w->scr.buf[which];
 }
 
 uint32_t tt__particle_room(const tt_world *w)

@@ -101,7 +101,7 @@ static inline bool dynamic(const tt_world *w, uint32_t i)
 
 static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
 {
-    if (w->undo.on && !s->undo.taken) tt__sleep_undo_take(w, s);
+    if (w->scr.undo.on && !s->undo.taken) tt__sleep_undo_take(w, s);
     s->island[i] = 0;
     s->rest[i] = s->held[i] = 0.0;
     s->ax[i] = w->px[i];
@@ -192,7 +192,7 @@ static void begin(tt_world *w, void *self, double h)
 {
     (void)h;
     tt__sleep *s = self;
-    if (w->substep != 0 || s->asleep == 0) return;
+    if (w->scr.substep != 0 || s->asleep == 0) return;
     const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
     if (c && c->any_moved)
         for (uint32_t k = 0; k < c->nprim; k++) {

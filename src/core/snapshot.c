@@ -432,6 +432,8 @@ void tt__world_take(tt_world *w, tt_world *fresh)
     /* the world keeps its address (scripts and the binding hold it); what it held goes with the husk */
     tt_world old = *w;
     *w = *fresh;
+    w->scr = old.scr; /* scratch, not state: the world keeps its buffers, and the husk takes fresh's */
+    old.scr = fresh->scr;
     memcpy(w->error, old.error, sizeof w->error);
     w->journal = old.journal; /* a journal records the change, and goes on */
     w->journal_hooks = old.journal_hooks;

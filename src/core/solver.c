@@ -22,9 +22,9 @@ static bool grow_to(void **p, size_t elem, uint32_t n)
 static void jacobi_zero(tt_world *w)
 {
     uint32_t n = w->ppool.count;
-    tt__zero(w->jx, n * sizeof(double));
-    tt__zero(w->jy, n * sizeof(double));
-    tt__zero(w->jn, n * sizeof(uint32_t));
+    tt__zero(w->scr.jx, n * sizeof(double));
+    tt__zero(w->scr.jy, n * sizeof(double));
+    tt__zero(w->scr.jn, n * sizeof(uint32_t));
 }
 
 bool tt__solver_reserve(tt_world *w)
@@ -32,16 +32,16 @@ bool tt__solver_reserve(tt_world *w)
     if (w->group_count == 0) return true;
     const uint32_t n = w->ppool.count;
     const bool sweeps = tt__groups_relaxing(w) > 0; /* sleeping's group alone needs no sweep arrays */
-    if (sweeps && w->order == TT_JACOBI && w->jcap < n) {
-        if (!grow_to((void **)&w->jx, sizeof(double), w->pcap) || !grow_to((void **)&w->jy, sizeof(double), w->pcap) ||
-            !grow_to((void **)&w->jn, sizeof(uint32_t), w->pcap))
+    if (sweeps && w->order == TT_JACOBI && w->scr.jcap < n) {
+        if (!grow_to((void **)&w->scr.jx, sizeof(double), w->pcap) || !grow_to((void **)&w->scr.jy, sizeof(double), w->pcap) ||
+            !grow_to((void **)&w->scr.jn, sizeof(uint32_t), w->pcap))
             return false;
-        w->jcap = w->pcap;
+        w->scr.jcap = w->pcap;
     }
-    if (sweeps && w->bcap < n) { /* every integrator: the guard's start of the substep */
-        if (!grow_to((void **)&w->bx, sizeof(double), w->pcap) || !grow_to((void **)&w->by, sizeof(double), w->pcap))
+    if (sweeps && w->scr.bcap < n) { /* every integrator: the guard's start of the substep */
+        if (!grow_to((void **)&w->scr.bx, sizeof(double), w->pcap) || !grow_to((void **)&w->scr.by, sizeof(double), w->pcap))
             return false;
-        w->bcap = w->pcap;
+        w->scr.bcap = w->pcap;
     }
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->reserve && !w->groups[g].ops->reserve(w, w->groups[g].self)) return false;
@@ -52,12 +52,12 @@ static void jacobi_apply(tt_world *w)
 {
     const uint32_t n = w->ppool.count;
     for (uint32_t i = 0; i < n; i++) {
-        if (!w->jn[i]) continue;
-        double s = 1.0 / w->jn[i];
-        w->px[i] += w->jx[i] * s;
-        w->py[i] += w->jy[i] * s;
-        w->jx[i] = w->jy[i] = 0.0;
-        w->jn[i] = 0;
+        if (!w->scr.jn[i]) continue;
+        double s = 1.0 / w->scr.jn[i];
+        w->px[i] += w->scr.jx[i] * s;
+        w->py[i] += w->scr.jy[i] * s;
+        w->scr.jx[i] = w->scr.jy[i] = 0.0;
+        w->scr.jn[i] = 0;
     }
 }
 
@@ -144,11 +144,11 @@ static void guard(tt_world *w, double h)
     for (uint32_t i = 0; i < n; i++) {
         if (w->inv_mass[i] == 0.0 || !past_guard(w, i, verlet, vmax)) continue;
         if (verlet) { /* stopped: x_old = x, at the start Verlet's x_old had before the velocity passes */
-            w->px[i] = w->qx[i] = w->bx[i];
-            w->py[i] = w->qy[i] = w->by[i];
+            w->px[i] = w->qx[i] = w->scr.bx[i];
+            w->py[i] = w->qy[i] = w->scr.by[i];
         } else {
-            w->px[i] = w->bx[i];
-            w->py[i] = w->by[i];
+            w->px[i] = w->scr.bx[i];
+            w->py[i] = w->scr.by[i];
             w->qx[i] = w->qy[i] = 0.0;
         }
         for (int g = 0; g < w->group_count; g++)
@@ -207,15 +207,15 @@ void tt__solve(tt_world *w, double h)
      * from a position that may be the very one that passed the guard, so
      * Verlet keeps its own copy. */
     const bool verlet = w->integrator == TT_VERLET, fix = !verlet;
-    tt__copy(w->bx, verlet ? w->qx : w->px, n * sizeof(double));
-    tt__copy(w->by, verlet ? w->qy : w->py, n * sizeof(double));
+    tt__copy(w->scr.bx, verlet ? w->qx : w->px, n * sizeof(double));
+    tt__copy(w->scr.by, verlet ? w->qy : w->py, n * sizeof(double));
     const bool jacobi = w->order == TT_JACOBI;
     if (jacobi) jacobi_zero(w);
-    if (!jacobi && w->jn) { /* tt__correct reads jn to pick the mode */
-        free(w->jx); free(w->jy); free(w->jn);
-        w->jx = w->jy = NULL;
-        w->jn = NULL;
-        w->jcap = 0;
+    if (!jacobi && w->scr.jn) { /* tt__correct reads jn to pick the mode */
+        free(w->scr.jx); free(w->scr.jy); free(w->scr.jn);
+        w->scr.jx = w->scr.jy = NULL;
+        w->scr.jn = NULL;
+        w->scr.jcap = 0;
     }
     double err = 0.0;
     uint32_t it = 0;
@@ -240,8 +240,8 @@ void tt__solve(tt_world *w, double h)
         const double inv_h = 1.0 / h;
         for (uint32_t i = 0; i < n; i++) {
             if (w->inv_mass[i] == 0.0) continue;
-            w->qx[i] += (w->px[i] - w->bx[i]) * inv_h;
-            w->qy[i] += (w->py[i] - w->by[i]) * inv_h;
+            w->qx[i] += (w->px[i] - w->scr.bx[i]) * inv_h;
+            w->qy[i] += (w->py[i] - w->scr.by[i]) * inv_h;
         }
     }
     for (int g = 0; g < w->group_count; g++)
@@ -272,7 +272,7 @@ void tt__solver_particle_removed(tt_world *w, uint32_t index)
 
 size_t tt__solver_memory(const tt_world *w)
 {
-    size_t bytes = (size_t)w->jcap * (2 * sizeof(double) + sizeof(uint32_t)) + (size_t)w->bcap * 2 * sizeof(double);
+    size_t bytes = (size_t)w->scr.jcap * (2 * sizeof(double) + sizeof(uint32_t)) + (size_t)w->scr.bcap * 2 * sizeof(double);
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->memory) bytes += w->groups[g].ops->memory(w, w->groups[g].self);
     return bytes;
@@ -283,6 +283,4 @@ void tt__solver_free(tt_world *w)
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->destroy) w->groups[g].ops->destroy(w, w->groups[g].self);
     w->group_count = 0;
-    free(w->jx); free(w->jy); free(w->jn);
-    free(w->bx); free(w->by);
 }

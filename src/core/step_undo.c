@@ -43,7 +43,7 @@ static bool grow_arrays(tt__undo *u, uint32_t cap)
 
 bool tt__undo_reserve(tt_world *w)
 {
-    tt__undo *u = &w->undo;
+    tt__undo *u = &w->scr.undo;
     u->on = false;
     if (!fallible(w)) return true;
     if (!grow_arrays(u, w->pcap)) return false;
@@ -56,7 +56,7 @@ bool tt__undo_reserve(tt_world *w)
 
 void tt__undo_mark(tt_world *w)
 {
-    tt__undo *u = &w->undo;
+    tt__undo *u = &w->scr.undo;
     u->on = false;
     u->flags_taken = false;
     if (!fallible(w)) return; /* tt__undo_reserve made the room */
@@ -76,7 +76,7 @@ void tt__undo_mark(tt_world *w)
 
 void tt__undo_take_flags(tt_world *w)
 {
-    tt__undo *u = &w->undo;
+    tt__undo *u = &w->scr.undo;
     tt__copy(u->flags, w->flags, (size_t)w->ppool.count * sizeof *u->flags);
     tt__copy(u->inv_mass, w->inv_mass, (size_t)w->ppool.count * sizeof *u->inv_mass);
     u->flags_taken = true;
@@ -93,7 +93,7 @@ bool tt__undo_after_reserve(tt_world *w)
 
 void tt__undo_restore(tt_world *w)
 {
-    tt__undo *u = &w->undo;
+    tt__undo *u = &w->scr.undo;
     if (!u->on) return;
     const size_t n = (size_t)w->ppool.count * sizeof(double);
     tt__copy(w->px, u->px, n);
@@ -114,7 +114,7 @@ void tt__undo_restore(tt_world *w)
 
 void tt__undo_free(tt_world *w)
 {
-    tt__undo *u = &w->undo;
+    tt__undo *u = &w->scr.undo;
     free(u->px); free(u->py); free(u->qx); free(u->qy);
     free(u->flags); free(u->inv_mass);
     *u = (tt__undo){0};
@@ -122,5 +122,5 @@ void tt__undo_free(tt_world *w)
 
 size_t tt__undo_bytes(const tt_world *w)
 {
-    return (size_t)w->undo.cap * (5 * sizeof(double) + sizeof(uint16_t));
+    return (size_t)w->scr.undo.cap * (5 * sizeof(double) + sizeof(uint16_t));
 }

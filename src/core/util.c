@@ -34,7 +34,7 @@ double tt__now_ms(void)
 
 void tt__step_oom(tt_world *w, const char *what)
 {
-    if (!w->step_oom) w->step_oom = what; /* the first says the most */
+    if (!w->scr.step_oom) w->scr.step_oom = what; /* the first says the most */
 }
 
 bool tt__grow(void **p, uint32_t *cap, uint32_t need, size_t elem)

@@ -127,8 +127,21 @@ void tt_world_destroy(tt_world *w)
     tt__solver_free(w);
     tt__particles_free(w);
     tt__springs_free(w);
-    tt__undo_free(w);
+    tt__world_scratch_free(w);
     free(w);
+}
+
+void tt__world_scratch_free(tt_world *w)
+{
+    tt__world_scratch *s = &w->scr;
+    for (int k = 0; k < TT_SCRATCH_COUNT; k++) free(s->buf[k]);
+    free(s->jx); free(s->jy); free(s->jn);
+    free(s->bx); free(s->by);
+    free(s->ends);
+    tt__undo_free(w);
+    *s = (tt__world_scratch){0};
+    for (int g = 0; g < w->group_count; g++)
+        if (w->groups[g].ops->scratch_free) w->groups[g].ops->scratch_free(w, w->groups[g].self);
 }
 
 /* The pipeline, top to bottom. Each stage runs only if the world uses it;
@@ -143,9 +156,9 @@ tt_result tt_world_step(tt_world *w, double dt)
     /* Everything the step's counts call for, before anything changes. */
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w) || !tt__undo_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
-    w->step_oom = NULL;
+    w->scr.step_oom = NULL;
     tt__undo_mark(w); /* what the step changes, where it may run out of memory half way */
-    if (w->ox && !w->undo.on) tt__interp_step_begin(w);
+    if (w->ox && !w->scr.undo.on) tt__interp_step_begin(w);
 
     double t0 = tt__now_ms();
     memset(w->stats.stage_ms, 0, sizeof w->stats.stage_ms);
@@ -156,24 +169,24 @@ tt_result tt_world_step(tt_world *w, double dt)
 
     const double h = dt / w->substeps;
     for (uint32_t s = 0; s < w->substeps; s++) {
-        w->substep = s;
+        w->scr.substep = s;
         tt__integrate(w, h); /* forces are evaluated inside, as often as the integrator needs */
         w->dt_prev = h;      /* from here on x − x_old spans h: velocity reads inside the solve are exact */
         tt__solve(w, h);     /* detect → relax → velocity pass; nothing when no group is registered */
         if (w->fixed_point != 0.0 && w->group_count) tt__fixed_after_solve(w);
-        if (w->step_oom) break; /* the rest would be undone */
+        if (w->scr.step_oom) break; /* the rest would be undone */
     }
-    if (!w->step_oom && !tt__undo_after_reserve(w)) tt__step_oom(w, "the step's events");
-    if (w->step_oom) {
+    if (!w->scr.step_oom && !tt__undo_after_reserve(w)) tt__step_oom(w, "the step's events");
+    if (w->scr.step_oom) {
         tt__undo_restore(w);
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory inside the step for %s; the world is as it "
-                        "was before the step", w->step_oom);
+                        "was before the step", w->scr.step_oom);
     }
-    if (w->ox && w->undo.on) { /* the positions as the step began, kept in the undo */
-        tt__copy(w->ox, w->undo.px, (size_t)w->ppool.count * sizeof *w->ox);
-        tt__copy(w->oy, w->undo.py, (size_t)w->ppool.count * sizeof *w->oy);
+    if (w->ox && w->scr.undo.on) { /* the positions as the step began, kept in the undo */
+        tt__copy(w->ox, w->scr.undo.px, (size_t)w->ppool.count * sizeof *w->ox);
+        tt__copy(w->oy, w->scr.undo.py, (size_t)w->ppool.count * sizeof *w->oy);
     }
-    w->undo.on = false; /* nothing after this can fail */
+    w->scr.undo.on = false; /* nothing after this can fail */
     tt__solver_after_step(w); /* events, gathered outside every loop */
 
     if (w->forces_pending) {
@@ -349,8 +362,8 @@ tt_result tt_world_get_memory(const tt_world *w, tt_memory *out)
     if (w->ox) per += 2 * sizeof(double);
     size_t particles = per * w->pcap + tt__pool_bytes(&w->ppool);
     size_t total = sizeof *w + particles;
-    for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scratch_cap[k] * sizeof(double);
-    total += (size_t)w->fresh_cap * sizeof(uint32_t) + (size_t)w->ends_cap * sizeof(uint32_t);
+    for (int k = 0; k < TT_SCRATCH_COUNT; k++) total += (size_t)w->scr.buf_cap[k] * sizeof(double);
+    total += (size_t)w->fresh_cap * sizeof(uint32_t) + (size_t)w->scr.ends_cap * sizeof(uint32_t);
     total += (size_t)w->scap * sizeof(tt__spring) + tt__pool_bytes(&w->spool);
     total += tt__solver_memory(w) + tt__undo_bytes(w);
     out->total = total;

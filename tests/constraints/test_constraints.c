@@ -836,8 +836,8 @@ static uint64_t simd_scene(tt__simd_mode mode, bool with_pin, uint32_t *vec, uin
     }
     const tt__cgroup *g = tt__cgroup_peek(w);
     *vec = 0;
-    if (g->plan_ok && mode != TT__SIMD_SCALAR)
-        for (uint32_t k = 0; k < g->nplan; k += 2) *vec += 4 * (g->plan[k + 1] & 0x7fffffffu);
+    if (g->scr.plan_ok && mode != TT__SIMD_SCALAR)
+        for (uint32_t k = 0; k < g->scr.nplan; k += 2) *vec += 4 * (g->scr.plan[k + 1] & 0x7fffffffu);
     h ^= tt_world_hash(w);
     tt_world_destroy(w);
     return h;
@@ -937,7 +937,7 @@ TEST(coincident_pairs_separate_the_same_in_vector_lanes)
             for (int k = 0; k < N; k++) ENSURE_NEAR(dist(w, ps[2 * k], ps[2 * k + 1]), 1.0, x ? 1e-2 : 1e-12);
             const tt__cgroup *g = tt__cgroup_peek(w);
             uint32_t vec = 0;
-            for (uint32_t k = 0; g->plan_ok && k < g->nplan; k += 2) vec += 4 * (g->plan[k + 1] & 0x7fffffffu);
+            for (uint32_t k = 0; g->scr.plan_ok && k < g->scr.nplan; k += 2) vec += 4 * (g->scr.plan[k + 1] & 0x7fffffffu);
             ENSURE(m == 0 || vec >= N / 2); /* not vacuous: the vector blocks had such pairs */
             for (int s = 0; s < 10; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
             const uint64_t h = tt_world_hash(w);
