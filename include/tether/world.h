@@ -108,10 +108,14 @@ TT_API void tt_world_destroy(tt_world *w);
 /// before it (its hash, and every step after): before the step, or inside
 /// it when more contacts than ever before need more room (tt_last_error
 /// says which and for what). The same step may then be tried again. A world
-/// with collisions keeps, for this, room for a copy of what a step changes
+/// whose contacts may need more room inside a step (particle pairs with some
+/// radius above 0, events, bullets, terrain, more than one shape, or a chain
+/// of more than one segment) keeps, for this, room for a copy of what a step changes
 /// (42 bytes a particle; positions and velocities, 32 of them, are copied as
 /// each step begins, flags and inverse masses only by a step that wakes a
-/// sleeper or starts a set velocity).
+/// sleeper or starts a set velocity). Other worlds with collisions need no
+/// copy: a lone shape has room for a contact per particle instead
+/// (72 bytes a particle, written only where contacts occur).
 TT_API tt_result tt_world_step(tt_world *w, double dt);
 
 TT_API tt_result tt_world_set_gravity(tt_world *w, tt_vec2 g);      ///< m/s², finite

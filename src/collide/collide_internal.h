@@ -277,6 +277,11 @@ typedef struct tt__collide {
     float reach_rmax;     /* contact_reach.c: the largest radius, read at reach_epoch over reach_n particles */
     uint32_t reach_n;
     uint64_t reach_epoch;
+    /* contact_undo.c: whether some radius is not zero (tt__grid_any_radius), read at radii_epoch over
+     * radii_n particles; and whether the step about to run has room for all it can need (no undo) */
+    bool radii_any, bounded;
+    uint32_t radii_n;
+    uint64_t radii_epoch;
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
     tt__collide_undo undo;
 } tt__collide;
@@ -311,8 +316,12 @@ void tt__contacts_stopped(tt_world *w, void *self, uint32_t i);
 void tt__contacts_after_step(tt_world *w, void *self);
 size_t tt__contacts_memory(const tt_world *w, const void *self);
 /* The step's undo (contact_undo.c; tt__group_ops), and the room for the
- * events after_step publishes (contact_events.c). */
+ * events after_step publishes (contact_events.c). contacts_bound, last in
+ * contacts_reserve: room for every contact the step can make where that is
+ * bounded and small, then nothing needs undoing (c->bounded); never fails
+ * the reserve (false only for the reserve's own failures, none here). */
 bool tt__contacts_fallible(const tt_world *w, const void *self);
+bool tt__contacts_bound(tt_world *w, tt__collide *c, uint32_t n);
 bool tt__contacts_undo_reserve(tt_world *w, void *self);
 void tt__contacts_undo_mark(tt_world *w, void *self);
 void tt__contacts_undo(tt_world *w, void *self);

@@ -118,7 +118,7 @@ bool tt__contacts_reserve(tt_world *w, void *self)
             c->near_cap = cells;
         }
     }
-    return !pairs || tt__batches_reserve(&c->bat, n);
+    return (!pairs || tt__batches_reserve(&c->bat, n)) && tt__contacts_bound(w, c, n);
 }
 
 /* The velocities and positions the substep starts from (contacts_reserve

@@ -68,6 +68,7 @@ void tt__contacts_after_step(tt_world *w, void *self)
     if (c->s_epoch == w->epoch) c->s_epoch = w->epoch + 1;
     if (c->clear_ok && c->clear_epoch == w->epoch) c->clear_epoch = w->epoch + 1; /* contact_skip.c's bound, likewise */
     if (c->reach_epoch == w->epoch) c->reach_epoch = w->epoch + 1; /* and contact_reach.c's largest radius */
+    if (c->radii_epoch == w->epoch) c->radii_epoch = w->epoch + 1; /* and contact_undo.c's radii above zero */
     c->nevents = 0;
     if (!c->set.events) {
         c->nrec = 0;

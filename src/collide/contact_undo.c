@@ -10,13 +10,57 @@
 
 #include <stdlib.h>
 
-/* Whether begin detects anything: then the contact arrays may have to grow
- * inside the step. */
+/* Whether begin detects anything that may make the contact arrays grow
+ * inside the step; contacts_bound reserved the rest. */
 bool tt__contacts_fallible(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__collide *c = self;
-    return c->set.particles || c->nprim || c->terr;
+    return (c->set.particles || c->nprim || c->terr) && !c->bounded;
+}
+
+/* Whether no radius is above zero, as detect_pairs reads it (its bits):
+ * then no pair can be found, whatever the broadphase. Radii change only
+ * between steps and bump the epoch (after_step carries the answer past the
+ * step's own bump), so the scan runs once, not per step. */
+static bool points_only(const tt_world *w, tt__collide *c, uint32_t n)
+{
+    if (c->radii_epoch != w->epoch || c->radii_n != n) {
+        c->radii_any = tt__grid_any_radius(w, n);
+        c->radii_epoch = w->epoch;
+        c->radii_n = n;
+    }
+    return !c->radii_any;
+}
+
+/* The step cannot run out of memory inside, so takes no copies (a world
+ * whose contacts group only detects pays for the copies otherwise, 32
+ * bytes a particle a step), when every buffer a substep may grow has its
+ * room already:
+ * - pairs: none can be found when pairs are off or every radius is zero
+ *   (detect_pairs then builds no grid, probes nothing and plans no batch);
+ * - shape contacts: the static index visits a primitive at most once per
+ *   particle and query (its stamps), and detect_shapes queries once per
+ *   particle a substep, so a substep makes at most n·nprim; room for that
+ *   is made here while it is small (one primitive: 72 bytes a particle,
+ *   address space the contacts write only where they occur, against the
+ *   copies' 42 that are written every step);
+ * - the bottom-up pass (pairs on) grows to the pair list's room + 1, which
+ *   cannot grow in such a step: it must have that room already;
+ * - events (records grow per contact), bullets' sweeps and terrains have no
+ *   such bound: they keep the copies.
+ * The other groups make room for all they can need before the step (the
+ * constraints' break events; sleeping wakes without its list when that
+ * cannot grow), and the events after the step need nrec + nprev = 0. */
+bool tt__contacts_bound(tt_world *w, tt__collide *c, uint32_t n)
+{
+    c->bounded = false;
+    if (c->set.events || c->nbullets || c->terr || c->nprim > 1) return true;
+    if (c->set.particles && (!points_only(w, c, n) || (c->nprim && c->lift_cap <= c->paircap))) return true;
+    if (c->nprim && !tt__grow((void **)&c->sc, &c->sccap, n ? n : 1, sizeof *c->sc))
+        return true; /* no room for all: the copies then, or the undo's own reserve fails the step */
+    c->bounded = true;
+    return true;
 }
 
 static bool ends_valid(const tt_world *w, const tt__collide *c)
