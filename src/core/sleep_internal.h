@@ -37,6 +37,13 @@ static inline uint32_t tt__sleep_covered(const tt_world *w, const tt__sleep *s)
     return w->ppool.count < s->cap ? w->ppool.count : s->cap;
 }
 
+/* The arrays grown to cover n slots; the state freed (sleep_state.c). */
+bool tt__sleep_grow(tt__sleep *s, uint32_t n);
+void tt__sleep_destroy(tt_world *w, void *self);
+/* Its section of the snapshot (sleep_stream.c). */
+void tt__sleep_save(const tt_world *w, const void *self, struct tt__sink *snk);
+void *tt__sleep_load(tt_world *w, struct tt__source *src);
+
 /* The step's undo hooks (sleep_undo.c). */
 bool tt__sleep_undo_reserve(tt_world *w, void *self);
 void tt__sleep_undo_mark(tt_world *w, void *self);
