@@ -118,15 +118,30 @@ void tt__sleep_touch(tt_world *w, uint32_t i)
     wake_listed(w, s);
 }
 
+typedef struct box_ctx {
+    tt_world *w;
+    tt__sleep *s;
+    double lox, loy, hix, hiy;
+} box_ctx;
+
+static void wake_if_touching(void *ctx, uint32_t i)
+{
+    const box_ctx *b = ctx;
+    const double r = b->w->radius[i], x = b->w->px[i], y = b->w->py[i];
+    if (x + r >= b->lox && x - r <= b->hix && y + r >= b->loy && y - r <= b->hiy) list_wake(b->w, b->s, b->s->island[i]);
+}
+
+/* The sleepers near the box come from the sleepers' grid (sleep_grid.c):
+ * a box far from every sleeper costs a few cells, not a pass over the
+ * world; without memory for the grid, the pass. */
 void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double hiy)
 {
     tt__sleep *s = peek(w);
     if (!s || s->asleep == 0) return;
-    for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++) {
-        if (!s->island[i]) continue;
-        const double r = w->radius[i], x = w->px[i], y = w->py[i];
-        if (x + r >= lox && x - r <= hix && y + r >= loy && y - r <= hiy) list_wake(w, s, s->island[i]);
-    }
+    box_ctx b = {w, s, lox, loy, hix, hiy};
+    if (!tt__sleep_grid_visit(w, s, lox, loy, hix, hiy, wake_if_touching, &b))
+        for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++)
+            if (s->island[i]) wake_if_touching(&b, i);
     wake_listed(w, s);
 }
 
@@ -257,6 +272,7 @@ static void fall_asleep(tt_world *w, tt__sleep *s, uint32_t i, uint32_t island)
     s->rest[i] = s->held[i] = 0.0;
     w->flags[i] |= TT__PF_ASLEEP;
     w->inv_mass[i] = 0.0;
+    s->grid.built = false;
     if (w->integrator == TT_VERLET) {
         w->qx[i] = w->px[i];
         w->qy[i] = w->py[i];
@@ -410,7 +426,8 @@ static size_t memory(const tt_world *w, const void *self)
     (void)w;
     const tt__sleep *s = self;
     return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t) +
-           (size_t)s->undo.cap * (4 * sizeof(double) + sizeof(uint32_t));
+           (size_t)s->undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
+           ((size_t)s->grid.cap_cells + s->grid.cap) * sizeof(uint32_t);
 }
 
 static const tt__group_ops sleep_ops = {
