@@ -44,54 +44,7 @@ static const tt__group_ops sleep_ops;
 
 static tt__sleep *peek(const tt_world *w) { return (tt__sleep *)tt__group_find(w, &sleep_ops); }
 
-static bool grow(tt__sleep *s, uint32_t n)
-{
-    if (n <= s->cap) return true;
-    uint32_t cap = s->cap ? s->cap : 64;
-    while (cap < n) cap *= 2;
-    double *r = realloc(s->rest, (size_t)cap * sizeof *r);
-    if (!r) return false;
-    s->rest = r;
-    uint32_t *is = realloc(s->island, (size_t)cap * sizeof *is);
-    if (!is) return false;
-    s->island = is;
-    uint64_t *sn = realloc(s->seen, (size_t)cap * sizeof *sn);
-    if (!sn) return false;
-    s->seen = sn;
-    uint32_t *p = realloc(s->parent, (size_t)cap * sizeof *p);
-    if (!p) return false;
-    s->parent = p;
-    double *m = realloc(s->minrest, (size_t)cap * sizeof *m);
-    if (!m) return false;
-    s->minrest = m;
-    double *hd = realloc(s->held, (size_t)cap * sizeof *hd);
-    if (!hd) return false;
-    s->held = hd;
-    double *x = realloc(s->ax, (size_t)cap * sizeof *x);
-    if (!x) return false;
-    s->ax = x;
-    double *y = realloc(s->ay, (size_t)cap * sizeof *y);
-    if (!y) return false;
-    s->ay = y;
-    uint32_t *hl = realloc(s->holders.list, (size_t)cap * sizeof *hl);
-    if (!hl) return false;
-    s->holders.list = hl;
-    if (s->wake_cap < cap) { /* an island per particle at most: waking at a step allocates nothing */
-        uint32_t *k = realloc(s->wake, (size_t)cap * sizeof *k);
-        if (!k) return false;
-        s->wake = k;
-        s->wake_cap = cap;
-    }
-    for (uint32_t i = s->cap; i < cap; i++) {
-        s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = 0.0;
-        s->island[i] = 0;
-        s->seen[i] = 0;
-    }
-    s->cap = cap;
-    return true;
-}
-
-static bool reserve(tt_world *w, void *self) { return grow(self, w->ppool.count ? w->ppool.count : 1); }
+static bool reserve(tt_world *w, void *self) { return tt__sleep_grow(self, w->ppool.count ? w->ppool.count : 1); }
 
 static inline bool dynamic(const tt_world *w, uint32_t i)
 {
@@ -165,15 +118,30 @@ void tt__sleep_touch(tt_world *w, uint32_t i)
     wake_listed(w, s);
 }
 
+typedef struct box_ctx {
+    tt_world *w;
+    tt__sleep *s;
+    double lox, loy, hix, hiy;
+} box_ctx;
+
+static void wake_if_touching(void *ctx, uint32_t i)
+{
+    const box_ctx *b = ctx;
+    const double r = b->w->radius[i], x = b->w->px[i], y = b->w->py[i];
+    if (x + r >= b->lox && x - r <= b->hix && y + r >= b->loy && y - r <= b->hiy) list_wake(b->w, b->s, b->s->island[i]);
+}
+
+/* The sleepers near the box come from the sleepers' grid (sleep_grid.c):
+ * a box far from every sleeper costs a few cells, not a pass over the
+ * world; without memory for the grid, the pass. */
 void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double hiy)
 {
     tt__sleep *s = peek(w);
     if (!s || s->asleep == 0) return;
-    for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++) {
-        if (!s->island[i]) continue;
-        const double r = w->radius[i], x = w->px[i], y = w->py[i];
-        if (x + r >= lox && x - r <= hix && y + r >= loy && y - r <= hiy) list_wake(w, s, s->island[i]);
-    }
+    box_ctx b = {w, s, lox, loy, hix, hiy};
+    if (!tt__sleep_grid_visit(w, s, lox, loy, hix, hiy, wake_if_touching, &b))
+        for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++)
+            if (s->island[i]) wake_if_touching(&b, i);
     wake_listed(w, s);
 }
 
@@ -268,6 +236,7 @@ static void fall_asleep(tt_world *w, tt__sleep *s, uint32_t i, uint32_t island)
     s->rest[i] = s->held[i] = 0.0;
     w->flags[i] |= TT__PF_ASLEEP;
     w->inv_mass[i] = 0.0;
+    s->grid.built = false;
     if (w->integrator == TT_VERLET) {
         w->qx[i] = w->px[i];
         w->qy[i] = w->py[i];
@@ -336,74 +305,13 @@ static void particle_removed(tt_world *w, void *self, uint32_t i)
     if (i < s->cap) s->rest[i] = s->held[i] = 0.0;
 }
 
-static void save(const tt_world *w, const void *self, tt__sink *snk)
-{
-    const tt__sleep *s = self;
-    tt__put_f64(snk, s->speed);
-    tt__put_f64(snk, s->time);
-    tt__put_u32(snk, s->next_island);
-    for (uint32_t i = 0; i < w->ppool.count; i++) {
-        if (!(w->flags[i] & TT__PF_ALIVE)) continue;
-        tt__put_f64(snk, i < s->cap ? s->rest[i] : 0.0);
-        tt__put_f64(snk, i < s->cap ? s->held[i] : 0.0);
-        tt__put_f64(snk, i < s->cap ? s->ax[i] : 0.0);
-        tt__put_f64(snk, i < s->cap ? s->ay[i] : 0.0);
-        tt__put_u32(snk, i < s->cap ? s->island[i] : 0);
-        tt__put_u32(snk, i < s->cap && s->seen[i] == s->tick); /* held in the last step */
-    }
-}
-
-static void destroy(tt_world *w, void *self)
-{
-    (void)w;
-    tt__sleep *s = self;
-    if (!s) return;
-    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
-    free(s->undo.rest); free(s->undo.held); free(s->undo.ax); free(s->undo.ay); free(s->undo.island);
-    free(s);
-}
-
-static void *load(tt_world *w, tt__source *src)
-{
-    tt__sleep *s = calloc(1, sizeof *s);
-    if (!s || !grow(s, w->ppool.count ? w->ppool.count : 1)) {
-        destroy(w, s);
-        tt__src_fail(src, "out of memory for the sleep state");
-        return NULL;
-    }
-    s->speed = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep speed");
-    s->time = tt__get_num(src, 0.0, TT_MAX_VALUE, "sleep time");
-    s->tick = 2;
-    s->next_island = tt__get_u32(src);
-    if (s->next_island == 0) tt__src_fail(src, "sleep: island counter 0");
-    for (uint32_t i = 0; i < w->ppool.count && !src->failed; i++) {
-        if (!(w->flags[i] & TT__PF_ALIVE)) continue;
-        s->rest[i] = tt__get_num(src, 0.0, TT_MAX_VALUE, "time at rest");
-        s->held[i] = tt__get_num(src, 0.0, TT_MAX_VALUE, "time since the anchor");
-        s->ax[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
-        s->ay[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
-        s->island[i] = tt__get_u32(src);
-        const uint32_t held = tt__get_u32(src);
-        if (held > 1) tt__src_fail(src, "sleep: particle %u held flag %u", i, held);
-        s->seen[i] = held ? 2 : 0;
-        const bool asleep = (w->flags[i] & TT__PF_ASLEEP) != 0;
-        if (asleep != (s->island[i] != 0) || (asleep && (s->rest[i] != 0.0 || s->held[i] != 0.0)))
-            tt__src_fail(src, "sleep: particle %u is %s but its island is %u", i, asleep ? "asleep" : "awake", s->island[i]);
-        s->asleep += asleep;
-    }
-    if (src->failed) {
-        destroy(w, s);
-        return NULL;
-    }
-    return s;
-}
-
 static size_t memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__sleep *s = self;
     return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t) +
-           (size_t)s->undo.cap * (4 * sizeof(double) + sizeof(uint32_t));
+           (size_t)s->undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
+           ((size_t)s->grid.cap_cells + s->grid.cap) * sizeof(uint32_t);
 }
 
 static const tt__group_ops sleep_ops = {
@@ -417,10 +325,10 @@ static const tt__group_ops sleep_ops = {
     .undo = tt__sleep_undo,
     .particle_removed = particle_removed,
     .id = TT__ID('S', 'L', 'E', 'P'),
-    .save = save,
-    .load = load,
+    .save = tt__sleep_save,
+    .load = tt__sleep_load,
     .memory = memory,
-    .destroy = destroy,
+    .destroy = tt__sleep_destroy,
 };
 
 __attribute__((constructor)) static void register_feature(void) { tt__feature_register(&sleep_ops); }
@@ -430,8 +338,8 @@ bool tt__sleep_enable(tt_world *w, double speed, double time)
     tt__sleep *s = peek(w);
     if (!s) {
         s = calloc(1, sizeof *s);
-        if (!s || !grow(s, w->ppool.count ? w->ppool.count : 1) || tt__group_add(w, &sleep_ops, s) < 0) {
-            destroy(w, s);
+        if (!s || !tt__sleep_grow(s, w->ppool.count ? w->ppool.count : 1) || tt__group_add(w, &sleep_ops, s) < 0) {
+            tt__sleep_destroy(w, s);
             return false;
         }
         s->next_island = 1;

@@ -5,6 +5,17 @@
 
 #include "internal.h"
 
+/* Where the sleepers lie (sleep_grid.c): built at the first query after
+ * one fell asleep; a counting sort of the sleepers' slots by cell. */
+typedef struct tt__sleep_grid {
+    bool built;
+    uint32_t m;           /* sleepers listed */
+    double ox, oy, inv, rmax;
+    int32_t nx, ny;
+    uint32_t *start, *idx;
+    uint32_t cap_cells, cap;
+} tt__sleep_grid;
+
 typedef struct tt__sleep {
     double speed, time;   /* m/s: the mean speed under which a particle rests; s at rest before its island sleeps */
     uint32_t next_island; /* ids are never reused while anything sleeps under them */
@@ -30,6 +41,7 @@ typedef struct tt__sleep {
         uint64_t cons_changes, spring_changes;
         bool ok;
     } holders;
+    tt__sleep_grid grid;
     /* the step's undo (step_undo.c): the per-slot state as the step began,
      * copied at the step's first waking (scratch) */
     struct {
@@ -56,6 +68,18 @@ uint32_t tt__sleep_constraint_parts(const struct tt__cgroup *g, uint32_t slot, u
 /* The rest test of every particle something held in the last step; *ready
  * when one has rested sleep_time (sleep_rest.c). */
 void tt__sleep_rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready);
+/* The arrays grown to cover n slots; the state freed (sleep_state.c). */
+bool tt__sleep_grow(tt__sleep *s, uint32_t n);
+void tt__sleep_destroy(tt_world *w, void *self);
+/* Its section of the snapshot (sleep_stream.c). */
+void tt__sleep_save(const tt_world *w, const void *self, struct tt__sink *snk);
+void *tt__sleep_load(tt_world *w, struct tt__source *src);
+
+/* Calls visit(ctx, i) for each sleeper i whose cell lies within its largest
+ * radius of the box (a superset of those touching it, each once); false,
+ * having visited none, when the grid cannot be built (no memory). */
+bool tt__sleep_grid_visit(const tt_world *w, tt__sleep *s, double lox, double loy, double hix, double hiy,
+                          void (*visit)(void *ctx, uint32_t i), void *ctx);
 
 /* The step's undo hooks (sleep_undo.c). */
 bool tt__sleep_undo_reserve(tt_world *w, void *self);

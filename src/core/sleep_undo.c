@@ -49,6 +49,7 @@ void tt__sleep_undo(tt_world *w, void *self)
     tt__sleep *s = self;
     s->asleep = s->undo.asleep;
     s->nwake = 0;
+    s->grid.built = false; /* who sleeps may be back as it was */
     if (!s->undo.taken) return;
     const size_t n = tt__sleep_covered(w, s) < s->undo.cap ? tt__sleep_covered(w, s) : s->undo.cap;
     tt__copy(s->rest, s->undo.rest, n * sizeof *s->rest);

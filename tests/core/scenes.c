@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const names[SCENE_COUNT] = {"pour", "cloth", "zoo", "integrators"};
+static const char *const names[SCENE_COUNT] = {"pour", "cloth", "zoo", "integrators", "settle"};
 
 const char *scene_name(scene_kind k) { return (unsigned)k < SCENE_COUNT ? names[k] : "?"; }
 
@@ -275,13 +275,49 @@ static bool build_integrators(scene *sc)
     return true;
 }
 
+/* Two bins 4 m wide side by side, 16 circles in each: both piles fall
+ * asleep within 300 steps, as two islands (the wall between them joins
+ * nothing). The driver drops a ball into the left bin (settle_drop). */
+static bool build_settle(scene *sc)
+{
+    tt_world *w = sc->w;
+    tt_collision_settings cs = tt_collision_settings_default();
+    if (tt_world_set_collision(w, &cs) != TT_OK) return false;
+    sc->s[0] = aabb(w, -4.5, -1, 4.5, 0);
+    aabb(w, -4.5, 0, -4, 6);
+    aabb(w, -0.25, 0, 0.25, 6);
+    aabb(w, 4, 0, 4.5, 6);
+    tt_particle_def pd = tt_particle_def_default();
+    for (int i = 0; i < 32; i++) {
+        const int bin = i / 16, k = i % 16;
+        pd.radius = 0.25 + 0.1 * rnd();
+        pd.position = (tt_vec2){(bin ? 0.75 : -3.5) + (k % 4) * 0.9 + 0.1 * rnd(), 0.5 + (k / 4) * 0.8};
+        tt_particle p = tt_particle_create(w, &pd);
+        if (i % 4 == 0) sc->p[i / 4] = p;
+    }
+    return sc->s[0].gen && sc->p[7].gen;
+}
+
+/* At step 240 a ball falls into the left bin: it wakes the left pile's
+ * island, not the right one's. */
+static void drive_settle(scene *sc, uint64_t s)
+{
+    if (s != 240) return;
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.4;
+    pd.mass = 3;
+    pd.position = (tt_vec2){-2, 5.5};
+    pd.velocity = (tt_vec2){0, -4};
+    tt_particle_create(sc->w, &pd);
+}
+
 bool scene_build(scene *sc, scene_kind k)
 {
     memset(sc, 0, sizeof *sc);
     sc->kind = k;
     lcg_state = 2026 + (uint64_t)k;
     tt_world_def wd = tt_world_def_default();
-    if (k == SCENE_POUR) wd.gravity = (tt_vec2){0, -10};
+    if (k == SCENE_POUR || k == SCENE_SETTLE) wd.gravity = (tt_vec2){0, -10};
     sc->w = tt_world_create(&wd);
     if (!sc->w) return false;
     switch (k) {
@@ -289,6 +325,7 @@ bool scene_build(scene *sc, scene_kind k)
     case SCENE_CLOTH: return build_cloth(sc);
     case SCENE_ZOO: return build_zoo(sc);
     case SCENE_INTEGRATORS: return build_integrators(sc);
+    case SCENE_SETTLE: return build_settle(sc);
     default: return false;
     }
 }
@@ -330,6 +367,7 @@ void scene_step(scene *sc)
         break;
     case SCENE_ZOO: drive_zoo(sc, s); break;
     case SCENE_INTEGRATORS: drive_integrators(sc, s); break;
+    case SCENE_SETTLE: drive_settle(sc, s); break;
     default: break;
     }
     tt_world_step(sc->w, 1.0 / 60);

@@ -11,6 +11,7 @@ typedef enum {
     SCENE_CLOTH,       /* cloth with tearing under wind, 4 substeps, against a circle and a capsule */
     SCENE_ZOO,         /* every constraint kind, every composite and shape kind, moved targets, removals */
     SCENE_INTEGRATORS, /* springs under every integrator in turn, forces, damping, Jacobi */
+    SCENE_SETTLE,      /* two bins of circles fall asleep (sleeping at its defaults); a ball dropped in one wakes it */
     SCENE_COUNT
 } scene_kind;
 

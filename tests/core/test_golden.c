@@ -14,7 +14,11 @@
  * fall asleep (its positions moved); in the others nothing sleeps within
  * 300 steps (the pour still flows, the cloth flaps in the wind, the
  * integrators' spring swings): their positions stay, their hashes moved
- * (the hash covers the sleep section). */
+ * (the hash covers the sleep section). The settle scene pins what
+ * sleeping does to results: its two piles fall asleep (all 32 by step 201),
+ * a ball wakes the left one's island at step 266, and at step 300 the right
+ * pile (16) sleeps on while the left one settles again (all 33 asleep from
+ * step 421, inside the cross-build's 600). */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -30,6 +34,7 @@ static const struct {
     [SCENE_CLOTH] = {0xb5c92190124ff72cull, 0x5bb5ab99fbcef78bull},
     [SCENE_ZOO] = {0x892b725129dad019ull, 0xe8bf27cc98123094ull},
     [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0x1993a9d54ff44dedull},
+    [SCENE_SETTLE] = {0x472c728d72e329a9ull, 0xffc676ca14bca8eaull},
 };
 
 TEST(golden_scenes_keep_their_positions_and_hashes)

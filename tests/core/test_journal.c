@@ -64,7 +64,7 @@ TEST(journal_replays_each_reference_scene_into_a_new_world_and_the_same_one_hash
         tt_journal_info info;
         ENSURE_OK(tt_journal_get_info(j, &info));
         ENSURE(info.recording && !info.full && info.steps == STEPS);
-        ENSURE(k == SCENE_INTEGRATORS || info.changed > 0); /* the drivers call between steps */
+        ENSURE(k == SCENE_INTEGRATORS || k == SCENE_SETTLE || info.changed > 0); /* the drivers call between steps (settle's first at step 240) */
         ENSURE_OK(tt_journal_stop(j));
         ENSURE(tt_journal_replay_begin(j, sc.w) == TT_OK); /* no longer recording: replays */
         tt_world *fresh = tt_world_create(NULL);

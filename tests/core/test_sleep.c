@@ -508,3 +508,58 @@ TEST(sleep_a_particle_whose_holder_went_is_free_again)
     ENSURE(sleeping(w) == 0u);
     tt_world_destroy(w);
 }
+
+/* Waking a box wakes exactly the islands with a sleeper touching it, wherever
+ * the box and whatever the radii (sleep_grid.c finds the candidates): 60
+ * lone sleepers of radii 0.05 to 0.8 (each its own island), explosions of
+ * force 0 over a lattice of centres and radii, each on a fresh copy, against
+ * the box test done here for every particle. */
+TEST(sleep_wake_box_wakes_exactly_what_it_touches)
+{
+    tt_world_def d = tt_world_def_default();
+    tt_world *w = tt_world_create(&d);
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    tt_shape_def g = tt_shape_def_default();
+    g.type = TT_SHAPE_AABB;
+    g.a = (tt_vec2){-100.0, -1.0}, g.b = (tt_vec2){100.0, 0.0};
+    tt_shape_create(w, &g);
+    enum { M = 60 };
+    tt_particle p[M];
+    double x = -60.0;
+    for (int k = 0; k < M; k++) {
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = k % 7 == 3 ? 0.8 : 0.05 + 0.05 * (k % 5);
+        x += pd.radius + 0.3 + 0.4 * (k % 3);
+        pd.position = (tt_vec2){x, pd.radius};
+        x += pd.radius;
+        p[k] = tt_particle_create(w, &pd);
+    }
+    ENSURE(settle(w, M, 600) < 600);
+    size_t n = 0;
+    ENSURE(tt_world_save(w, NULL, 0, &n) == TT_ENOMEM);
+    unsigned char *b = malloc(n);
+    ENSURE_OK(tt_world_save(w, b, n, &n));
+    int woken = 0;
+    for (double cx = -62.0; cx <= x + 2.0; cx += 0.7)
+        for (double r = 0.05; r < 3.0; r *= 2.3) {
+            tt_world *c = tt_world_load(b, n);
+            ENSURE(c);
+            ENSURE_OK(tt_world_explode(c, (tt_vec2){cx, 0.3}, r, 0.0));
+            for (int k = 0; k < M; k++) {
+                tt_vec2 q;
+                double rad;
+                bool asleep;
+                tt_particle_get_position(c, p[k], &q);
+                tt_particle_get_radius(c, p[k], &rad);
+                tt_particle_get_asleep(c, p[k], &asleep);
+                const bool touches = q.x + rad >= cx - r && q.x - rad <= cx + r && q.y + rad >= 0.3 - r && q.y - rad <= 0.3 + r;
+                ENSURE(asleep == !touches);
+                woken += touches;
+            }
+            tt_world_destroy(c);
+        }
+    ENSURE(woken > 100);
+    free(b);
+    tt_world_destroy(w);
+}

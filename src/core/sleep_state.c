@@ -1,0 +1,65 @@
+/* tether — sleeping's per-slot arrays, grown and freed: apart from the
+ * feature (sleep.c) so that its snapshot section (sleep_stream.c), which
+ * makes a state to load into, and the feature, which names that section's
+ * hooks, do not use each other. */
+#include "sleep_internal.h"
+
+#include <stdlib.h>
+
+bool tt__sleep_grow(tt__sleep *s, uint32_t n)
+{
+    if (n <= s->cap) return true;
+    uint32_t cap = s->cap ? s->cap : 64;
+    while (cap < n) cap *= 2;
+    double *r = realloc(s->rest, (size_t)cap * sizeof *r);
+    if (!r) return false;
+    s->rest = r;
+    uint32_t *is = realloc(s->island, (size_t)cap * sizeof *is);
+    if (!is) return false;
+    s->island = is;
+    uint64_t *sn = realloc(s->seen, (size_t)cap * sizeof *sn);
+    if (!sn) return false;
+    s->seen = sn;
+    uint32_t *p = realloc(s->parent, (size_t)cap * sizeof *p);
+    if (!p) return false;
+    s->parent = p;
+    double *m = realloc(s->minrest, (size_t)cap * sizeof *m);
+    if (!m) return false;
+    s->minrest = m;
+    double *hd = realloc(s->held, (size_t)cap * sizeof *hd);
+    if (!hd) return false;
+    s->held = hd;
+    double *x = realloc(s->ax, (size_t)cap * sizeof *x);
+    if (!x) return false;
+    s->ax = x;
+    double *y = realloc(s->ay, (size_t)cap * sizeof *y);
+    if (!y) return false;
+    s->ay = y;
+    uint32_t *hl = realloc(s->holders.list, (size_t)cap * sizeof *hl);
+    if (!hl) return false;
+    s->holders.list = hl;
+    if (s->wake_cap < cap) { /* an island per particle at most: waking at a step allocates nothing */
+        uint32_t *k = realloc(s->wake, (size_t)cap * sizeof *k);
+        if (!k) return false;
+        s->wake = k;
+        s->wake_cap = cap;
+    }
+    for (uint32_t i = s->cap; i < cap; i++) {
+        s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = 0.0;
+        s->island[i] = 0;
+        s->seen[i] = 0;
+    }
+    s->cap = cap;
+    return true;
+}
+
+void tt__sleep_destroy(tt_world *w, void *self)
+{
+    (void)w;
+    tt__sleep *s = self;
+    if (!s) return;
+    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
+    free(s->grid.start); free(s->grid.idx);
+    free(s->undo.rest); free(s->undo.held); free(s->undo.ax); free(s->undo.ay); free(s->undo.island);
+    free(s);
+}
