@@ -15,8 +15,7 @@
 bool tt__contacts_fallible(const tt_world *w, const void *self)
 {
     (void)w;
-    const tt__collide *c = self;
-    return c->set.particles || c->nprim || c->terr;
+    return tt__contacts_detect_any(self);
 }
 
 static bool ends_valid(const tt_world *w, const tt__collide *c)
