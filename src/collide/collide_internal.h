@@ -304,6 +304,14 @@ static inline tt__collide *tt__collide_peek(const tt_world *w)
     return (tt__collide *)tt__group_find_id(w, TT__COLL_ID);
 }
 
+/* Whether a substep has anything to detect (particle pairs on, a shape or
+ * a terrain): the stages below prepare, detect and keep end positions only
+ * then. State alone decides it, never which arrays an earlier step made. */
+static inline bool tt__contacts_detect_any(const tt__collide *c)
+{
+    return c->set.particles || c->nprim || c->terr;
+}
+
 /* The stages of the contacts group (contacts.c registers them): detection
  * (contact_detect.c), projection and the velocity pass
  * (contact_response.c), events after the step (contact_events.c). */

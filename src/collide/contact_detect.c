@@ -92,7 +92,7 @@ bool tt__contacts_reserve(tt_world *w, void *self)
     tt__collide *c = self;
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) return false;
     const bool pairs = c->set.particles;
-    if (!pairs && c->nprim == 0 && !c->terr) return true;
+    if (!tt__contacts_detect_any(c)) return true;
     const uint32_t n = w->ppool.count;
     /* Contacts and events: room for half as many again as the most seen, so a step whose contacts grow
      * less than that allocates nothing for them (a step that outgrows it grows them inside, and reports
@@ -256,7 +256,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     tt__shapes_place_moved(w, c);
     bool pairs = c->set.particles;
     c->clear_ok &= pairs; /* contact_skip.c: a substep without the scan ends the bound */
-    if (!pairs && c->nprim == 0 && !c->terr) return;
+    if (!tt__contacts_detect_any(c)) return;
     const uint32_t n = w->ppool.count;
     if (!c->nbullets && !any_movable(w, n)) { /* nothing to detect: not even a grid to build */
         c->clear_ok = false;

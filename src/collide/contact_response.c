@@ -450,7 +450,9 @@ void tt__contacts_end(tt_world *w, void *self, double h)
     for (uint32_t k = 0; k < c->nsc; k++)
         if ((c->sc[k].lambda > 0.0 || c->sc[k].ccd) && inv[c->sc[k].a] != 0.0) shape_end(w, c, &c->sc[k], h, thr, events);
     if (c->set.particles) tt__contacts_lift(w, c, thr);
-    if (w->integrator != TT_VERLET && c->sx0 && c->scap >= w->ppool.count) {
+    /* kept only where the substep detects: then reserve made the arrays, whatever earlier steps did
+     * (one whose shapes are gone since still has them; a world loaded from its stream has not) */
+    if (w->integrator != TT_VERLET && tt__contacts_detect_any(c) && c->sx0 && c->scap >= w->ppool.count) {
         tt__copy(c->sx0, w->px, (size_t)w->ppool.count * sizeof *c->sx0);
         tt__copy(c->sy0, w->py, (size_t)w->ppool.count * sizeof *c->sy0);
         c->s_count = w->ppool.count;

@@ -16,7 +16,7 @@ bool tt__contacts_fallible(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__collide *c = self;
-    return (c->set.particles || c->nprim || c->terr) && !c->bounded;
+    return tt__contacts_detect_any(c) && !c->bounded;
 }
 
 /* Whether no radius is above zero, as detect_pairs reads it (its bits):
