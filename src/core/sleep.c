@@ -5,7 +5,7 @@
  * area, collinear), found by union-find. Pinned particles, shapes, pins and
  * bounds join nothing: they do not move, so they carry no motion from one
  * particle to another. An island falls asleep when every particle in it has
- * rested for sleep_time (rest_one: a window of sleep_speed·sleep_time
+ * rested for sleep_time (sleep_rest.c: a window of sleep_speed·sleep_time
  * that a rattle stays in, a creep leaves slowly and a swing leaves
  * fast); it wakes whole. Islands
  * rather than grid cells: a cell boundary cuts a pile in two, and the awake
