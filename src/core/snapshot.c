@@ -324,7 +324,7 @@ static void load_springs(tt_world *w, tt__source *s)
         sp->alive = tt__get_bool(s, "spring alive");
         sp->a = tt__get_u32(s);
         sp->b = tt__get_u32(s);
-        sp->rest = tt__get_num(s, 0.0, 3 * TT_MAX_VALUE, "spring rest length"); /* from positions: up to the diagonal */
+        sp->rest = tt__get_num(s, 0.0, 3 * TT_DIVERGED, "spring rest length"); /* made from positions: between any two short of the guard */
         sp->k = tt__get_num(s, 0.0, TT_MAX_VALUE, "spring stiffness");
         sp->c = tt__get_num(s, 0.0, TT_MAX_VALUE, "spring damping");
         if (s->failed || !sp->alive) continue;

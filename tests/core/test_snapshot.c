@@ -575,7 +575,9 @@ TEST(snapshot_load_and_restore_out_of_memory_at_each_allocation_are_refused_clea
  * file did not load): a particle may drift past the largest coordinate the
  * API takes (up to the divergence guard), and a pin made where it is keeps
  * that anchor; the loader refused every value past 1e12, so such a world
- * saved but did not load. */
+ * saved but did not load. A spring made between such particles keeps their
+ * distance as its rest length: the loader refused it past 3e12 (the C
+ * fuzzer again, seed 20261209, call 681221). */
 TEST(a_world_with_a_pin_anchored_past_the_largest_coordinate_saves_and_loads)
 {
     tt_world_def wd = tt_world_def_default();
@@ -597,6 +599,10 @@ TEST(a_world_with_a_pin_anchored_past_the_largest_coordinate_saves_and_loads)
     dd.a = p;
     dd.b = q;
     ENSURE(tt_distance_create(w, &dd).gen != 0);
+    tt_spring_def sd = tt_spring_def_default(); /* rest length: their distance, > 5e12 m */
+    sd.a = p;
+    sd.b = q;
+    ENSURE(tt_spring_create(w, &sd).gen != 0);
     tt_world *copy = scene_reload(w);
     ENSURE(copy != NULL);
     if (copy) ENSURE(tt_world_hash(copy) == tt_world_hash(w));
