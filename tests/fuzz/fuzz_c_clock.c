@@ -25,7 +25,11 @@ static tt_clock *pick(fz *f, int *slot)
     if (fz_chance(f, 2)) { /* a field changed by hand */
         switch (fz_below(f, 5)) {
         case 0: c->acc = fz_chance(f, 50) ? -1e-9 : c->dt; break;
-        case 1: c->dt = fz_nasty(f); break;
+        case 1: { /* refused: a valid dt changed by hand leaves time != steps·dt until the next advance (seed 20261210) */
+            static const double bad[] = { 0.0, -0.0, -1.0, NAN, INFINITY, -INFINITY, 9.99e-10, 10.000001, 1e300, 4.9e-324 };
+            c->dt = bad[fz_below(f, sizeof bad / sizeof bad[0])];
+            break;
+        }
         case 2: c->scale = fz_chance(f, 50) ? NAN : 1001; break;
         case 3: c->max_steps = fz_chance(f, 50) ? 0 : 1000001; break;
         default: c->acc = NAN; break;
