@@ -7,6 +7,17 @@
 
 #define R 0.1
 
+/* Collisions on and a ground box from x = -half to half, its top at y = 0. */
+static void floor_box(tt_world *w, double half)
+{
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    tt_shape_def g = tt_shape_def_default();
+    g.type = TT_SHAPE_AABB;
+    g.a = (tt_vec2){-half, -1.0}, g.b = (tt_vec2){half, 0.0};
+    ENSURE(tt_shape_is_valid(w, tt_shape_create(w, &g)));
+}
+
 /* A small pile: rows of touching particles (so one island, whatever gaps the
  * settling leaves) dropped into a box of three walls. */
 static tt_world *pile(bool sleep, tt_particle *ids, uint32_t n)
@@ -216,12 +227,7 @@ TEST(sleep_islands_wake_apart)
     tt_world_def d = tt_world_def_default();
     d.sleep = true;
     tt_world *w = tt_world_create(&d);
-    tt_collision_settings cs = tt_collision_settings_default();
-    ENSURE_OK(tt_world_set_collision(w, &cs));
-    tt_shape_def g = tt_shape_def_default();
-    g.type = TT_SHAPE_AABB;
-    g.a = (tt_vec2){-5.0, -1.0}, g.b = (tt_vec2){5.0, 0.0};
-    tt_shape_create(w, &g);
+    floor_box(w, 5.0);
     tt_particle l[3], r[3];
     for (int k = 0; k < 3; k++) {
         tt_particle_def p = tt_particle_def_default();
@@ -400,12 +406,7 @@ TEST(sleep_a_ball_rolling_slowly_down_a_gentle_slope_rolls_on)
 TEST(sleep_a_particle_at_the_top_of_its_throw_falls_back)
 {
     tt_world *w = sleepy(1.0);
-    tt_collision_settings cs = tt_collision_settings_default();
-    ENSURE_OK(tt_world_set_collision(w, &cs));
-    tt_shape_def g = tt_shape_def_default();
-    g.type = TT_SHAPE_AABB;
-    g.a = (tt_vec2){-5.0, -1.0}, g.b = (tt_vec2){5.0, 0.0};
-    tt_shape_create(w, &g);
+    floor_box(w, 5.0);
     tt_particle_def pd = tt_particle_def_default();
     pd.radius = 0.1;
     pd.position = (tt_vec2){0.0, 0.1};
@@ -518,12 +519,7 @@ TEST(sleep_wake_box_wakes_exactly_what_it_touches)
 {
     tt_world_def d = tt_world_def_default();
     tt_world *w = tt_world_create(&d);
-    tt_collision_settings cs = tt_collision_settings_default();
-    ENSURE_OK(tt_world_set_collision(w, &cs));
-    tt_shape_def g = tt_shape_def_default();
-    g.type = TT_SHAPE_AABB;
-    g.a = (tt_vec2){-100.0, -1.0}, g.b = (tt_vec2){100.0, 0.0};
-    tt_shape_create(w, &g);
+    floor_box(w, 100.0);
     enum { M = 60 };
     tt_particle p[M];
     double x = -60.0;
