@@ -161,13 +161,13 @@ static void begin(tt_world *w, void *self, double h)
     (void)h;
     tt__sleep *s = self;
     if (w->scr.substep != 0 || s->asleep == 0) return;
-    const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
+    const tt__collide *c = tt__collide_peek(w);
     if (c && c->any_moved)
         for (uint32_t k = 0; k < c->nprim; k++) {
             const tt__prim *p = &c->prims[k];
             if (c->shapes[p->shape].moved) tt__sleep_wake_aabb(w, p->lox, p->loy, p->hix, p->hiy);
         }
-    const tt__cgroup *g = tt__sleep_feature(w, TT__CONS_ID);
+    const tt__cgroup *g = tt__cgroup_peek(w);
     for (uint32_t k = 0; g && k < g->nmoving; k++) {
         uint32_t ids[3];
         const uint32_t *list;
@@ -180,7 +180,7 @@ static void begin(tt_world *w, void *self, double h)
  * particle wake the sleeper's island. */
 static void wake_touched(tt_world *w, tt__sleep *s)
 {
-    const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
+    const tt__collide *c = tt__collide_peek(w);
     if (!c || s->asleep == 0) return;
     for (uint32_t k = 0; k < c->npairs; k++) {
         uint32_t a = c->pairs[k].a, b = c->pairs[k].b;
@@ -216,11 +216,11 @@ static void unite(const tt_world *w, tt__sleep *s, uint32_t a, uint32_t b)
 
 static void unite_all(const tt_world *w, tt__sleep *s)
 {
-    const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
+    const tt__collide *c = tt__collide_peek(w);
     for (uint32_t k = 0; c && k < c->npairs; k++) unite(w, s, c->pairs[k].a, c->pairs[k].b);
     for (uint32_t k = 0; k < w->spool.count; k++)
         if (w->springs[k].alive) unite(w, s, w->springs[k].a, w->springs[k].b);
-    const tt__cgroup *g = tt__sleep_feature(w, TT__CONS_ID);
+    const tt__cgroup *g = tt__cgroup_peek(w);
     for (uint32_t k = 0; g && k < g->pool.count; k++) {
         if (!g->slots[k].kind) continue;
         uint32_t ids[3];

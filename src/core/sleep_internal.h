@@ -60,8 +60,6 @@ static inline uint32_t tt__sleep_covered(const tt_world *w, const tt__sleep *s)
 }
 
 struct tt__cgroup;
-/* The group of feature id, or NULL (sleep_rest.c). */
-void *tt__sleep_feature(const tt_world *w, uint32_t id);
 /* The particles of constraint slot s of g that it holds (sleep_rest.c): fills
  * out (up to 3, or *list for an area) and returns how many. */
 uint32_t tt__sleep_constraint_parts(const struct tt__cgroup *g, uint32_t slot, uint32_t out[3], const uint32_t **list);

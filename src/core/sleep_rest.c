@@ -19,12 +19,6 @@
 #include "collide/collide_internal.h"
 #include "constraints/constraint_internal.h"
 
-void *tt__sleep_feature(const tt_world *w, uint32_t id)
-{
-    const tt__group_ops *ops = tt__feature_find(id);
-    return ops ? tt__group_find(w, ops) : NULL;
-}
-
 /* The particles of constraint slot s of g (distance, angle, area,
  * collinear; pins and bounds hold to the world, not to a particle): fills
  * out (up to 3, or the area's list) and returns how many. */
@@ -169,14 +163,14 @@ static void holders_walk(tt_world *w, tt__sleep *s, const tt__cgroup *g, double 
 void tt__sleep_rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready)
 {
     s->tick++;
-    const tt__cgroup *g = tt__sleep_feature(w, TT__CONS_ID);
+    const tt__cgroup *g = tt__cgroup_peek(w);
     if (holders_valid(w, s, g)) {
         for (uint32_t k = 0; k < s->holders.n; k++) rest_new(w, s, s->holders.list[k], dt, ready);
     } else {
         holders_walk(w, s, g, dt, ready);
     }
     for (uint32_t k = 0; k < s->holders.nbounds; k++) bounds_one(w, s, g, s->holders.bounds[k], dt, ready);
-    const tt__collide *c = tt__sleep_feature(w, TT__COLL_ID);
+    const tt__collide *c = tt__collide_peek(w);
     for (uint32_t k = 0; c && k < c->npairs; k++) {
         rest_new(w, s, c->pairs[k].a, dt, ready);
         rest_new(w, s, c->pairs[k].b, dt, ready);
