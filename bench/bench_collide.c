@@ -6,6 +6,7 @@
 #include "bench_accuracy.h"
 #include "tether.h"
 #include "box2d/box2d_scene.h"
+#include "scenes/scene.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,12 +37,15 @@ static tt_world *packed(uint32_t n, bool mix, tt_broadphase bp, uint32_t iterati
     double spacing = mix ? 2.0 : 1.0;
     uint32_t cols = (uint32_t)ceil(sqrt((double)n));
     box(w, cols * spacing);
-    tt_particle_def pd = tt_particle_def_default();
-    for (uint32_t i = 0; i < n; i++) {
-        pd.radius = mix ? (i % 4 == 0 ? 1.0 : 0.25) : 0.5;
-        pd.position = (tt_vec2){-(cols * spacing) / 2 + spacing * (0.5 + i % cols), spacing * (0.5 + i / cols)};
-        tt_particle_create(w, &pd);
-    }
+    ts_grid g = ts_grid_default();
+    g.count = n;
+    g.columns = cols;
+    g.corner = (tt_vec2){-(cols * spacing) / 2, 0};
+    g.spacing = spacing;
+    g.radius = mix ? 0.25 : 0.5;
+    g.big_radius = 1.0;
+    g.big_every = mix ? 4 : 0;
+    ts_grid_add(w, &g);
     return w;
 }
 

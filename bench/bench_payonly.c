@@ -11,6 +11,7 @@
  * (CALLGRIND_DUMP_STATS_AT), bench/payonly_cg.sh reads the dumps:
  *   sh bench/payonly_cg.sh build/bench        (also run by `make bench`) */
 #include "bench.h"
+#include "scenes/scene.h"
 #include "tether.h"
 
 #include <stdio.h>
@@ -44,12 +45,14 @@ static tt_world *make(row r)
     tt_world_def wd = tt_world_def_default();
     wd.capacity = N + 2;
     tt_world *w = tt_world_create(&wd);
+    ts_grid g = ts_grid_default();
+    g.count = N;
+    g.columns = COLS;
+    g.corner = (tt_vec2){-0.5, -0.5}; /* centres on whole metres */
+    g.radius = r == PAIRS_R0 ? 0.0 : 0.2;
+    ts_grid_add(w, &g);
     tt_particle_def pd = tt_particle_def_default();
-    pd.radius = r == PAIRS_R0 ? 0.0 : 0.2;
-    for (uint32_t i = 0; i < N; i++) {
-        pd.position = (tt_vec2){(double)(i % COLS), (double)(i / COLS)};
-        tt_particle_create(w, &pd);
-    }
+    pd.radius = g.radius;
     pd.position = (tt_vec2){-1000.0, 0.0};
     tt_particle a = tt_particle_create(w, &pd);
     pd.position = (tt_vec2){-999.0, 0.0};

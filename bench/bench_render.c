@@ -2,6 +2,7 @@
  * frame of n particles, split into the debug draw (canvas batches, through
  * the public API) and the GL drawing; the PNG encoding is timed apart. */
 #include "bench.h"
+#include "scenes/scene.h"
 #include "tether.h"
 #include "tether/render.h"
 
@@ -44,12 +45,13 @@ void bench_render(const char *dir)
         /* a square-ish lattice filling a 40 x 30 m view, radius half the spacing */
         int cols = (int)ceil(sqrt(n * 4.0 / 3.0));
         double h = 40.0 / cols;
-        tt_particle_def pd = tt_particle_def_default();
-        pd.radius = 0.45 * h;
-        for (int i = 0; i < n; i++) {
-            pd.position = (tt_vec2){-20 + h * (i % cols + 0.5), -15 + h * (i / cols + 0.5)};
-            tt_particle_create(w, &pd);
-        }
+        ts_grid g = ts_grid_default();
+        g.count = (uint32_t)n;
+        g.columns = (uint32_t)cols;
+        g.corner = (tt_vec2){-20, -15};
+        g.spacing = h;
+        g.radius = 0.45 * h;
+        ts_grid_add(w, &g);
         tt_canvas_fit(c, (tt_vec2){-20, -15}, (tt_vec2){20, 15}, 0);
         int reps = n >= 100000 ? 11 : 31;
         double *td = malloc(reps * sizeof *td), *tr = malloc(reps * sizeof *tr), *tf = malloc(reps * sizeof *tf);

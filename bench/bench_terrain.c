@@ -1,7 +1,7 @@
 /* tether — terrain benchmark: the cost of a carve in a big terrain (issue
- * 19: a radius-20-pixel crater in 2048 × 1024 pixels, target ≤ 50 µs), a
- * pour onto a mask floor against the same floor as a chain shape, the two
- * worlds stepped in turn (A B A B) so the machine's load falls on both, and
+ * 19: a radius-20-pixel crater in 2048 × 1024 pixels, target ≤ 50 µs), the
+ * reference pour onto a mask floor against the same floor as a chain shape,
+ * the two worlds stepped in turn (A B A B) so the machine's load falls on both, and
  * the reference pour (10 000 circles, 20 s) onto a mask bowl with its rest
  * figures (src/scenes/scene_bowl.c, shared with the tests). */
 #include "bench.h"
@@ -40,74 +40,46 @@ static void carve(FILE *csv)
     tt_world_destroy(w);
 }
 
-/* A U: floor at y = 0 from x = 0 to 50, walls to y = 60. */
-static tt_world *pour_world(bool terrain, int n)
-{
-    tt_world_def wd = tt_world_def_default();
-    wd.gravity = (tt_vec2){0, -10};
-    tt_world *w = tt_world_create(&wd);
-    tt_collision_settings cs = tt_collision_settings_default();
-    cs.friction_static = cs.friction_kinetic = 0.3;
-    tt_world_set_collision(w, &cs);
-    if (terrain) {
-        tt_mask *m = tt_mask_create(540, 640, false); /* 0.1 m pixels, origin (−2, 62) */
-        tt_mask_fill_rect(m, 0, 620, 540, 20, true);
-        tt_mask_fill_rect(m, 0, 0, 20, 640, true);
-        tt_mask_fill_rect(m, 520, 0, 20, 640, true);
-        tt_terrain_def td = tt_terrain_def_default();
-        td.solid = m;
-        td.pixel = 0.1;
-        td.origin = (tt_vec2){-2, 62};
-        td.friction_static = td.friction_kinetic = 0.3;
-        tt_terrain_create(w, &td);
-        tt_mask_destroy(m);
-    } else {
-        const tt_vec2 pts[4] = {{0, 60}, {0, 0}, {50, 0}, {50, 60}};
-        tt_shape_def sd = tt_shape_def_default();
-        sd.type = TT_SHAPE_CHAIN;
-        sd.points = pts;
-        sd.count = 4;
-        sd.friction_static = sd.friction_kinetic = 0.3;
-        tt_shape_create(w, &sd);
-    }
-    for (int k = 0; k < n; k++) {
-        tt_particle_def pd = tt_particle_def_default();
-        pd.radius = 0.5;
-        pd.position = (tt_vec2){1.1 + (k % 44) * 1.1 + (k / 44 % 2) * 0.05, 0.55 + (k / 44) * 1.1};
-        tt_particle_create(w, &pd);
-    }
-    return w;
-}
-
+/* The reference pour into a U, once as a chain floor and once as a mask
+ * floor (src/scenes/scene_floor.c), stepped in turns of CHUNK steps. */
 static void pour(FILE *csv)
 {
-    enum { N = 2000, STEPS = 1200, CHUNK = 30 };
-    tt_world *w[2] = {pour_world(false, N), pour_world(true, N)};
+    enum { N = 10000, CHUNK = 30 };
+    ts_tether t[2];
+    const char *why = NULL;
+    for (int k = 0; k < 2; k++)
+        if (ts_floor_build(N, 100, k == 1, &t[k], &why) != TT_OK) {
+            printf("  pour onto a floor: %s\n", why ? why : "failed");
+            if (k == 1) ts_tether_free(&t[0]);
+            return;
+        }
+    const uint32_t steps = 1200;
     double ns[2] = {0, 0}, contacts[2] = {0, 0}, pairs[2] = {0, 0};
-    for (int s = 0; s < STEPS; s += CHUNK)
+    for (uint32_t s = 0; s < steps; s += CHUNK)
         for (int k = 0; k < 2; k++)
             for (int j = 0; j < CHUNK; j++) {
                 const double a = bench_now_ns();
-                tt_world_step(w[k], 1.0 / 60);
+                tt_world_step(t[k].world, 1.0 / 60);
                 ns[k] += bench_now_ns() - a;
                 tt_collision_stats st;
-                tt_world_get_collision_stats(w[k], &st);
+                tt_world_get_collision_stats(t[k].world, &st);
                 contacts[k] += st.shape_contacts;
                 pairs[k] += st.pair_contacts;
             }
     static const char *name[2] = {"chain floor", "mask floor"};
     for (int k = 0; k < 2; k++) {
-        tt_energy e;
-        tt_world_get_energy(w[k], &e);
         double lowest = INFINITY, *xy = malloc(2 * N * sizeof *xy);
-        uint32_t n = tt_world_read_positions(w[k], xy, N);
+        uint32_t n = tt_world_read_positions(t[k].world, xy, N);
         for (uint32_t i = 0; i < n; i++) lowest = fmin(lowest, xy[2 * i + 1]);
+        ts_pile pile;
+        ts_pile_measure(xy, n, 0.5, &pile);
         free(xy);
-        printf("  pour %d circles, 20 s, %s: %.3f ms/step, %.0f static contacts/step, lowest centre %.4f m (r 0.5),"
-               " KE %.2e J/kg\n", N, name[k], ns[k] / STEPS * 1e-6, contacts[k] / STEPS, lowest, e.kinetic / N);
-        fprintf(csv, "%s,%.4f,%.1f,%.5f,%.3e\n", name[k], ns[k] / STEPS * 1e-6, contacts[k] / STEPS, lowest,
-                e.kinetic / N);
-        tt_world_destroy(w[k]);
+        const double ke = ts_tether_kinetic_per_kg(&t[k]);
+        printf("  reference pour (%d circles, 20 s), %s: %.3f ms/step, %.0f static contacts/step, lowest centre"
+               " %.4f m (r 0.5), overlap max %.1f %% mean %.2f %%, KE %.2e J/kg\n", N, name[k], ns[k] / steps * 1e-6,
+               contacts[k] / steps, lowest, 100 * pile.max_overlap, 100 * pile.mean_overlap, ke);
+        fprintf(csv, "%s,%.4f,%.1f,%.5f,%.3e\n", name[k], ns[k] / steps * 1e-6, contacts[k] / steps, lowest, ke);
+        ts_tether_free(&t[k]);
     }
     /* per particle-contact: the step's time over its contacts (pairs and the floor's) */
     const double per[2] = {ns[0] / (contacts[0] + pairs[0]), ns[1] / (contacts[1] + pairs[1])};

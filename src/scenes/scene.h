@@ -116,6 +116,25 @@ ts_hung_cloth ts_hung_cloth_default(void);
  * when it cannot be made. */
 tt_world *ts_hung_cloth_build(const ts_hung_cloth *d, tt_composite *cloth);
 
+/* --- particles on a square lattice (scene_grid.c) ------------------------ */
+
+/* count particles row by row from the cell at `corner` (its lower-left
+ * corner), `columns` to a row, each at the centre of its spacing × spacing
+ * cell: x = corner.x + spacing·(0.5 + i mod columns), likewise y by rows.
+ * Radius `radius`, or `big_radius` for every big_every-th (0: none) from
+ * the first; the other fields tt_particle_def_default()'s. */
+typedef struct ts_grid {
+    uint32_t count, columns;
+    tt_vec2 corner;                     /* m */
+    double spacing;                     /* m */
+    double radius, big_radius;          /* m */
+    uint32_t big_every;
+} ts_grid;
+ts_grid ts_grid_default(void);          /* none yet: 1 column, spacing 1, radius 0.5 */
+/* Adds the particles to w in order; returns how many were made (fewer only
+ * when the world refused one, e.g. out of capacity). */
+uint32_t ts_grid_add(tt_world *w, const ts_grid *g);
+
 /* --- measures shared by the bench and the cross-check (scene_metrics.c) --- */
 
 typedef struct ts_pile {
@@ -193,5 +212,13 @@ typedef struct ts_bowl_figures {
 tt_result ts_bowl_build(uint32_t n, double width, ts_bowl *b, const char **why);
 void ts_bowl_free(ts_bowl *b);
 void ts_bowl_measure(const ts_bowl *b, ts_bowl_figures *out);
+
+/* --- the reference pour into a U floor (scene_floor.c) ------------------- */
+
+/* The reference pour's n circles (ts_scene_pour(n, width)) into a U whose
+ * floor top is y = 0 and inner walls ±width/2, reaching 5 m above the
+ * highest circle: a chain shape (mask false) or a mask terrain of 0.1 m
+ * pixels, both friction 0.3; TT_OK, or an error with the reason in *why. */
+tt_result ts_floor_build(uint32_t n, double width, bool mask, ts_tether *t, const char **why);
 
 #endif

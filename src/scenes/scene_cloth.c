@@ -17,6 +17,7 @@ tt_world *ts_hung_cloth_build(const ts_hung_cloth *d, tt_composite *cloth)
     wd.iterations = d->iterations;
     wd.tolerance = 0; /* the whole budget every step: fixed work */
     wd.capacity = d->n * d->n;
+    wd.sleep = false; /* issue 21 measures awake: a cloth come to rest would sleep and hide its cost */
     tt_world *w = tt_world_create(&wd);
     if (!w) return NULL;
     tt_cloth_def cd = tt_cloth_def_default();

@@ -5,6 +5,7 @@
 
 #include "scenes/scene.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -200,4 +201,59 @@ TEST(scenes_tether_joints_hold)
     ENSURE_NEAR(hypot(st[5].position.x - st[4].position.x, st[5].position.y - st[4].position.y), 0.5, 0.02);
     ts_tether_free(&t);
     ts_scene_free(&s);
+}
+
+/* The lattice the benchmarks place: centres in the middle of their cells,
+ * row by row, every big_every-th big. */
+TEST(scenes_grid_places_particles_in_the_middle_of_their_cells)
+{
+    tt_world *w = tt_world_create(NULL);
+    ts_grid g = ts_grid_default();
+    g.count = 7;
+    g.columns = 3;
+    g.corner = (tt_vec2){-1, 2};
+    g.spacing = 0.5;
+    g.radius = 0.1;
+    g.big_radius = 0.2;
+    g.big_every = 4;
+    ENSURE(ts_grid_add(w, &g) == 7);
+    tt_particle ps[7];
+    ENSURE(tt_world_list_particles(w, ps, 7) == 7);
+    for (uint32_t i = 0; i < 7; i++) {
+        tt_vec2 x;
+        double r;
+        ENSURE_OK(tt_particle_get_position(w, ps[i], &x));
+        ENSURE_OK(tt_particle_get_radius(w, ps[i], &r));
+        ENSURE_NEAR(x.x, -1 + 0.25 + 0.5 * (i % 3), 1e-15);
+        ENSURE_NEAR(x.y, 2 + 0.25 + 0.5 * (i / 3), 1e-15);
+        ENSURE_NEAR(r, i % 4 == 0 ? 0.2 : 0.1, 1e-7); /* radii are stored as floats */
+    }
+    g.columns = 0;
+    ENSURE(ts_grid_add(w, &g) == 0);
+    tt_world_destroy(w);
+}
+
+/* The U of the terrain bench, as a chain and as a mask: the same walls
+ * and floor, and a small pour comes to rest on the floor in both. */
+TEST(scenes_floor_as_chain_and_as_mask_holds_the_pour_alike)
+{
+    for (int mask = 0; mask < 2; mask++) {
+        ts_tether t;
+        const char *why = NULL;
+        ENSURE_OK(ts_floor_build(300, 10, mask, &t, &why));
+        ENSURE(t.circle_count == 300);
+        for (int s = 0; s < 240; s++) ENSURE_OK(tt_world_step(t.world, 1.0 / 60));
+        double lo = INFINITY, left = INFINITY, right = -INFINITY;
+        for (uint32_t i = 0; i < t.circle_count; i++) {
+            tt_vec2 x;
+            ENSURE_OK(tt_particle_get_position(t.world, t.circles[i], &x));
+            lo = fmin(lo, x.y);
+            left = fmin(left, x.x);
+            right = fmax(right, x.x);
+        }
+        ENSURE(lo > 0.5 - 0.05 && lo < 0.5 + 0.02); /* on the floor's top, y = 0 */
+        ENSURE(left > -5 + 0.5 - 0.05 && right < 5 - 0.5 + 0.05);
+        ENSURE(ts_tether_kinetic_per_kg(&t) < 0.05);
+        ts_tether_free(&t);
+    }
 }
