@@ -195,6 +195,7 @@ static const struct {
     {"tradeoff", bench_tradeoff},
     {"collide", bench_collide},
     {"pour", bench_pour},
+    {"pour100k", bench_pour100k},
     {"render", bench_render},
     {"constraints", bench_constraints},
     {"cloth", bench_cloth},

@@ -18,6 +18,7 @@ void bench_tradeoff(const char *dir);
 void bench_collide(const char *dir);
 /* The reference pour against Box2D 2.4.1 (bench_collide.c). */
 void bench_pour(const char *dir);
+void bench_pour100k(const char *dir);
 void bench_render(const char *dir);
 void bench_constraints(const char *dir);
 void bench_cloth(const char *dir);
