@@ -54,7 +54,7 @@ static inline bool dynamic(const tt_world *w, uint32_t i)
 
 static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
 {
-    if (w->scr.undo.on && !s->undo.taken) tt__sleep_undo_take(w, s);
+    if (w->scr.undo.on && !s->scr.undo.taken) tt__sleep_undo_take(w, s);
     s->island[i] = 0;
     s->rest[i] = s->held[i] = 0.0;
     s->ax[i] = w->px[i];
@@ -310,7 +310,7 @@ static size_t memory(const tt_world *w, const void *self)
     (void)w;
     const tt__sleep *s = self;
     return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t) +
-           (size_t)s->undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
+           (size_t)s->scr.undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
            ((size_t)s->grid.cap_cells + s->grid.cap) * sizeof(uint32_t);
 }
 
@@ -323,6 +323,7 @@ static const tt__group_ops sleep_ops = {
     .undo_reserve = tt__sleep_undo_reserve,
     .undo_mark = tt__sleep_undo_mark,
     .undo = tt__sleep_undo,
+    .scratch_free = tt__sleep_scratch_free,
     .particle_removed = particle_removed,
     .id = TT__ID('S', 'L', 'E', 'P'),
     .save = tt__sleep_save,

@@ -6,13 +6,19 @@
  * integrator, Jacobi and Gauss-Seidel, springs, each constraint kind,
  * tearing, contacts, sleeping). */
 #include "test.h"
+#include "alloc_fail.h"
 #include "constraints/constraint_internal.h"
 #include "core/internal.h"
 #include "core/scenes.h"
+#include "core/sleep_internal.h"
 
 #include <string.h>
 
-enum { STEPS = 40, GARBAGE = 0xA5 };
+enum { STEPS = 40, SETTLE_STEPS = 300, GARBAGE = 0xA5 };
+
+/* Steps each scene is run for: settle's piles fall asleep, and the ball
+ * dropped at step 240 wakes one of them, within 300. */
+static int steps_of(scene_kind k) { return k == SCENE_SETTLE ? SETTLE_STEPS : STEPS; }
 
 static void fill(void *p, size_t bytes)
 {
@@ -73,6 +79,19 @@ static void constraints_garbage(tt_world *w)
     for (uint32_t i = 0; i < g->ngen; i++) fill(&g->gen[i].lambda, sizeof g->gen[i].lambda);
 }
 
+/* Sleeping's scratch as garbage: the undo's copies and its flags (the
+ * undo mark sets them before the step reads them). */
+static void sleep_garbage(tt_world *w)
+{
+    tt__sleep *sl = (tt__sleep *)tt__group_find_id(w, TT__ID('S', 'L', 'E', 'P'));
+    if (!sl) return;
+    fill(&sl->scr.undo.taken, sizeof sl->scr.undo.taken);
+    fill(&sl->scr.undo.asleep, sizeof sl->scr.undo.asleep);
+    double *d[] = {sl->scr.undo.rest, sl->scr.undo.held, sl->scr.undo.ax, sl->scr.undo.ay};
+    for (size_t k = 0; k < sizeof d / sizeof d[0]; k++) fill(d[k], (size_t)sl->scr.undo.cap * sizeof(double));
+    fill(sl->scr.undo.island, (size_t)sl->scr.undo.cap * sizeof(uint32_t));
+}
+
 static void world_free(tt_world *w) { tt__world_scratch_free(w); }
 
 /* Every scene stepped twice, one of the twins losing its scratch (lose)
@@ -83,7 +102,7 @@ static int twins(void (*lose)(tt_world *w), const char *how)
     for (int k = 0; k < SCENE_COUNT; k++) {
         scene kept, lost;
         if (!scene_build(&kept, (scene_kind)k) || !scene_build(&lost, (scene_kind)k)) return 1;
-        for (int s = 0; s < STEPS && !bad; s++) {
+        for (int s = 0; s < steps_of((scene_kind)k) && !bad; s++) {
             lose(lost.w);
             scene_step(&kept);
             scene_step(&lost);
@@ -108,7 +127,102 @@ TEST(a_world_whose_step_scratch_is_lost_between_steps_steps_the_same)
     ENSURE(twins(world_garbage, "garbage") == 0);
 }
 
+TEST(a_sleeping_group_whose_undo_copies_are_garbage_between_steps_steps_the_same)
+{
+    ENSURE(twins(sleep_garbage, "of sleeping, garbage") == 0);
+}
+
 TEST(a_constraint_group_whose_scratch_and_lambdas_are_garbage_between_steps_steps_the_same)
 {
     ENSURE(twins(constraints_garbage, "of the constraints, garbage") == 0);
+}
+
+/* A row of 16 circles asleep on the ground; then 40 grains dropped among
+ * and onto them (pile), more contacts than any step made room for: the
+ * step after wakes the row in its first substep (sleeping takes its undo
+ * copies) and grows the contacts' arrays inside. */
+static tt_world *row(void)
+{
+    tt_world_def d = tt_world_def_default();
+    d.sleep_time = 0.2;
+    tt_world *w = tt_world_create(&d);
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_world_set_collision(w, &cs);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    sd.a = (tt_vec2){-10, -1};
+    sd.b = (tt_vec2){10, 0};
+    tt_shape_create(w, &sd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.25;
+    for (int i = 0; i < 16; i++) {
+        pd.position = (tt_vec2){-4.0 + 0.5 * i, 0.25};
+        tt_particle_create(w, &pd);
+    }
+    return w;
+}
+
+static void pile(tt_world *w)
+{
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.2;
+    for (int i = 0; i < 40; i++) {
+        pd.position = (tt_vec2){-4.0 + 0.2 * i, 0.55 + 0.1 * (i % 3)};
+        tt_particle_create(w, &pd);
+    }
+}
+
+/* The undo works from scratch that was lost: the row, losing its scratch
+ * (lose) before every step, asleep, the pile dropped, and each allocation
+ * of the next step refused in turn; a failed step leaves the hash as it
+ * was, and retried, the world goes on as its twin that kept its scratch and
+ * never ran out. Returns the failures; *inside: the steps that failed
+ * inside (not in a reserve before it). */
+static int refused_after_loss(void (*lose)(tt_world *w), const char *how, int *inside)
+{
+    int bad = 0;
+    bool refused = true;
+    for (long n = 0; refused && !bad; n++) {
+        tt_world *kept = row(), *lost = row();
+        tt_stats st = {0};
+        for (int s = 0; s < 600 && st.sleeping < 16; s++) {
+            lose(lost);
+            tt_world_step(kept, 1.0 / 60);
+            tt_world_step(lost, 1.0 / 60);
+            tt_world_get_stats(lost, &st);
+        }
+        bad += st.sleeping < 16;
+        pile(kept);
+        pile(lost);
+        lose(lost);
+        const uint64_t h0 = tt_world_hash(lost);
+        tt_test_alloc_fail_from(n);
+        const tt_result r = tt_world_step(lost, 1.0 / 60);
+        refused = tt_test_alloc_ok();
+        if (r != TT_OK) { /* as it was, then the same step again */
+            *inside += strstr(tt_last_error(lost), "inside the step") != NULL;
+            bad += tt_world_hash(lost) != h0;
+            bad += tt_world_step(lost, 1.0 / 60) != TT_OK;
+        }
+        tt_world_step(kept, 1.0 / 60);
+        for (int s = 0; s < 3; s++) {
+            lose(lost);
+            tt_world_step(kept, 1.0 / 60);
+            tt_world_step(lost, 1.0 / 60);
+        }
+        if (tt_world_hash(kept) != tt_world_hash(lost) || scene_positions_digest(kept) != scene_positions_digest(lost))
+            bad++;
+        if (bad) tt_test_fail(__FILE__, __LINE__, "scratch %s, allocation %ld refused: differs", how, n);
+        tt_world_destroy(kept);
+        tt_world_destroy(lost);
+    }
+    return bad;
+}
+
+TEST(a_step_out_of_memory_after_its_scratch_was_lost_is_put_back_as_it_began)
+{
+    int inside = 0;
+    ENSURE(refused_after_loss(world_free, "freed", &inside) == 0);
+    ENSURE(refused_after_loss(sleep_garbage, "of sleeping, garbage", &inside) == 0);
+    ENSURE(inside >= 2); /* the case: refused inside the step, after the waking */
 }
