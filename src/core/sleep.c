@@ -182,8 +182,8 @@ static void wake_touched(tt_world *w, tt__sleep *s)
 {
     const tt__collide *c = tt__collide_peek(w);
     if (!c || s->asleep == 0) return;
-    for (uint32_t k = 0; k < c->npairs; k++) {
-        uint32_t a = c->pairs[k].a, b = c->pairs[k].b;
+    for (uint32_t k = 0; k < c->scr.npairs; k++) {
+        uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
         if (a >= w->ppool.count || b >= w->ppool.count) continue;
         uint32_t ia = s->island[a], ib = s->island[b];
         if (!ia == !ib) continue; /* both awake or both asleep */
@@ -217,7 +217,7 @@ static void unite(const tt_world *w, tt__sleep *s, uint32_t a, uint32_t b)
 static void unite_all(const tt_world *w, tt__sleep *s)
 {
     const tt__collide *c = tt__collide_peek(w);
-    for (uint32_t k = 0; c && k < c->npairs; k++) unite(w, s, c->pairs[k].a, c->pairs[k].b);
+    for (uint32_t k = 0; c && k < c->scr.npairs; k++) unite(w, s, c->scr.pairs[k].a, c->scr.pairs[k].b);
     for (uint32_t k = 0; k < w->spool.count; k++)
         if (w->springs[k].alive) unite(w, s, w->springs[k].a, w->springs[k].b);
     const tt__cgroup *g = tt__cgroup_peek(w);

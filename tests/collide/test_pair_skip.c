@@ -106,7 +106,7 @@ TEST(cells_stat_counts_the_pair_grid_not_the_probe)
     ENSURE_OK(tt_particle_set_position(w, q, (tt_vec2){x.x + 0.3, x.y}, TT_MOVE_KEEP_VELOCITY));
     ENSURE_OK(tt_world_step(w, 1.0 / 60));
     ENSURE_OK(tt_world_get_collision_stats(w, &st));
-    ENSURE(st.pair_contacts == 1 && st.cells > 0 && st.cells == tt__collide_peek(w)->grid.ncell);
+    ENSURE(st.pair_contacts == 1 && st.cells > 0 && st.cells == tt__collide_peek(w)->scr.grid.ncell);
     ENSURE_OK(tt_particle_set_position(w, q, (tt_vec2){x.x + 50.0, x.y}, TT_MOVE_KEEP_VELOCITY));
     for (int s = 0; s < 3; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
     ENSURE_OK(tt_world_get_collision_stats(w, &st));
