@@ -15,9 +15,9 @@ bool tt__brute_pairs(tt_world *w, tt__collide *c)
             double dx = x - w->px[b], dy = y - w->py[b], rs = r + (double)w->radius[b];
             if (dx * dx + dy * dy >= rs * rs * f || rs == 0.0) continue;
             if (!tt__pair_filter(w, c, a, b)) continue;
-            if (c->npairs == c->paircap && !tt__grow((void **)&c->pairs, &c->paircap, c->npairs + 1, sizeof *c->pairs))
+            if (c->scr.npairs == c->scr.paircap && !tt__grow((void **)&c->scr.pairs, &c->scr.paircap, c->scr.npairs + 1, sizeof *c->scr.pairs))
                 return false;
-            c->pairs[c->npairs++] = (tt__pair){a, b, (float)rs, 0.0f};
+            c->scr.pairs[c->scr.npairs++] = (tt__pair){a, b, (float)rs, 0.0f};
         }
     }
     return true;

@@ -69,7 +69,7 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
         w->px[i] = x0 + (x1 - x0) * t;
         w->py[i] = y0 + (y1 - y0) * t;
         c->ccd_prim[i] = prim;
-        if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) {
+        if (c->scr.nsc == c->scr.sccap && !tt__grow((void **)&c->scr.sc, &c->scr.sccap, c->scr.nsc + 1, sizeof *c->scr.sc)) {
             tt__step_oom(w, "a bullet's contact");
             continue;
         }
@@ -77,6 +77,6 @@ void tt__ccd(tt_world *w, tt__collide *c, double h)
         const double r = w->radius[i];
         if (!tt__prim_is_terrain((uint32_t)prim))
             tt__shape_carry(&c->shapes[c->prims[prim].shape], w->px[i] - nx * r, w->py[i] - ny * r, &cx, &cy);
-        c->sc[c->nsc++] = (tt__scontact){i, (uint32_t)prim, nx, ny, 0.0, 0.0, 0.0, cx, cy, 1};
+        c->scr.sc[c->scr.nsc++] = (tt__scontact){i, (uint32_t)prim, nx, ny, 0.0, 0.0, 0.0, cx, cy, 1};
     }
 }

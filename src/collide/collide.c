@@ -54,12 +54,12 @@ tt_result tt_world_get_collision_stats(const tt_world *w, tt_collision_stats *ou
     const tt__collide *c = tt__collide_peek(w);
     if (!c) return TT_OK;
     out->shapes = c->shapes_alive;
-    out->pair_contacts = c->npairs;
-    out->shape_contacts = c->nsc;
+    out->pair_contacts = c->scr.npairs;
+    out->shape_contacts = c->scr.nsc;
     out->cells = c->cells_used;
     out->static_rebuilds = c->static_rebuilds;
-    out->broadphase_bytes = tt__grid_bytes(&c->grid);
-    out->broadphase_bytes_per_particle = c->grid.n ? (double)out->broadphase_bytes / c->grid.n : 0.0;
+    out->broadphase_bytes = tt__grid_bytes(&c->scr.grid);
+    out->broadphase_bytes_per_particle = c->scr.grid.n ? (double)out->broadphase_bytes / c->scr.grid.n : 0.0;
     out->total_bytes = tt__contacts_memory(w, c);
     out->broadphase_ms = c->bp_step == w->stats.steps - 1 ? c->bp_ms : 0.0; /* 0 when the last step found no pairs */
     return TT_OK;
@@ -166,6 +166,6 @@ bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode)
     if (mode != TT__SIMD_AUTO && mode != TT__SIMD_SCALAR && tt__simd_kind((uint8_t)mode) == TT__SIMD_SCALAR) return false;
     tt__collide *c = tt__collide_get(w, true, "tt__contacts_set_simd");
     if (!c) return false;
-    c->bat.simd = (uint8_t)mode;
+    c->scr.bat.simd = (uint8_t)mode;
     return true;
 }

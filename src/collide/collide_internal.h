@@ -207,10 +207,48 @@ typedef struct tt__collide_undo {
     float reach_rmax;
 } tt__collide_undo;
 
+/* What the substeps and the step work in: neither saved nor hashed, and
+ * its loss between two steps (tt__contacts_scratch_free) changes nothing
+ * (tests/core/test_scratch.c): contacts_reserve sizes it again before a
+ * step, each substep's detection writes it before the sweeps and the
+ * velocity pass read it, and after_step reads the last substep's before
+ * the step returns. Between steps the counts still describe the last
+ * substep (collision stats), and grid holds the queries' grid while its
+ * epoch is the world's (UINT64_MAX: none). */
+typedef struct tt__collide_scratch {
+    tt__grid grid;        /* the particle grid: the substep's pairs, or a query's */
+    double *vx0, *vy0;    /* pre-solve velocity per particle slot (this substep) */
+    uint32_t vcap;
+    double *gx0, *gy0;    /* positions before the sweeps (shapes present): the guard against pushes through walls */
+    uint32_t gcap;
+    bool guard;           /* gx0, gy0 hold this substep's */
+    tt__lift *lift;       /* the bottom-up velocity pass's scratch: touched pairs, band starts, their order */
+    uint32_t *lift_start, *lift_order;
+    uint32_t lift_cap;    /* of all three */
+    /* contacts of the current substep */
+    tt__pair *pairs;
+    uint32_t npairs, paircap;
+    uint32_t *runs;       /* the grid's pairs by row and band of columns: row y, band k from runs[y·TT__PARTS + k] */
+    uint32_t runs_cap, nrows; /* nrows: rows in runs (0: none) */
+    uint8_t *near;        /* per particle-grid cell: a static primitive is within reach (this substep) */
+    uint32_t near_cap;
+    tt__batches bat;
+    bool batched;         /* this substep's pairs are solved from bat */
+    tt__scontact *sc;
+    uint32_t nsc, sccap;
+    tt__record *rec;      /* the step's contacts, merged into the state's prev after it (the buffers swap) */
+    uint32_t nrec, reccap;
+    bool bounded;         /* the step about to run has room for all it can need: no undo (contacts_bound) */
+    tt__collide_undo undo;
+} tt__collide_scratch;
+
 /* State: what contacts.c saves (settings, shapes, materials, bullets,
  * switched-off pairs, the last step's records and events, and the last
- * substep's end positions while valid). The primitives and static index,
- * the grid, pairs, batches and the other per-substep arrays are rebuilt. */
+ * substep's end positions while valid). The rest is derived: the
+ * primitives and static index (rebuilt while dirty), the sizing peaks, and
+ * the bounds contact_skip.c, contact_reach.c and contact_undo.c keep with
+ * the epoch they hold for (zero: none; a restored world starts without);
+ * or per-step scratch (scr). */
 typedef struct tt__collide {
     tt_collision_settings set;
     /* shapes */
@@ -229,17 +267,7 @@ typedef struct tt__collide {
     double bp_ms;         /* broadphase time of step bp_step (w->stats.steps while it runs), ms */
     uint64_t bp_step;
     bool any_moved;       /* some shape's moved flag is set */
-    /* particles */
-    tt__grid grid;
-    double *vx0, *vy0;    /* pre-solve velocity per particle slot (this substep) */
-    uint32_t vcap;
     double *sx0, *sy0;    /* velocity integrators: position at the start of the substep (Verlet has x_old) */
-    double *gx0, *gy0;    /* positions before the sweeps (shapes present): the guard against pushes through walls */
-    uint32_t gcap;
-    tt__lift *lift;       /* the bottom-up velocity pass's scratch: touched pairs, band starts, their order */
-    uint32_t *lift_start, *lift_order;
-    uint32_t lift_cap;    /* of all three */
-    bool guard;           /* gx0, gy0 hold this substep's */
     uint32_t scap, s_count;
     uint64_t s_epoch;     /* the world epoch at which sx0/sy0 hold the last substep's end positions */
     float *mat;           /* per slot: restitution, μs, μk (−1 = world default); NULL until used */
@@ -248,21 +276,10 @@ typedef struct tt__collide {
     uint32_t bulletcap, nbullets;
     int32_t *ccd_prim;    /* per slot: primitive hit by the sweep this substep, −1 none (bullets only) */
     tt__pair_set excl;    /* particle pairs the script switched off (one reference each), ordered: saved in order */
-    /* contacts of the current substep */
-    tt__pair *pairs;
-    uint32_t npairs, paircap;
-    uint32_t *runs;       /* the grid's pairs by row and band of columns: row y, band k from runs[y·TT__PARTS + k] */
-    uint32_t runs_cap, nrows; /* nrows: rows in runs (0: none) */
-    uint8_t *near;        /* per particle-grid cell: a static primitive is within reach (this substep) */
-    uint32_t near_cap;
-    tt__batches bat;
-    bool batched;         /* this substep's pairs are solved from bat */
-    tt__scontact *sc;
-    uint32_t nsc, sccap;
     uint32_t pair_peak, sc_peak; /* the most pairs and shape contacts a substep has had: reserve makes room for more */
-    /* events */
-    tt__record *rec, *prev;
-    uint32_t nrec, reccap, nprev, prevcap;
+    /* events: the last step's records (what the next step's begin, persist and end compare with) */
+    tt__record *prev;
+    uint32_t nprev, prevcap;
     tt_contact_event *events;
     uint32_t nevents, evcap;
     uint32_t rec_peak, ev_peak; /* the last step's records (before merging) and events: reserve makes room for more */
@@ -278,12 +295,12 @@ typedef struct tt__collide {
     uint32_t reach_n;
     uint64_t reach_epoch;
     /* contact_undo.c: whether some radius is not zero (tt__grid_any_radius), read at radii_epoch over
-     * radii_n particles; and whether the step about to run has room for all it can need (no undo) */
-    bool radii_any, bounded;
+     * radii_n particles */
+    bool radii_any;
     uint32_t radii_n;
     uint64_t radii_epoch;
     struct tt__terrains *terr; /* terrains (terrain_internal.h); NULL until the world's first */
-    tt__collide_undo undo;
+    tt__collide_scratch scr; /* what the substeps and the step work in: not state */
 } tt__collide;
 
 /* The contacts group's hook table and the collision state's accessor
@@ -335,6 +352,8 @@ void tt__contacts_undo_mark(tt_world *w, void *self);
 void tt__contacts_undo(tt_world *w, void *self);
 bool tt__contacts_after_reserve(tt_world *w, void *self);
 void tt__contacts_destroy(tt_world *w, void *self);
+/* Frees the per-step scratch (tt__group_ops.scratch_free). */
+void tt__contacts_scratch_free(tt_world *w, void *self);
 /* The group's section of the snapshot stream (contacts.c). */
 void tt__contacts_save(const tt_world *w, const void *self, struct tt__sink *s);
 void *tt__contacts_load(tt_world *w, struct tt__source *s);

@@ -32,16 +32,16 @@ static void detect_visit(void *ctx, uint32_t k)
         return;
     }
     if (hit.depth <= -d->margin) return;
-    if (c->nsc == c->sccap && !tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) {
+    if (c->scr.nsc == c->scr.sccap && !tt__grow((void **)&c->scr.sc, &c->scr.sccap, c->scr.nsc + 1, sizeof *c->scr.sc)) {
         d->ok = false;
         return;
     }
     double cx, cy; /* the shape's motion where it meets the particle */
     tt__shape_carry(&c->shapes[p->shape], d->x - hit.nx * d->r, d->y - hit.ny * d->r, &cx, &cy);
-    c->sc[c->nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, cx, cy, 0};
+    c->scr.sc[c->scr.nsc++] = (tt__scontact){d->i, k, hit.nx, hit.ny, 0.0, 0.0, 0.0, cx, cy, 0};
 }
 
-/* Marks the cells of the particle grid, just built, (c->near) a particle
+/* Marks the cells of the particle grid, just built, (c->scr.near) a particle
  * centred in could touch a static primitive: each primitive's box grown by
  * the largest radius and the margin, clamped into the grid as particles are
  * (clamping is monotone, so a particle outside still lands in a marked cell).
@@ -49,10 +49,10 @@ static void detect_visit(void *ctx, uint32_t k)
  * memory. */
 static bool grid_near_shapes(tt__collide *c)
 {
-    const tt__grid *g = &c->grid;
+    const tt__grid *g = &c->scr.grid;
     if (g->ncell == 0) return false;
-    if (g->ncell > c->near_cap) return false; /* contacts_reserve sized it for any grid */
-    memset(c->near, 0, g->ncell);
+    if (g->ncell > c->scr.near_cap) return false; /* contacts_reserve sized it for any grid */
+    memset(c->scr.near, 0, g->ncell);
     const double grow = g->rmax * (1.0 + TT__CONTACT_MARGIN);
     for (uint32_t k = 0; k < c->nprim; k++) {
         const tt__prim *p = &c->prims[k];
@@ -63,7 +63,7 @@ static bool grid_near_shapes(tt__collide *c)
         y0 = y0 < 0 ? 0 : y0 >= g->ny ? g->ny - 1 : y0;
         y1 = y1 < 0 ? 0 : y1 >= g->ny ? g->ny - 1 : y1;
         for (int32_t y = y0; y <= y1; y++)
-            memset(c->near + (size_t)y * (size_t)g->nx + (size_t)x0, 1, (size_t)(x1 - x0 + 1));
+            memset(c->scr.near + (size_t)y * (size_t)g->nx + (size_t)x0, 1, (size_t)(x1 - x0 + 1));
     }
     return true;
 }
@@ -98,27 +98,27 @@ bool tt__contacts_reserve(tt_world *w, void *self)
      * less than that allocates nothing for them (a step that outgrows it grows them inside, and reports
      * it if it cannot) */
 #define ROOM(k) ((k) + (k) / 2 + 16)
-    if (!tt__grow((void **)&c->sc, &c->sccap, ROOM(c->sc_peak), sizeof *c->sc) ||
-        (pairs && !tt__grow((void **)&c->pairs, &c->paircap, ROOM(c->pair_peak), sizeof *c->pairs)))
+    if (!tt__grow((void **)&c->scr.sc, &c->scr.sccap, ROOM(c->sc_peak), sizeof *c->scr.sc) ||
+        (pairs && !tt__grow((void **)&c->scr.pairs, &c->scr.paircap, ROOM(c->pair_peak), sizeof *c->scr.pairs)))
         return false;
-    if (c->set.events && (!tt__grow((void **)&c->rec, &c->reccap, ROOM(c->rec_peak), sizeof *c->rec) ||
+    if (c->set.events && (!tt__grow((void **)&c->scr.rec, &c->scr.reccap, ROOM(c->rec_peak), sizeof *c->scr.rec) ||
                           !tt__grow((void **)&c->events, &c->evcap, ROOM(c->ev_peak), sizeof *c->events)))
         return false;
 #undef ROOM
-    if (!grow_xy(w, &c->vx0, &c->vy0, &c->vcap, n)) return false;
+    if (!grow_xy(w, &c->scr.vx0, &c->scr.vy0, &c->scr.vcap, n)) return false;
     if (w->integrator != TT_VERLET && !grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return false;
-    if (c->nprim && !grow_xy(w, &c->gx0, &c->gy0, &c->gcap, n)) return false;
+    if (c->nprim && !grow_xy(w, &c->scr.gx0, &c->scr.gy0, &c->scr.gcap, n)) return false;
     if (pairs && c->set.broadphase == TT_BROADPHASE_GRID) {
-        if (!tt__grid_reserve(&c->grid, n)) return false;
+        if (!tt__grid_reserve(&c->scr.grid, n)) return false;
         const uint32_t cells = tt__grid_max_cells(n);
-        if (c->nprim && cells > c->near_cap) {
-            uint8_t *p = realloc(c->near, cells);
+        if (c->nprim && cells > c->scr.near_cap) {
+            uint8_t *p = realloc(c->scr.near, cells);
             if (!p) return false;
-            c->near = p;
-            c->near_cap = cells;
+            c->scr.near = p;
+            c->scr.near_cap = cells;
         }
     }
-    return (!pairs || tt__batches_reserve(&c->bat, n)) && tt__contacts_bound(w, c, n);
+    return (!pairs || tt__batches_reserve(&c->scr.bat, n)) && tt__contacts_bound(w, c, n);
 }
 
 /* The velocities and positions the substep starts from (contacts_reserve
@@ -129,12 +129,12 @@ static void substep_start(tt_world *w, tt__collide *c, double h, uint32_t n)
     if (w->integrator == TT_VERLET) {
         const double inv_h = 1.0 / h;
         for (uint32_t i = 0; i < n; i++) {
-            c->vx0[i] = (w->px[i] - w->qx[i]) * inv_h;
-            c->vy0[i] = (w->py[i] - w->qy[i]) * inv_h;
+            c->scr.vx0[i] = (w->px[i] - w->qx[i]) * inv_h;
+            c->scr.vy0[i] = (w->py[i] - w->qy[i]) * inv_h;
         }
     } else {
-        tt__copy(c->vx0, w->qx, (size_t)n * sizeof *c->vx0);
-        tt__copy(c->vy0, w->qy, (size_t)n * sizeof *c->vy0);
+        tt__copy(c->scr.vx0, w->qx, (size_t)n * sizeof *c->scr.vx0);
+        tt__copy(c->scr.vy0, w->qy, (size_t)n * sizeof *c->scr.vy0);
     }
     if (w->integrator != TT_VERLET) {
         /* the last substep's end positions, unless something moved or appeared since: then x − v·h */
@@ -157,7 +157,7 @@ static bool no_pair_near(tt_world *w, tt__collide *c, uint32_t n)
 {
     const tt__pair_plan plan = tt__pairs_skip(w, c, n);
     if (plan != TT__PAIRS_PROBE) return plan == TT__PAIRS_NONE;
-    tt__grid *g = &c->grid;
+    tt__grid *g = &c->scr.grid;
     if (!tt__grid_build_wide(w, g, c->set.cell_size, 2.0)) return false;
     g->epoch = UINT64_MAX; /* a grid for no query */
     const double gap = g->cs0;
@@ -172,7 +172,7 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
 {
     bool grid_built = false; /* this substep: its cells can filter the static test */
     bool ok;
-    c->nrows = 0;
+    c->scr.nrows = 0;
     const double t0 = tt__now_ms();
     if (c->bp_step != w->stats.steps) { /* the step's first substep */
         c->bp_step = w->stats.steps;
@@ -180,25 +180,25 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
     }
     if (!tt__grid_any_radius(w, n)) { /* points only: no pair, whatever the broadphase */
         ok = true;
-        c->grid.epoch = UINT64_MAX; /* not built: a query builds its own */
+        c->scr.grid.epoch = UINT64_MAX; /* not built: a query builds its own */
     } else if (no_pair_near(w, c, n)) { /* no two particles near enough: no pair, as the build would find */
         ok = true;
-        c->grid.epoch = UINT64_MAX;
+        c->scr.grid.epoch = UINT64_MAX;
     } else if (c->set.broadphase == TT_BROADPHASE_BRUTE) {
         ok = tt__brute_pairs(w, c);
-        c->grid.epoch = UINT64_MAX;
+        c->scr.grid.epoch = UINT64_MAX;
     } else {
-        ok = tt__grid_build(w, &c->grid, c->set.cell_size) && tt__grid_pairs(w, c);
-        c->cells_used = c->grid.ncell; /* the stat: a probe's grid (no_pair_near) is not the pairs' */
+        ok = tt__grid_build(w, &c->scr.grid, c->set.cell_size) && tt__grid_pairs(w, c);
+        c->cells_used = c->scr.grid.ncell; /* the stat: a probe's grid (no_pair_near) is not the pairs' */
         grid_built = ok;
     }
     c->bp_ms += tt__now_ms() - t0;
     if (!ok) tt__step_oom(w, "contact pairs");
     /* batches pay for their planning from the second sweep on */
-    c->batched = false;
+    c->scr.batched = false;
     if (w->order == TT_GAUSS_SEIDEL && w->iterations > 1) {
-        c->batched = tt__batches_plan(&c->bat, c->pairs, c->npairs, c->runs, c->nrows, w->inv_mass, n);
-        if (!c->batched) tt__step_oom(w, "contact batches");
+        c->scr.batched = tt__batches_plan(&c->scr.bat, c->scr.pairs, c->scr.npairs, c->scr.runs, c->scr.nrows, w->inv_mass, n);
+        if (!c->scr.batched) tt__step_oom(w, "contact batches");
     }
     return grid_built;
 }
@@ -208,10 +208,10 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
 static void detect_shapes(tt_world *w, tt__collide *c, uint32_t n, bool grid_built)
 {
     detect_ctx d = {w, c, 0, 0, 0, 0, 0, true};
-    const uint8_t *near = grid_built && grid_near_shapes(c) ? c->near : NULL;
+    const uint8_t *near = grid_built && grid_near_shapes(c) ? c->scr.near : NULL;
     for (uint32_t i = 0; i < n; i++) {
         if (w->inv_mass[i] == 0.0) continue; /* pinned or removed: shapes never push them */
-        if (near && !near[c->grid.cell[i] & 0x7FFFFFFFu]) continue; /* its cell is far from every shape */
+        if (near && !near[c->scr.grid.cell[i] & 0x7FFFFFFFu]) continue; /* its cell is far from every shape */
         double r = w->radius[i], m = r * TT__CONTACT_MARGIN;
         d.i = i;
         d.x = w->px[i];
@@ -227,10 +227,10 @@ static void detect_shapes(tt_world *w, tt__collide *c, uint32_t n, bool grid_bui
         }
     }
     /* where the sweeps start from, for the guard in sweeps_done */
-    if (n && c->gcap >= n) {
-        memcpy(c->gx0, w->px, (size_t)n * sizeof *c->gx0);
-        memcpy(c->gy0, w->py, (size_t)n * sizeof *c->gy0);
-        c->guard = true;
+    if (n && c->scr.gcap >= n) {
+        memcpy(c->scr.gx0, w->px, (size_t)n * sizeof *c->scr.gx0);
+        memcpy(c->scr.gy0, w->py, (size_t)n * sizeof *c->scr.gy0);
+        c->scr.guard = true;
     }
 }
 
@@ -247,11 +247,11 @@ static bool any_movable(const tt_world *w, uint32_t n)
 void tt__contacts_begin(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
-    c->npairs = 0;
-    c->nsc = 0;
+    c->scr.npairs = 0;
+    c->scr.nsc = 0;
     c->cells_used = 0;
-    c->batched = false;
-    c->guard = false; /* until this substep's start positions are copied */
+    c->scr.batched = false;
+    c->scr.guard = false; /* until this substep's start positions are copied */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     tt__shapes_place_moved(w, c);
     bool pairs = c->set.particles;
@@ -279,9 +279,9 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts");
-    if (!start_first && (c->npairs || c->nsc)) substep_start(w, c, h, n);
-    c->quiet_last = c->npairs == 0 && c->nsc == 0;
+    if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);
+    c->quiet_last = c->scr.npairs == 0 && c->scr.nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
-    if (c->npairs > c->pair_peak) c->pair_peak = c->npairs;
-    if (c->nsc > c->sc_peak) c->sc_peak = c->nsc;
+    if (c->scr.npairs > c->pair_peak) c->pair_peak = c->scr.npairs;
+    if (c->scr.nsc > c->sc_peak) c->sc_peak = c->scr.nsc;
 }

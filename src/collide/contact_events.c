@@ -10,11 +10,11 @@
 void tt__record_contact(tt_world *w, tt__collide *c, uint64_t key, uint32_t a, uint32_t b, uint32_t shape, bool sensor,
                         double nx, double ny, double impulse)
 {
-    if (!tt__grow((void **)&c->rec, &c->reccap, c->nrec + 1, sizeof *c->rec)) {
+    if (!tt__grow((void **)&c->scr.rec, &c->scr.reccap, c->scr.nrec + 1, sizeof *c->scr.rec)) {
         tt__step_oom(w, "contact events");
         return;
     }
-    tt__record *r = &c->rec[c->nrec++];
+    tt__record *r = &c->scr.rec[c->scr.nrec++];
     memset(r, 0, sizeof *r);
     r->key = key;
     r->ev.sensor = sensor;
@@ -57,7 +57,7 @@ bool tt__contacts_after_reserve(tt_world *w, void *self)
     (void)w;
     tt__collide *c = self;
     if (!c->set.events) return true;
-    return tt__grow((void **)&c->events, &c->evcap, c->nrec + c->nprev, sizeof *c->events);
+    return tt__grow((void **)&c->events, &c->evcap, c->scr.nrec + c->nprev, sizeof *c->events);
 }
 
 void tt__contacts_after_step(tt_world *w, void *self)
@@ -71,44 +71,44 @@ void tt__contacts_after_step(tt_world *w, void *self)
     if (c->radii_epoch == w->epoch) c->radii_epoch = w->epoch + 1; /* and contact_undo.c's radii above zero */
     c->nevents = 0;
     if (!c->set.events) {
-        c->nrec = 0;
+        c->scr.nrec = 0;
         c->nprev = 0;
         return;
     }
-    c->rec_peak = c->nrec;
+    c->rec_peak = c->scr.nrec;
     /* one record per contact: sorted by key; substeps merged (impulses add up, the last geometry stays) */
-    if (c->nrec > 1) qsort(c->rec, c->nrec, sizeof *c->rec, cmp_record);
+    if (c->scr.nrec > 1) qsort(c->scr.rec, c->scr.nrec, sizeof *c->scr.rec, cmp_record);
     uint32_t m = 0;
-    for (uint32_t k = 0; k < c->nrec; k++) {
-        if (m && c->rec[m - 1].key == c->rec[k].key) {
-            double imp = c->rec[m - 1].ev.impulse + c->rec[k].ev.impulse;
-            c->rec[m - 1] = c->rec[k];
-            c->rec[m - 1].ev.impulse = imp;
+    for (uint32_t k = 0; k < c->scr.nrec; k++) {
+        if (m && c->scr.rec[m - 1].key == c->scr.rec[k].key) {
+            double imp = c->scr.rec[m - 1].ev.impulse + c->scr.rec[k].ev.impulse;
+            c->scr.rec[m - 1] = c->scr.rec[k];
+            c->scr.rec[m - 1].ev.impulse = imp;
         } else {
-            c->rec[m++] = c->rec[k];
+            c->scr.rec[m++] = c->scr.rec[k];
         }
     }
-    c->nrec = m;
+    c->scr.nrec = m;
     uint32_t i = 0, j = 0;
-    while (i < c->nrec || j < c->nprev) {
-        if (j == c->nprev || (i < c->nrec && c->rec[i].key < c->prev[j].key)) {
-            push_event(w, c, &c->rec[i++].ev, TT_EVENT_BEGIN);
-        } else if (i == c->nrec || c->prev[j].key < c->rec[i].key) {
+    while (i < c->scr.nrec || j < c->nprev) {
+        if (j == c->nprev || (i < c->scr.nrec && c->scr.rec[i].key < c->prev[j].key)) {
+            push_event(w, c, &c->scr.rec[i++].ev, TT_EVENT_BEGIN);
+        } else if (i == c->scr.nrec || c->prev[j].key < c->scr.rec[i].key) {
             push_event(w, c, &c->prev[j++].ev, TT_EVENT_END);
         } else {
-            push_event(w, c, &c->rec[i++].ev, TT_EVENT_PERSIST);
+            push_event(w, c, &c->scr.rec[i++].ev, TT_EVENT_PERSIST);
             j++;
         }
     }
     /* this step's set becomes the previous one */
     tt__record *t = c->prev;
     uint32_t tc = c->prevcap;
-    c->prev = c->rec;
-    c->prevcap = c->reccap;
-    c->nprev = c->nrec;
-    c->rec = t;
-    c->reccap = tc;
-    c->nrec = 0;
+    c->prev = c->scr.rec;
+    c->prevcap = c->scr.reccap;
+    c->nprev = c->scr.nrec;
+    c->scr.rec = t;
+    c->scr.reccap = tc;
+    c->scr.nrec = 0;
     c->ev_peak = c->nevents;
 }
 

@@ -42,7 +42,7 @@ static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, doub
     ny *= id;
     const tt_vec2 vu = tt__velocity(w, up), vl = tt__velocity(w, lo);
     const double un = vu.x * nx + vu.y * ny, ln = vl.x * nx + vl.y * ny;
-    const double vn0 = (c->vx0[up] - c->vx0[lo]) * nx + (c->vy0[up] - c->vy0[lo]) * ny;
+    const double vn0 = (c->scr.vx0[up] - c->scr.vx0[lo]) * nx + (c->scr.vy0[up] - c->scr.vy0[lo]) * ny;
     const double ea = tt__mat(c, up, 0), eb = tt__mat(c, lo, 0);
     double cap = ln + allowed(vn0, ea > eb ? ea : eb, thr);
     if (cap < 0.0) cap = 0.0;                   /* a lower one falling away does not pull the upper one down */
@@ -59,18 +59,18 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
     const double gl = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
     if (!(gl > 0.0)) return; /* no up */
     const double gx = w->gravity.x / gl, gy = w->gravity.y / gl;
-    const bool bat = c->batched;
-    const uint32_t m = bat ? c->bat.n : c->npairs;
+    const bool bat = c->scr.batched;
+    const uint32_t m = bat ? c->scr.bat.n : c->scr.npairs;
     /* the touched pairs, lower particle first, and the bands' extent */
     uint32_t nt = 0;
     double hmin = INFINITY, hmax = -INFINITY, rsum = 0.0;
     /* one size for the three (bands ≤ pairs): the pair list's room, so they grow when it grows and a
      * world at steady state allocates nothing */
-    const uint32_t want = (bat ? c->bat.cap : c->paircap) + 1;
-    uint32_t cap2 = c->lift_cap, cap3 = c->lift_cap;
-    if (!tt__grow((void **)&c->lift_start, &cap2, want, sizeof *c->lift_start) ||
-        !tt__grow((void **)&c->lift_order, &cap3, want, sizeof *c->lift_order) ||
-        !tt__grow((void **)&c->lift, &c->lift_cap, want, sizeof *c->lift)) {
+    const uint32_t want = (bat ? c->scr.bat.cap : c->scr.paircap) + 1;
+    uint32_t cap2 = c->scr.lift_cap, cap3 = c->scr.lift_cap;
+    if (!tt__grow((void **)&c->scr.lift_start, &cap2, want, sizeof *c->scr.lift_start) ||
+        !tt__grow((void **)&c->scr.lift_order, &cap3, want, sizeof *c->scr.lift_order) ||
+        !tt__grow((void **)&c->scr.lift, &c->scr.lift_cap, want, sizeof *c->scr.lift)) {
         tt__step_oom(w, "the bottom-up velocity pass");
         return;
     }
@@ -78,14 +78,14 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
         uint32_t a, b;
         double rs;
         if (bat) {
-            if (!(c->bat.lam[k] > 0.0)) continue;
-            a = c->bat.a[k], b = c->bat.b[k], rs = c->bat.rs[k];
+            if (!(c->scr.bat.lam[k] > 0.0)) continue;
+            a = c->scr.bat.a[k], b = c->scr.bat.b[k], rs = c->scr.bat.rs[k];
         } else {
-            if (!(c->pairs[k].lambda > 0.0f)) continue;
-            a = c->pairs[k].a, b = c->pairs[k].b, rs = c->pairs[k].rs;
+            if (!(c->scr.pairs[k].lambda > 0.0f)) continue;
+            a = c->scr.pairs[k].a, b = c->scr.pairs[k].b, rs = c->scr.pairs[k].rs;
         }
         const double ha = height(w, gx, gy, a), hb = height(w, gx, gy, b), hl = ha < hb ? ha : hb;
-        c->lift[nt++] = (tt__lift){ha <= hb ? a : b, ha <= hb ? b : a, hl};
+        c->scr.lift[nt++] = (tt__lift){ha <= hb ? a : b, ha <= hb ? b : a, hl};
         hmin = hl < hmin ? hl : hmin;
         hmax = hl > hmax ? hl : hmax;
         rsum += rs;
@@ -95,10 +95,10 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
     const double band = 0.5 * rsum / nt, spread = band > 0.0 ? (hmax - hmin) / band : 0.0;
     const uint32_t nb = !(spread < nt) ? nt : (uint32_t)spread + 1; /* compared first: a far pile's spread fits no integer */
     const double scale = hmax > hmin ? (nb - 1) / (hmax - hmin) * (1.0 - 1e-12) : 0.0;
-    uint32_t *start = c->lift_start, *order = c->lift_order;
+    uint32_t *start = c->scr.lift_start, *order = c->scr.lift_order;
     for (uint32_t k = 0; k <= nb; k++) start[k] = 0;
-    for (uint32_t k = 0; k < nt; k++) start[(uint32_t)((c->lift[k].h - hmin) * scale) + 1]++;
+    for (uint32_t k = 0; k < nt; k++) start[(uint32_t)((c->scr.lift[k].h - hmin) * scale) + 1]++;
     for (uint32_t k = 0; k < nb; k++) start[k + 1] += start[k];
-    for (uint32_t k = 0; k < nt; k++) order[start[(uint32_t)((c->lift[k].h - hmin) * scale)]++] = k;
-    for (uint32_t k = 0; k < nt; k++) lift_one(w, c, c->lift[order[k]].lo, c->lift[order[k]].up, thr);
+    for (uint32_t k = 0; k < nt; k++) order[start[(uint32_t)((c->scr.lift[k].h - hmin) * scale)]++] = k;
+    for (uint32_t k = 0; k < nt; k++) lift_one(w, c, c->scr.lift[order[k]].lo, c->scr.lift[order[k]].up, thr);
 }

@@ -151,17 +151,17 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
     double err = 0.0;
     double *X = w->px, *Y = w->py;
     size_t st = 1;
-    if (c->batched) { /* Gauss-Seidel, several sweeps */
-        err = tt__batches_sweep(w, &c->bat, tt__groups_relaxing(w) == 1); /* rows kept while nothing else sweeps */
-        if (c->bat.live) {
-            X = c->bat.xy;
-            Y = c->bat.xy + 1;
+    if (c->scr.batched) { /* Gauss-Seidel, several sweeps */
+        err = tt__batches_sweep(w, &c->scr.bat, tt__groups_relaxing(w) == 1); /* rows kept while nothing else sweeps */
+        if (c->scr.bat.live) {
+            X = c->scr.bat.xy;
+            Y = c->scr.bat.xy + 1;
             st = 2;
         }
     } else {
         const double *inv = w->inv_mass;
-        for (uint32_t k = 0; k < c->npairs; k++) {
-            tt__pair *p = &c->pairs[k];
+        for (uint32_t k = 0; k < c->scr.npairs; k++) {
+            tt__pair *p = &c->scr.pairs[k];
             const uint32_t a = p->a, b = p->b;
             const double ia = inv[a], ib = inv[b], ws = ia + ib;
             if (ws == 0.0) continue;
@@ -175,8 +175,8 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
     }
     const double *sx = start_x(w, c), *sy = start_y(w, c);
     const bool fr = rub_in_sweeps(w);
-    for (uint32_t k = 0; k < c->nsc; k++) {
-        tt__scontact *s = &c->sc[k];
+    for (uint32_t k = 0; k < c->scr.nsc; k++) {
+        tt__scontact *s = &c->scr.sc[k];
         const uint32_t a = s->a;
         tt__hit hit;
         if (tt__prim_is_terrain(s->prim)) {
@@ -218,14 +218,14 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
 void tt__contacts_sweeps_done(tt_world *w, void *self)
 {
     tt__collide *c = self;
-    tt__batches_release(w, &c->bat);
+    tt__batches_release(w, &c->scr.bat);
     const uint32_t n = w->ppool.count;
-    if (!c->nprim || !c->guard || c->gcap < n) return;
+    if (!c->nprim || !c->scr.guard || c->scr.gcap < n) return;
     for (uint32_t i = 0; i < n; i++) {
-        const double dx = w->px[i] - c->gx0[i], dy = w->py[i] - c->gy0[i], r = w->radius[i];
+        const double dx = w->px[i] - c->scr.gx0[i], dy = w->py[i] - c->scr.gy0[i], r = w->radius[i];
         const double m = r * TT__CONTACT_MARGIN;
         if (dx * dx + dy * dy <= m * m || w->inv_mass[i] == 0.0) continue;
-        const double x0 = c->gx0[i], y0 = c->gy0[i], x1 = w->px[i], y1 = w->py[i];
+        const double x0 = c->scr.gx0[i], y0 = c->scr.gy0[i], x1 = w->px[i], y1 = w->py[i];
         if (!tt__sgrid_near(c, fmin(x0, x1) - r, fmin(y0, y1) - r, fmax(x0, x1) + r, fmax(y0, y1) + r)) continue;
         double t, nx, ny;
         if (tt__sweep_static(w, c, i, x0, y0, x1, y1, &t, &nx, &ny) < 0) continue;
@@ -303,7 +303,7 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
     }
     double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0), e = ea > eb ? ea : eb;
     double dvx, dvy, sx, sy, dvn;
-    respond(rvx, rvy, c->vx0[a] - c->vx0[b], c->vy0[a] - c->vy0[b], nx, ny, e, true, mus, muk, thr, 0.0, &dvx, &dvy, &sx,
+    respond(rvx, rvy, c->scr.vx0[a] - c->scr.vx0[b], c->scr.vy0[a] - c->scr.vy0[b], nx, ny, e, true, mus, muk, thr, 0.0, &dvx, &dvy, &sx,
             &sy, &dvn);
     if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
         unslide(w, c, a, h, nx, ny, wa, sx, sy, 0.0, 0.0);
@@ -326,7 +326,7 @@ typedef struct pair_ctx {
 static void pair_one(void *ctx, uint32_t k)
 {
     pair_ctx *p = ctx;
-    pair_end(p->w, p->c, p->c->bat.a[k], p->c->bat.b[k], p->h, p->thr, false);
+    pair_end(p->w, p->c, p->c->scr.bat.a[k], p->c->scr.bat.b[k], p->h, p->thr, false);
 }
 
 /* A bounce off a still surface, placed in time. The velocity pass alone
@@ -378,8 +378,8 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     const double above = in_time && !s->ccd ? (start_x(w, c)[a] - w->px[a]) * s->nx + (start_y(w, c)[a] - w->py[a]) * s->ny : 0.0;
     double vx, vy;
     if (s->ccd) { /* the sweep cut the substep's motion short: restart from the velocity before it */
-        vx = c->vx0[a];
-        vy = c->vy0[a];
+        vx = c->scr.vx0[a];
+        vy = c->scr.vy0[a];
         if (w->integrator == TT_VERLET) {
             w->qx[a] = w->px[a] - vx * h;
             w->qy[a] = w->py[a] - vy * h;
@@ -400,7 +400,7 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     }
     double ea = tt__mat(c, a, 0), e = ea > se ? ea : se;
     double dvx, dvy, sx, sy, dvn;
-    respond(vx - ux, vy - uy, c->vx0[a] - ux, c->vy0[a] - uy, s->nx, s->ny, e, true, mus, muk, thr, s->lambda / h, &dvx,
+    respond(vx - ux, vy - uy, c->scr.vx0[a] - ux, c->scr.vy0[a] - uy, s->nx, s->ny, e, true, mus, muk, thr, s->lambda / h, &dvx,
             &dvy, &sx, &sy, &dvn);
     if (s->ccd) {
         dvx -= sx;
@@ -409,7 +409,7 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
         unslide(w, c, a, h, s->nx, s->ny, 1.0, sx, sy, s->cx, s->cy);
     }
     tt__add_velocity(w, a, dvx, dvy);
-    const double vn0 = c->vx0[a] * s->nx + c->vy0[a] * s->ny;
+    const double vn0 = c->scr.vx0[a] * s->nx + c->scr.vy0[a] * s->ny;
     double dn, vn;
 
     if (in_time && e > 0.0 && vn0 < -thr && !s->ccd && s->cx == 0.0 && s->cy == 0.0 &&
@@ -435,20 +435,20 @@ void tt__contacts_end(tt_world *w, void *self, double h)
     const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
     const bool events = c->set.events != 0;
     const double *inv = w->inv_mass;
-    if (c->batched) {
-        tt__batches *B = &c->bat;
+    if (c->scr.batched) {
+        tt__batches *B = &c->scr.bat;
         /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, world materials) */
-        const tt__respond_in in = {c->vx0, c->vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
+        const tt__respond_in in = {c->scr.vx0, c->scr.vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
         pair_ctx pc = {w, c, h, thr};
         if (!(w->integrator == TT_VERLET && !c->mat && !events && tt__batches_respond(w, B, &in, pair_one, &pc)))
             for (uint32_t k = 0; k < B->n; k++)
                 if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], h, thr, events);
     } else {
-        for (uint32_t k = 0; k < c->npairs; k++)
-            if (c->pairs[k].lambda > 0.0f) pair_end(w, c, c->pairs[k].a, c->pairs[k].b, h, thr, events);
+        for (uint32_t k = 0; k < c->scr.npairs; k++)
+            if (c->scr.pairs[k].lambda > 0.0f) pair_end(w, c, c->scr.pairs[k].a, c->scr.pairs[k].b, h, thr, events);
     }
-    for (uint32_t k = 0; k < c->nsc; k++)
-        if ((c->sc[k].lambda > 0.0 || c->sc[k].ccd) && inv[c->sc[k].a] != 0.0) shape_end(w, c, &c->sc[k], h, thr, events);
+    for (uint32_t k = 0; k < c->scr.nsc; k++)
+        if ((c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) && inv[c->scr.sc[k].a] != 0.0) shape_end(w, c, &c->scr.sc[k], h, thr, events);
     if (c->set.particles) tt__contacts_lift(w, c, thr);
     /* kept only where the substep detects: then reserve made the arrays, whatever earlier steps did
      * (one whose shapes are gone since still has them; a world loaded from its stream has not) */

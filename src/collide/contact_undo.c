@@ -16,7 +16,7 @@ bool tt__contacts_fallible(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__collide *c = self;
-    return tt__contacts_detect_any(c) && !c->bounded;
+    return tt__contacts_detect_any(c) && !c->scr.bounded;
 }
 
 /* Whether no radius is above zero, as detect_pairs reads it (its bits):
@@ -54,12 +54,12 @@ static bool points_only(const tt_world *w, tt__collide *c, uint32_t n)
  * cannot grow), and the events after the step need nrec + nprev = 0. */
 bool tt__contacts_bound(tt_world *w, tt__collide *c, uint32_t n)
 {
-    c->bounded = false;
+    c->scr.bounded = false;
     if (c->set.events || c->nbullets || c->terr || c->nprim > 1) return true;
-    if (c->set.particles && (!points_only(w, c, n) || (c->nprim && c->lift_cap <= c->paircap))) return true;
-    if (c->nprim && !tt__grow((void **)&c->sc, &c->sccap, n ? n : 1, sizeof *c->sc))
+    if (c->set.particles && (!points_only(w, c, n) || (c->nprim && c->scr.lift_cap <= c->scr.paircap))) return true;
+    if (c->nprim && !tt__grow((void **)&c->scr.sc, &c->scr.sccap, n ? n : 1, sizeof *c->scr.sc))
         return true; /* no room for all: the copies then, or the undo's own reserve fails the step */
-    c->bounded = true;
+    c->scr.bounded = true;
     return true;
 }
 
@@ -70,7 +70,7 @@ static bool ends_valid(const tt_world *w, const tt__collide *c)
 
 bool tt__contacts_undo_reserve(tt_world *w, void *self)
 {
-    tt__collide_undo *u = &((tt__collide *)self)->undo;
+    tt__collide_undo *u = &((tt__collide *)self)->scr.undo;
     if (w->integrator == TT_VERLET || u->cap >= w->pcap) return true;
     double *x = realloc(u->sx0, (size_t)w->pcap * sizeof *x);
     if (!x) return false;
@@ -85,7 +85,7 @@ bool tt__contacts_undo_reserve(tt_world *w, void *self)
 void tt__contacts_undo_mark(tt_world *w, void *self)
 {
     tt__collide *c = self;
-    tt__collide_undo *u = &c->undo;
+    tt__collide_undo *u = &c->scr.undo;
     u->ends = ends_valid(w, c) && u->cap >= c->s_count;
     if (u->ends) {
         tt__copy(u->sx0, c->sx0, (size_t)c->s_count * sizeof *u->sx0);
@@ -111,7 +111,7 @@ void tt__contacts_undo(tt_world *w, void *self)
 {
     (void)w;
     tt__collide *c = self;
-    const tt__collide_undo *u = &c->undo;
+    const tt__collide_undo *u = &c->scr.undo;
     if (u->ends) {
         tt__copy(c->sx0, u->sx0, (size_t)u->s_count * sizeof *c->sx0);
         tt__copy(c->sy0, u->sy0, (size_t)u->s_count * sizeof *c->sy0);
@@ -130,10 +130,10 @@ void tt__contacts_undo(tt_world *w, void *self)
     c->reach_rmax = u->reach_rmax;
     c->reach_n = u->reach_n;
     c->reach_epoch = u->reach_epoch;
-    c->nrec = 0;
-    c->npairs = 0; /* sleep.c reads the last substep's pairs after a step: this one's are gone */
-    c->nsc = 0;
-    c->grid.epoch = UINT64_MAX; /* built from the undone positions: a query builds its own */
+    c->scr.nrec = 0;
+    c->scr.npairs = 0; /* sleep.c reads the last substep's pairs after a step: this one's are gone */
+    c->scr.nsc = 0;
+    c->scr.grid.epoch = UINT64_MAX; /* built from the undone positions: a query builds its own */
     /* the moved shapes' primitives were placed along the path: the static
      * index is rebuilt for the whole path before the next step, as after a load */
     if (c->any_moved) c->dirty = true;

@@ -62,39 +62,57 @@ static bool quiet(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__collide *c = self;
-    return c->npairs == 0 && c->nsc == 0;
+    return c->scr.npairs == 0 && c->scr.nsc == 0;
 }
 
 size_t tt__contacts_memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__collide *c = self;
-    size_t b = sizeof *c + tt__shapes_bytes(c) + tt__grid_bytes(&c->grid);
-    b += ((size_t)c->vcap + c->scap + c->gcap) * 2 * sizeof(double);
-    b += (size_t)c->lift_cap * (sizeof(tt__lift) + 2 * sizeof(uint32_t));
+    size_t b = sizeof *c + tt__shapes_bytes(c) + tt__grid_bytes(&c->scr.grid);
+    b += ((size_t)c->scr.vcap + c->scap + c->scr.gcap) * 2 * sizeof(double);
+    b += (size_t)c->scr.lift_cap * (sizeof(tt__lift) + 2 * sizeof(uint32_t));
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
     b += tt__pair_set_bytes(&c->excl);
-    b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
-    b += (size_t)c->runs_cap * sizeof *c->runs + c->near_cap;
-    b += ((size_t)c->reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
-    b += (size_t)c->undo.cap * 2 * sizeof(double);
+    b += (size_t)c->scr.paircap * sizeof(tt__pair) + (size_t)c->scr.sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->scr.bat);
+    b += (size_t)c->scr.runs_cap * sizeof *c->scr.runs + c->scr.near_cap;
+    b += ((size_t)c->scr.reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
+    b += (size_t)c->scr.undo.cap * 2 * sizeof(double);
     return b + tt__terrains_bytes(c->terr);
+}
+
+void tt__contacts_scratch_free(tt_world *w, void *self)
+{
+    (void)w;
+    tt__collide *c = self;
+    tt__collide_scratch *s = &c->scr;
+    const uint8_t simd = s->bat.simd; /* the pair sweep's mode is a setting (tests force it), not scratch */
+    tt__grid_free(&s->grid);
+    free(s->vx0); free(s->vy0); free(s->gx0); free(s->gy0);
+    free(s->lift); free(s->lift_start); free(s->lift_order);
+    free(s->pairs); free(s->sc); free(s->runs); free(s->near);
+    tt__batches_free(&s->bat);
+    free(s->rec);
+    free(s->undo.sx0); free(s->undo.sy0);
+    *s = (tt__collide_scratch){0};
+    s->bat.simd = simd;
+    s->grid.epoch = UINT64_MAX; /* no grid: a query builds its own */
+    if (c->terr) { /* the distance update's buffer; the next carving reserves it again */
+        free(c->terr->scr.buf);
+        c->terr->scr.buf = NULL;
+        c->terr->scr.cap = 0;
+    }
 }
 
 void tt__contacts_destroy(tt_world *w, void *self)
 {
-    (void)w;
     tt__collide *c = self;
+    tt__contacts_scratch_free(w, c);
     tt__shapes_free(c);
-    tt__grid_free(&c->grid);
-    free(c->vx0); free(c->vy0); free(c->sx0); free(c->sy0); free(c->gx0); free(c->gy0);
-    free(c->lift); free(c->lift_start); free(c->lift_order);
+    free(c->sx0); free(c->sy0);
     free(c->mat); free(c->bullet); free(c->ccd_prim);
     tt__pair_set_free(&c->excl);
-    free(c->pairs); free(c->sc); free(c->runs); free(c->near);
-    tt__batches_free(&c->bat);
-    free(c->rec); free(c->prev); free(c->events);
-    free(c->undo.sx0); free(c->undo.sy0);
+    free(c->prev); free(c->events);
     tt__terrains_free(c->terr);
     free(c);
 }
@@ -116,6 +134,7 @@ const tt__group_ops tt__contacts_ops = {
     .after_reserve = tt__contacts_after_reserve,
     .particle_removed = particle_removed,
     .memory = tt__contacts_memory,
+    .scratch_free = tt__contacts_scratch_free,
     .destroy = tt__contacts_destroy,
     .id = TT__COLL_ID,
     .save = tt__contacts_save,
@@ -139,7 +158,7 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn)
     }
     c->set = tt_collision_settings_default();
     c->set.particles = false; /* until tt_world_set_collision says otherwise */
-    c->grid.epoch = UINT64_MAX;
+    c->scr.grid.epoch = UINT64_MAX;
     c->spool.tag = w->tag; /* shape handles carry the world's tag, like particles */
     tt__pair_set_init(&c->excl, true);
     if (tt__group_add(w, &tt__contacts_ops, c) < 0) {
@@ -427,7 +446,7 @@ void *tt__contacts_load(tt_world *w, tt__source *s)
 {
     tt__collide *c = calloc(1, sizeof *c);
     if (!c) { tt__src_fail(s, "out of memory"); return NULL; }
-    c->grid.epoch = UINT64_MAX;
+    c->scr.grid.epoch = UINT64_MAX;
     c->spool.tag = w->tag;
     tt__pair_set_init(&c->excl, true);
     tt_collision_settings *set = &c->set;

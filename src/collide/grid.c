@@ -206,7 +206,7 @@ bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
 }
 
 /* The pair list while it is filled: kept in locals, because every store
- * through c->pairs could alias c->npairs and force a reload per pair. */
+ * through c->scr.pairs could alias c->scr.npairs and force a reload per pair. */
 typedef struct emit {
     tt__pair *p;
     uint32_t n, cap;
@@ -214,10 +214,10 @@ typedef struct emit {
 
 static bool emit_grow(tt__collide *c, emit *e)
 {
-    c->npairs = e->n;
-    if (!tt__grow((void **)&c->pairs, &c->paircap, e->n + 1, sizeof *c->pairs)) return false;
-    e->p = c->pairs;
-    e->cap = c->paircap;
+    c->scr.npairs = e->n;
+    if (!tt__grow((void **)&c->scr.pairs, &c->scr.paircap, e->n + 1, sizeof *c->scr.pairs)) return false;
+    e->p = c->scr.pairs;
+    e->cap = c->scr.paircap;
     return true;
 }
 
@@ -312,7 +312,7 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
 /* Every cell in row-major order: first each particle with the rest of its
  * cell and the cell E (contiguous), then each with NW, N, NE (contiguous in
  * the sorted order too): the forward half of the neighbourhood. Notes where
- * each row's TT__PARTS bands of columns start in the list (c->runs, for
+ * each row's TT__PARTS bands of columns start in the list (c->scr.runs, for
  * contact batches). One copy per kernel and filter, so both are fixed
  * inside the loops. */
 #define TT__WALK(name, attr, range, plain)                                                              \
@@ -321,11 +321,11 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
         const int32_t nx = g->nx, ny = g->ny;                                                           \
         const uint32_t *st = g->start;                                                                  \
         const bool mostly_pinned = g->npinned > g->n / 2;                                               \
-        emit e = {c->pairs, c->npairs, c->paircap};                                                     \
+        emit e = {c->scr.pairs, c->scr.npairs, c->scr.paircap};                                                     \
         bool ok = true;                                                                                 \
         for (int32_t y = 0; y < ny && ok; y++) {                                                        \
             const uint32_t row = (uint32_t)y * (uint32_t)nx;                                            \
-            uint32_t *run = c->runs + (size_t)y * TT__PARTS, part = 0;                                  \
+            uint32_t *run = c->scr.runs + (size_t)y * TT__PARTS, part = 0;                                  \
             for (int32_t x = 0; x < nx && ok; x++) {                                                    \
                 while (part < TT__PARTS && (uint64_t)x * TT__PARTS >= (uint64_t)part * (uint32_t)nx)    \
                     run[part++] = e.n;                                                                  \
@@ -344,9 +344,9 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
             }                                                                                           \
             while (part < TT__PARTS) run[part++] = e.n;                                                 \
         }                                                                                               \
-        c->runs[(size_t)ny * TT__PARTS] = e.n;                                                          \
-        c->nrows = ok ? (uint32_t)ny : 0;                                                               \
-        c->npairs = e.n;                                                                                \
+        c->scr.runs[(size_t)ny * TT__PARTS] = e.n;                                                          \
+        c->scr.nrows = ok ? (uint32_t)ny : 0;                                                               \
+        c->scr.npairs = e.n;                                                                                \
         return ok;                                                                                      \
     }
 
@@ -359,9 +359,9 @@ TT__WALK(walk_full_avx2, TT_AVX2, range_avx2, false)
 
 bool tt__grid_pairs(tt_world *w, tt__collide *c)
 {
-    const tt__grid *g = &c->grid;
-    c->nrows = 0;
-    if (!tt__grow((void **)&c->runs, &c->runs_cap, (uint32_t)g->ny * TT__PARTS + 1, sizeof *c->runs)) return false;
+    const tt__grid *g = &c->scr.grid;
+    c->scr.nrows = 0;
+    if (!tt__grow((void **)&c->scr.runs, &c->scr.runs_cap, (uint32_t)g->ny * TT__PARTS + 1, sizeof *c->scr.runs)) return false;
     const bool plain = g->one_layer && c->excl.used == 0 && !tt__constraint_pairs_any(w);
 #ifdef TT_SIMD_X86
     if (tt__simd_kind(TT__SIMD_AUTO) != TT__SIMD_SCALAR) return plain ? walk_plain_avx2(w, c, g) : walk_full_avx2(w, c, g);

@@ -13,12 +13,12 @@ static tt__collide *ready(tt_world *w, const char *fn)
     tt__collide *c = tt__collide_get(w, true, fn);
     if (!c) return NULL;
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) return NULL;
-    if (c->grid.epoch != w->epoch) {
-        if (!tt__grid_build(w, &c->grid, c->set.cell_size)) {
+    if (c->scr.grid.epoch != w->epoch) {
+        if (!tt__grid_build(w, &c->scr.grid, c->set.cell_size)) {
             tt__fail(w, TT_ENOMEM, "%s: out of memory for the particle grid", fn);
             return NULL;
         }
-        c->grid.epoch = w->epoch;
+        c->scr.grid.epoch = w->epoch;
     }
     uint32_t need = c->spool.count ? c->spool.count : 1;
     if (c->sstamp_cap < need) {
@@ -140,7 +140,7 @@ static void ray_particle(ray_ctx *r, uint32_t i)
 static bool ray_particle_cell(void *ctx, int32_t cx, int32_t cy, double te)
 {
     ray_ctx *r = ctx;
-    const tt__grid *g = &r->c->grid;
+    const tt__grid *g = &r->c->scr.grid;
     if (r->best->hit && te > r->best->fraction) return false;
     for (int32_t y = cy - 1; y <= cy + 1; y++)
         for (int32_t x = cx - 1; x <= cx + 1; x++) {
@@ -171,7 +171,7 @@ tt_result tt_world_raycast(tt_world *w, tt_vec2 from, tt_vec2 to, uint16_t mask,
         const tt__sgrid *g = &c->sgrid;
         if (g->nx) walk(g->ox, g->oy, g->cs, g->nx, g->ny, g->cs, r.ox, r.oy, r.dx, r.dy, ray_shape_cell, &r);
     }
-    const tt__grid *g = &c->grid;
+    const tt__grid *g = &c->scr.grid;
     if (g->n) {
         for (uint32_t k = 0; k < g->nout; k++) ray_particle(&r, g->out_list[k]);
         walk(g->ox, g->oy, g->cs, g->nx, g->ny, g->cs, r.ox, r.oy, r.dx, r.dy, ray_particle_cell, &r);
@@ -232,7 +232,7 @@ static tt_result area(tt_world *w, const char *fn, double lox, double loy, doubl
     area_ctx a = {w, c, lox, loy, hix, hiy, point, mask, shapes, scap, 0};
     tt__sgrid_query(c, lox, loy, hix, hiy, area_prim, &a);
     uint32_t count = 0;
-    const tt__grid *g = &c->grid;
+    const tt__grid *g = &c->scr.grid;
     if (g->n) {
         const double m = g->rmax;
         int32_t x0 = tt__cell_coord(lox - m, g->ox, g->inv), x1 = tt__cell_coord(hix + m, g->ox, g->inv);

@@ -175,8 +175,8 @@ bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
             tt__hit hit;
             tt__terrain_hit(c, code, x, y, r, &hit);
             if (hit.depth <= -m) continue;
-            if (!tt__grow((void **)&c->sc, &c->sccap, c->nsc + 1, sizeof *c->sc)) return false;
-            c->sc[c->nsc++] = (tt__scontact){i, code, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0.0, 0.0, 0};
+            if (!tt__grow((void **)&c->scr.sc, &c->scr.sccap, c->scr.nsc + 1, sizeof *c->scr.sc)) return false;
+            c->scr.sc[c->scr.nsc++] = (tt__scontact){i, code, hit.nx, hit.ny, 0.0, 0.0, 0.0, 0.0, 0.0, 0};
         }
     }
     return true;

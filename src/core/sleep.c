@@ -54,7 +54,7 @@ static inline bool dynamic(const tt_world *w, uint32_t i)
 
 static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
 {
-    if (w->scr.undo.on && !s->undo.taken) tt__sleep_undo_take(w, s);
+    if (w->scr.undo.on && !s->scr.undo.taken) tt__sleep_undo_take(w, s);
     s->island[i] = 0;
     s->rest[i] = s->held[i] = 0.0;
     s->ax[i] = w->px[i];
@@ -182,8 +182,8 @@ static void wake_touched(tt_world *w, tt__sleep *s)
 {
     const tt__collide *c = tt__collide_peek(w);
     if (!c || s->asleep == 0) return;
-    for (uint32_t k = 0; k < c->npairs; k++) {
-        uint32_t a = c->pairs[k].a, b = c->pairs[k].b;
+    for (uint32_t k = 0; k < c->scr.npairs; k++) {
+        uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
         if (a >= w->ppool.count || b >= w->ppool.count) continue;
         uint32_t ia = s->island[a], ib = s->island[b];
         if (!ia == !ib) continue; /* both awake or both asleep */
@@ -217,7 +217,7 @@ static void unite(const tt_world *w, tt__sleep *s, uint32_t a, uint32_t b)
 static void unite_all(const tt_world *w, tt__sleep *s)
 {
     const tt__collide *c = tt__collide_peek(w);
-    for (uint32_t k = 0; c && k < c->npairs; k++) unite(w, s, c->pairs[k].a, c->pairs[k].b);
+    for (uint32_t k = 0; c && k < c->scr.npairs; k++) unite(w, s, c->scr.pairs[k].a, c->scr.pairs[k].b);
     for (uint32_t k = 0; k < w->spool.count; k++)
         if (w->springs[k].alive) unite(w, s, w->springs[k].a, w->springs[k].b);
     const tt__cgroup *g = tt__cgroup_peek(w);
@@ -310,7 +310,7 @@ static size_t memory(const tt_world *w, const void *self)
     (void)w;
     const tt__sleep *s = self;
     return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t) +
-           (size_t)s->undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
+           (size_t)s->scr.undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
            ((size_t)s->grid.cap_cells + s->grid.cap) * sizeof(uint32_t);
 }
 
@@ -323,6 +323,7 @@ static const tt__group_ops sleep_ops = {
     .undo_reserve = tt__sleep_undo_reserve,
     .undo_mark = tt__sleep_undo_mark,
     .undo = tt__sleep_undo,
+    .scratch_free = tt__sleep_scratch_free,
     .particle_removed = particle_removed,
     .id = TT__ID('S', 'L', 'E', 'P'),
     .save = tt__sleep_save,

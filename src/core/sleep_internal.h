@@ -16,6 +16,21 @@ typedef struct tt__sleep_grid {
     uint32_t cap_cells, cap;
 } tt__sleep_grid;
 
+/* What the step works in: neither saved nor hashed, and its loss between
+ * two steps (tt__sleep_scratch_free) changes nothing
+ * (tests/core/test_scratch.c): the step's undo reserve sizes it again, and
+ * the undo mark sets its flags before the step reads them. */
+typedef struct tt__sleep_scratch {
+    /* the step's undo (step_undo.c): the per-slot state as the step began,
+     * copied at the step's first waking */
+    struct {
+        bool taken;
+        uint32_t asleep, cap;
+        double *rest, *held, *ax, *ay;
+        uint32_t *island;
+    } undo;
+} tt__sleep_scratch;
+
 typedef struct tt__sleep {
     double speed, time;   /* m/s: the mean speed under which a particle rests; s at rest before its island sleeps */
     uint32_t next_island; /* ids are never reused while anything sleeps under them */
@@ -42,14 +57,7 @@ typedef struct tt__sleep {
         bool ok;
     } holders;
     tt__sleep_grid grid;
-    /* the step's undo (step_undo.c): the per-slot state as the step began,
-     * copied at the step's first waking (scratch) */
-    struct {
-        bool taken;
-        uint32_t asleep, cap;
-        double *rest, *held, *ax, *ay;
-        uint32_t *island;
-    } undo;
+    tt__sleep_scratch scr; /* what the step works in: not state */
 } tt__sleep;
 
 /* Slots the arrays cover: particles made since the last step lie past
@@ -85,5 +93,7 @@ void tt__sleep_undo_mark(tt_world *w, void *self);
 void tt__sleep_undo(tt_world *w, void *self);
 /* Copies the per-slot state before the step's first waking changes it. */
 void tt__sleep_undo_take(tt_world *w, tt__sleep *s);
+/* Frees the step's scratch (tt__group_ops.scratch_free). */
+void tt__sleep_scratch_free(tt_world *w, void *self);
 
 #endif

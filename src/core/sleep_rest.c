@@ -171,9 +171,9 @@ void tt__sleep_rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready)
     }
     for (uint32_t k = 0; k < s->holders.nbounds; k++) bounds_one(w, s, g, s->holders.bounds[k], dt, ready);
     const tt__collide *c = tt__collide_peek(w);
-    for (uint32_t k = 0; c && k < c->npairs; k++) {
-        rest_new(w, s, c->pairs[k].a, dt, ready);
-        rest_new(w, s, c->pairs[k].b, dt, ready);
+    for (uint32_t k = 0; c && k < c->scr.npairs; k++) {
+        rest_new(w, s, c->scr.pairs[k].a, dt, ready);
+        rest_new(w, s, c->scr.pairs[k].b, dt, ready);
     }
-    for (uint32_t k = 0; c && k < c->nsc; k++) rest_new(w, s, c->sc[k].a, dt, ready);
+    for (uint32_t k = 0; c && k < c->scr.nsc; k++) rest_new(w, s, c->scr.sc[k].a, dt, ready);
 }

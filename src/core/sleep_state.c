@@ -60,6 +60,6 @@ void tt__sleep_destroy(tt_world *w, void *self)
     if (!s) return;
     free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
     free(s->grid.start); free(s->grid.idx);
-    free(s->undo.rest); free(s->undo.held); free(s->undo.ax); free(s->undo.ay); free(s->undo.island);
+    tt__sleep_scratch_free(w, s);
     free(s);
 }

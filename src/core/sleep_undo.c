@@ -10,17 +10,17 @@ bool tt__sleep_undo_reserve(tt_world *w, void *self)
 {
     (void)w;
     tt__sleep *s = self;
-    if (s->undo.cap >= s->cap) return true;
-    double **d[] = {&s->undo.rest, &s->undo.held, &s->undo.ax, &s->undo.ay};
+    if (s->scr.undo.cap >= s->cap) return true;
+    double **d[] = {&s->scr.undo.rest, &s->scr.undo.held, &s->scr.undo.ax, &s->scr.undo.ay};
     for (int k = 0; k < 4; k++) {
         double *p = realloc(*d[k], (size_t)s->cap * sizeof *p);
         if (!p) return false;
         *d[k] = p;
     }
-    uint32_t *p = realloc(s->undo.island, (size_t)s->cap * sizeof *p);
+    uint32_t *p = realloc(s->scr.undo.island, (size_t)s->cap * sizeof *p);
     if (!p) return false;
-    s->undo.island = p;
-    s->undo.cap = s->cap;
+    s->scr.undo.island = p;
+    s->scr.undo.cap = s->cap;
     return true;
 }
 
@@ -28,35 +28,43 @@ void tt__sleep_undo_mark(tt_world *w, void *self)
 {
     (void)w;
     tt__sleep *s = self;
-    s->undo.taken = false;
-    s->undo.asleep = s->asleep;
+    s->scr.undo.taken = false;
+    s->scr.undo.asleep = s->asleep;
 }
 
 void tt__sleep_undo_take(tt_world *w, tt__sleep *s)
 {
-    const size_t n = tt__sleep_covered(w, s) < s->undo.cap ? tt__sleep_covered(w, s) : s->undo.cap;
+    const size_t n = tt__sleep_covered(w, s) < s->scr.undo.cap ? tt__sleep_covered(w, s) : s->scr.undo.cap;
     tt__undo_flags(w);
-    tt__copy(s->undo.rest, s->rest, n * sizeof *s->rest);
-    tt__copy(s->undo.held, s->held, n * sizeof *s->held);
-    tt__copy(s->undo.ax, s->ax, n * sizeof *s->ax);
-    tt__copy(s->undo.ay, s->ay, n * sizeof *s->ay);
-    tt__copy(s->undo.island, s->island, n * sizeof *s->island);
-    s->undo.taken = true;
+    tt__copy(s->scr.undo.rest, s->rest, n * sizeof *s->rest);
+    tt__copy(s->scr.undo.held, s->held, n * sizeof *s->held);
+    tt__copy(s->scr.undo.ax, s->ax, n * sizeof *s->ax);
+    tt__copy(s->scr.undo.ay, s->ay, n * sizeof *s->ay);
+    tt__copy(s->scr.undo.island, s->island, n * sizeof *s->island);
+    s->scr.undo.taken = true;
 }
 
 void tt__sleep_undo(tt_world *w, void *self)
 {
     tt__sleep *s = self;
-    s->asleep = s->undo.asleep;
+    s->asleep = s->scr.undo.asleep;
     s->nwake = 0;
     s->grid.built = false; /* who sleeps may be back as it was */
-    if (!s->undo.taken) return;
-    const size_t n = tt__sleep_covered(w, s) < s->undo.cap ? tt__sleep_covered(w, s) : s->undo.cap;
-    tt__copy(s->rest, s->undo.rest, n * sizeof *s->rest);
-    tt__copy(s->held, s->undo.held, n * sizeof *s->held);
-    tt__copy(s->ax, s->undo.ax, n * sizeof *s->ax);
-    tt__copy(s->ay, s->undo.ay, n * sizeof *s->ay);
-    tt__copy(s->island, s->undo.island, n * sizeof *s->island);
-    s->undo.taken = false;
+    if (!s->scr.undo.taken) return;
+    const size_t n = tt__sleep_covered(w, s) < s->scr.undo.cap ? tt__sleep_covered(w, s) : s->scr.undo.cap;
+    tt__copy(s->rest, s->scr.undo.rest, n * sizeof *s->rest);
+    tt__copy(s->held, s->scr.undo.held, n * sizeof *s->held);
+    tt__copy(s->ax, s->scr.undo.ax, n * sizeof *s->ax);
+    tt__copy(s->ay, s->scr.undo.ay, n * sizeof *s->ay);
+    tt__copy(s->island, s->scr.undo.island, n * sizeof *s->island);
+    s->scr.undo.taken = false;
 }
 
+
+void tt__sleep_scratch_free(tt_world *w, void *self)
+{
+    (void)w;
+    tt__sleep *s = self;
+    free(s->scr.undo.rest); free(s->scr.undo.held); free(s->scr.undo.ax); free(s->scr.undo.ay); free(s->scr.undo.island);
+    s->scr = (tt__sleep_scratch){0};
+}

@@ -28,12 +28,12 @@ static int cmp_u64(const void *a, const void *b)
 /* The pair set as sorted (min, max) keys. */
 static uint64_t *pair_set(const tt__collide *c)
 {
-    uint64_t *k = malloc((c->npairs + 1) * sizeof *k);
-    for (uint32_t i = 0; i < c->npairs; i++) {
-        uint32_t a = c->pairs[i].a, b = c->pairs[i].b;
+    uint64_t *k = malloc((c->scr.npairs + 1) * sizeof *k);
+    for (uint32_t i = 0; i < c->scr.npairs; i++) {
+        uint32_t a = c->scr.pairs[i].a, b = c->scr.pairs[i].b;
         k[i] = a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
     }
-    qsort(k, c->npairs, sizeof *k, cmp_u64);
+    qsort(k, c->scr.npairs, sizeof *k, cmp_u64);
     return k;
 }
 
@@ -75,16 +75,16 @@ TEST(grid_and_brute_force_give_identical_pair_sets_on_random_scenes)
         if (seed % 3 == 0) tt_particle_destroy(w, ps[7]); /* a hole in the slots */
         tt__collide *c = tt__collide_peek(w);
         ENSURE(c);
-        c->npairs = 0;
-        ENSURE(tt__grid_build(w, &c->grid, seed % 2 ? 0.0 : 3.0) && tt__grid_pairs(w, c));
-        ENSURE(c->grid.nout > 0);                                /* some are outside the grid */
-        ENSURE(c->grid.ncell <= 4 * c->grid.n + 1024);           /* and the grid stayed small */
-        uint32_t ng = c->npairs;
+        c->scr.npairs = 0;
+        ENSURE(tt__grid_build(w, &c->scr.grid, seed % 2 ? 0.0 : 3.0) && tt__grid_pairs(w, c));
+        ENSURE(c->scr.grid.nout > 0);                                /* some are outside the grid */
+        ENSURE(c->scr.grid.ncell <= 4 * c->scr.grid.n + 1024);           /* and the grid stayed small */
+        uint32_t ng = c->scr.npairs;
         uint64_t *g = pair_set(c);
-        c->npairs = 0;
+        c->scr.npairs = 0;
         ENSURE(tt__brute_pairs(w, c));
         uint64_t *b = pair_set(c);
-        ENSURE(ng == c->npairs);
+        ENSURE(ng == c->scr.npairs);
         for (uint32_t i = 0; i < ng; i++) ENSURE(g[i] == b[i]);
         for (uint32_t i = 1; i < ng; i++) ENSURE(g[i] != g[i - 1]); /* no pair twice */
         total += ng;
@@ -114,11 +114,11 @@ TEST(grid_arrays_are_reused_step_after_step)
     }
     for (int s = 0; s < 30; s++) tt_world_step(w, 1.0 / 60);
     tt__collide *c = tt__collide_peek(w);
-    void *p0 = c->grid.idx, *p1 = c->grid.start, *p2 = c->pairs, *p3 = c->sc;
-    uint32_t caps[4] = {c->grid.cap_n, c->grid.cap_cells, c->paircap, c->sccap};
+    void *p0 = c->scr.grid.idx, *p1 = c->scr.grid.start, *p2 = c->scr.pairs, *p3 = c->scr.sc;
+    uint32_t caps[4] = {c->scr.grid.cap_n, c->scr.grid.cap_cells, c->scr.paircap, c->scr.sccap};
     for (int s = 0; s < 60; s++) tt_world_step(w, 1.0 / 60);
-    ENSURE(p0 == c->grid.idx && p1 == c->grid.start && p2 == c->pairs && p3 == c->sc);
-    ENSURE(caps[0] == c->grid.cap_n && caps[1] == c->grid.cap_cells && caps[2] == c->paircap && caps[3] == c->sccap);
+    ENSURE(p0 == c->scr.grid.idx && p1 == c->scr.grid.start && p2 == c->scr.pairs && p3 == c->scr.sc);
+    ENSURE(caps[0] == c->scr.grid.cap_n && caps[1] == c->scr.grid.cap_cells && caps[2] == c->scr.paircap && caps[3] == c->scr.sccap);
     tt_collision_stats st;
     ENSURE_OK(tt_world_get_collision_stats(w, &st));
     ENSURE(st.static_rebuilds == 1); /* the static index was built once */
@@ -233,10 +233,10 @@ TEST(balls_resting_far_apart_on_a_long_floor_keep_a_grid_row)
         tt_particle_create(w, &pd);
     }
     tt__collide *c = tt__collide_peek(w);
-    ENSURE(tt__grid_build(w, &c->grid, 0.0));
-    ENSURE(grid_sane(&c->grid));
+    ENSURE(tt__grid_build(w, &c->scr.grid, 0.0));
+    ENSURE(grid_sane(&c->scr.grid));
     for (int s = 0; s < 120; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
-    ENSURE(grid_sane(&c->grid));
+    ENSURE(grid_sane(&c->scr.grid));
     double xy[200];
     ENSURE(tt_world_read_positions(w, xy, 100) == 100);
     for (int i = 0; i < 100; i++) {
@@ -269,11 +269,11 @@ TEST(points_with_a_tiny_cell_size_keep_a_sane_grid)
     for (unsigned k = 0; k < sizeof ys / sizeof ys[0]; k++) {
         tt_world *w = points_in_a_row(1e-3, ys[k]);
         tt__collide *c = tt__collide_peek(w);
-        ENSURE(tt__grid_build(w, &c->grid, 1e-3));
-        ENSURE(grid_sane(&c->grid));
-        ENSURE(c->grid.ncell <= 4 * c->grid.n + 1024);
+        ENSURE(tt__grid_build(w, &c->scr.grid, 1e-3));
+        ENSURE(grid_sane(&c->scr.grid));
+        ENSURE(c->scr.grid.ncell <= 4 * c->scr.grid.n + 1024);
         for (int s = 0; s < 10; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
-        ENSURE(grid_sane(&c->grid));
+        ENSURE(grid_sane(&c->scr.grid));
         tt_world_destroy(w);
     }
 }
@@ -288,11 +288,11 @@ TEST(an_absurdly_small_cell_size_does_not_overflow_the_cell_counts)
     for (unsigned k = 0; k < 9; k++) {
         tt_world *w = points_in_a_row(sizes[k % 3], ys[k / 3]);
         tt__collide *c = tt__collide_peek(w);
-        ENSURE(tt__grid_build(w, &c->grid, sizes[k % 3]));
-        ENSURE(grid_sane(&c->grid));
-        ENSURE(c->grid.ncell <= 4 * c->grid.n + 1024);
+        ENSURE(tt__grid_build(w, &c->scr.grid, sizes[k % 3]));
+        ENSURE(grid_sane(&c->scr.grid));
+        ENSURE(c->scr.grid.ncell <= 4 * c->scr.grid.n + 1024);
         for (int s = 0; s < 10; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
-        ENSURE(grid_sane(&c->grid));
+        ENSURE(grid_sane(&c->scr.grid));
         tt_ray_hit hit;
         ENSURE_OK(tt_world_raycast(w, (tt_vec2){-1, ys[k / 3]}, (tt_vec2){200, ys[k / 3]}, 0xFFFF, &hit));
         uint32_t np = 0;

@@ -6,13 +6,20 @@
  * integrator, Jacobi and Gauss-Seidel, springs, each constraint kind,
  * tearing, contacts, sleeping). */
 #include "test.h"
+#include "alloc_fail.h"
+#include "collide/terrain_internal.h"
 #include "constraints/constraint_internal.h"
 #include "core/internal.h"
 #include "core/scenes.h"
+#include "core/sleep_internal.h"
 
 #include <string.h>
 
-enum { STEPS = 40, GARBAGE = 0xA5 };
+enum { STEPS = 40, SETTLE_STEPS = 300, GARBAGE = 0xA5 };
+
+/* Steps each scene is run for: settle's piles fall asleep, and the ball
+ * dropped at step 240 wakes one of them, within 300. */
+static int steps_of(scene_kind k) { return k == SCENE_SETTLE ? SETTLE_STEPS : STEPS; }
 
 static void fill(void *p, size_t bytes)
 {
@@ -73,7 +80,154 @@ static void constraints_garbage(tt_world *w)
     for (uint32_t i = 0; i < g->ngen; i++) fill(&g->gen[i].lambda, sizeof g->gen[i].lambda);
 }
 
+/* Sleeping's scratch as garbage: the undo's copies and its flags (the
+ * undo mark sets them before the step reads them). */
+static void sleep_garbage(tt_world *w)
+{
+    tt__sleep *sl = (tt__sleep *)tt__group_find_id(w, TT__ID('S', 'L', 'E', 'P'));
+    if (!sl) return;
+    fill(&sl->scr.undo.taken, sizeof sl->scr.undo.taken);
+    fill(&sl->scr.undo.asleep, sizeof sl->scr.undo.asleep);
+    double *d[] = {sl->scr.undo.rest, sl->scr.undo.held, sl->scr.undo.ax, sl->scr.undo.ay};
+    for (size_t k = 0; k < sizeof d / sizeof d[0]; k++) fill(d[k], (size_t)sl->scr.undo.cap * sizeof(double));
+    fill(sl->scr.undo.island, (size_t)sl->scr.undo.cap * sizeof(uint32_t));
+}
+
+/* The contacts group's scratch as garbage, its buffers kept, lengths their
+ * capacities: the grid, the substep's start velocities and guard
+ * positions, the bottom-up pass's lists, pairs and their runs, the near
+ * cells, the batches, shape contacts, the step's records, the undo's
+ * copies, and the flags begin and reserve set before they are read; the
+ * terrains' update buffer. The counts (the last substep's contacts, which
+ * the stats show between steps) are left. */
+static void contacts_garbage(tt_world *w)
+{
+    tt__collide *c = tt__collide_peek(w);
+    if (!c) return;
+    tt__collide_scratch *s = &c->scr;
+    tt__grid *g = &s->grid;
+    fill(g->start, (size_t)g->cap_cells * sizeof(uint32_t));
+    uint32_t *gu[] = {g->cell, g->idx, g->out_list};
+    for (size_t k = 0; k < sizeof gu / sizeof gu[0]; k++) fill(gu[k], (size_t)g->cap_n * sizeof(uint32_t));
+    double *gd[] = {g->sx, g->sy, g->sr};
+    for (size_t k = 0; k < sizeof gd / sizeof gd[0]; k++) fill(gd[k], (size_t)g->cap_n * sizeof(double));
+    fill(g->bits, g->cap_n);
+    fill(s->vx0, (size_t)s->vcap * sizeof(double));
+    fill(s->vy0, (size_t)s->vcap * sizeof(double));
+    fill(s->gx0, (size_t)s->gcap * sizeof(double));
+    fill(s->gy0, (size_t)s->gcap * sizeof(double));
+    fill(s->lift, (size_t)s->lift_cap * sizeof *s->lift);
+    fill(s->lift_start, (size_t)s->lift_cap * sizeof(uint32_t));
+    fill(s->lift_order, (size_t)s->lift_cap * sizeof(uint32_t));
+    fill(s->pairs, (size_t)s->paircap * sizeof *s->pairs);
+    fill(s->runs, (size_t)s->runs_cap * sizeof *s->runs);
+    fill(s->near, s->near_cap);
+    tt__batches *B = &s->bat;
+    fill(B->a, (size_t)B->cap * sizeof(uint32_t));
+    fill(B->b, (size_t)B->cap * sizeof(uint32_t));
+    double *bd[] = {B->rs, B->lam, B->wa, B->wb};
+    for (size_t k = 0; k < sizeof bd / sizeof bd[0]; k++) fill(bd[k], (size_t)B->cap * sizeof(double));
+    fill(B->solo, B->cap / 4);
+    fill(B->stamp, (size_t)B->stamp_cap * sizeof(uint32_t));
+    fill(B->xy, (size_t)B->xy_cap * 2 * sizeof(double));
+    fill(B->q, (size_t)B->q_cap * 2 * sizeof(double));
+    fill(B->v0, (size_t)B->v0_cap * 2 * sizeof(double));
+    fill(s->sc, (size_t)s->sccap * sizeof *s->sc);
+    fill(s->rec, (size_t)s->reccap * sizeof *s->rec);
+    fill(s->undo.sx0, (size_t)s->undo.cap * sizeof(double));
+    fill(s->undo.sy0, (size_t)s->undo.cap * sizeof(double));
+    s->guard = s->batched = s->bounded = s->undo.ends = true;
+    if (c->terr) fill(c->terr->scr.buf, c->terr->scr.cap);
+}
+
 static void world_free(tt_world *w) { tt__world_scratch_free(w); }
+
+/* Worlds with collisions beside the reference scenes: a terrain, carved
+ * as they step, under a velocity integrator (its end positions are state)
+ * with bullets and events; and a cluster converging without gravity, whose
+ * pair search is skipped while nothing is near (contact_skip.c). */
+typedef struct local {
+    tt_world *w;
+    tt_terrain t;
+} local;
+
+static void local_terrain(local *l)
+{
+    tt_world_def d = tt_world_def_default();
+    d.integrator = TT_SYMPLECTIC_EULER;
+    d.substeps = 2;
+    l->w = tt_world_create(&d);
+    tt_mask *m = tt_mask_create(80, 40, false);
+    tt_mask_fill_rect(m, 0, 20, 80, 20, true);
+    tt_terrain_def td = tt_terrain_def_default();
+    td.solid = m;
+    td.pixel = 0.1;
+    td.origin = (tt_vec2){-4.0, 2.0};
+    l->t = tt_terrain_create(l->w, &td);
+    tt_mask_destroy(m);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.15;
+    for (int i = 0; i < 40; i++) {
+        pd.position = (tt_vec2){-3.0 + (i % 10) * 0.6 + 0.05 * (i / 10), 0.5 + (i / 10) * 0.5};
+        tt_particle_create(l->w, &pd);
+    }
+    pd.position = (tt_vec2){0.5, 3.0};
+    pd.velocity = (tt_vec2){2.0, -80.0};
+    tt_particle_set_bullet(l->w, tt_particle_create(l->w, &pd), true);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.events = TT_EVENT_BEGIN | TT_EVENT_PERSIST | TT_EVENT_END;
+    tt_world_set_collision(l->w, &cs);
+}
+
+static void local_cluster(local *l)
+{
+    tt_world_def d = tt_world_def_default();
+    d.substeps = 2;
+    d.gravity = (tt_vec2){0.0, 0.0};
+    l->w = tt_world_create(&d);
+    l->t = (tt_terrain){0, 0};
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.2;
+    for (int i = 0; i < 64; i++) {
+        const double x = i % 8, y = i / 8;
+        pd.position = (tt_vec2){x, y};
+        pd.velocity = (tt_vec2){-(x - 3.5) * 0.6, -(y - 3.5) * 0.6}; /* meeting in about a second */
+        tt_particle_create(l->w, &pd);
+    }
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_world_set_collision(l->w, &cs);
+}
+
+static void (*const locals[])(local *l) = {local_terrain, local_cluster};
+enum { LOCAL_COUNT = sizeof locals / sizeof locals[0], LOCAL_STEPS = 90 };
+
+static int twins_local(void (*lose)(tt_world *w), const char *how)
+{
+    int bad = 0;
+    for (int k = 0; k < LOCAL_COUNT; k++) {
+        local kept, lost;
+        locals[k](&kept);
+        locals[k](&lost);
+        for (int s = 0; s < LOCAL_STEPS && !bad; s++) {
+            if (kept.t.gen && s % 10 == 5) { /* a hole where the grains lie */
+                tt_terrain_paint_circle(kept.w, kept.t, (tt_vec2){-3.0 + 0.3 * (s / 10), 0.1}, 0.4, false);
+                tt_terrain_paint_circle(lost.w, lost.t, (tt_vec2){-3.0 + 0.3 * (s / 10), 0.1}, 0.4, false);
+            }
+            lose(lost.w);
+            tt_world_step(kept.w, 1.0 / 60);
+            tt_world_step(lost.w, 1.0 / 60);
+            if (tt_world_hash(kept.w) != tt_world_hash(lost.w) ||
+                scene_positions_digest(kept.w) != scene_positions_digest(lost.w)) {
+                tt_test_fail(__FILE__, __LINE__, "world %s, scratch %s: differs after step %d",
+                             k ? "cluster" : "terrain", how, s + 1);
+                bad++;
+            }
+        }
+        tt_world_destroy(kept.w);
+        tt_world_destroy(lost.w);
+    }
+    return bad;
+}
 
 /* Every scene stepped twice, one of the twins losing its scratch (lose)
  * between every two steps: the hashes and positions agree after each. */
@@ -83,7 +237,7 @@ static int twins(void (*lose)(tt_world *w), const char *how)
     for (int k = 0; k < SCENE_COUNT; k++) {
         scene kept, lost;
         if (!scene_build(&kept, (scene_kind)k) || !scene_build(&lost, (scene_kind)k)) return 1;
-        for (int s = 0; s < STEPS && !bad; s++) {
+        for (int s = 0; s < steps_of((scene_kind)k) && !bad; s++) {
             lose(lost.w);
             scene_step(&kept);
             scene_step(&lost);
@@ -97,7 +251,7 @@ static int twins(void (*lose)(tt_world *w), const char *how)
         tt_world_destroy(kept.w);
         tt_world_destroy(lost.w);
     }
-    return bad;
+    return bad + twins_local(lose, how);
 }
 
 /* world_free frees every part's scratch: the world's and each group's
@@ -108,7 +262,107 @@ TEST(a_world_whose_step_scratch_is_lost_between_steps_steps_the_same)
     ENSURE(twins(world_garbage, "garbage") == 0);
 }
 
+TEST(a_contacts_group_whose_scratch_is_garbage_between_steps_steps_the_same)
+{
+    ENSURE(twins(contacts_garbage, "of the contacts, garbage") == 0);
+}
+
+TEST(a_sleeping_group_whose_undo_copies_are_garbage_between_steps_steps_the_same)
+{
+    ENSURE(twins(sleep_garbage, "of sleeping, garbage") == 0);
+}
+
 TEST(a_constraint_group_whose_scratch_and_lambdas_are_garbage_between_steps_steps_the_same)
 {
     ENSURE(twins(constraints_garbage, "of the constraints, garbage") == 0);
+}
+
+/* A row of 16 circles asleep on the ground; then 40 grains dropped among
+ * and onto them (pile), more contacts than any step made room for: the
+ * step after wakes the row in its first substep (sleeping takes its undo
+ * copies) and grows the contacts' arrays inside. */
+static tt_world *row(void)
+{
+    tt_world_def d = tt_world_def_default();
+    d.sleep_time = 0.2;
+    tt_world *w = tt_world_create(&d);
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_world_set_collision(w, &cs);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    sd.a = (tt_vec2){-10, -1};
+    sd.b = (tt_vec2){10, 0};
+    tt_shape_create(w, &sd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.25;
+    for (int i = 0; i < 16; i++) {
+        pd.position = (tt_vec2){-4.0 + 0.5 * i, 0.25};
+        tt_particle_create(w, &pd);
+    }
+    return w;
+}
+
+static void pile(tt_world *w)
+{
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.2;
+    for (int i = 0; i < 40; i++) {
+        pd.position = (tt_vec2){-4.0 + 0.2 * i, 0.55 + 0.1 * (i % 3)};
+        tt_particle_create(w, &pd);
+    }
+}
+
+/* The undo works from scratch that was lost: the row, losing its scratch
+ * (lose) before every step, asleep, the pile dropped, and each allocation
+ * of the next step refused in turn; a failed step leaves the hash as it
+ * was, and retried, the world goes on as its twin that kept its scratch and
+ * never ran out. Returns the failures; *inside: the steps that failed
+ * inside (not in a reserve before it). */
+static int refused_after_loss(void (*lose)(tt_world *w), const char *how, int *inside)
+{
+    int bad = 0;
+    bool refused = true;
+    for (long n = 0; refused && !bad; n++) {
+        tt_world *kept = row(), *lost = row();
+        tt_stats st = {0};
+        for (int s = 0; s < 600 && st.sleeping < 16; s++) {
+            lose(lost);
+            tt_world_step(kept, 1.0 / 60);
+            tt_world_step(lost, 1.0 / 60);
+            tt_world_get_stats(lost, &st);
+        }
+        bad += st.sleeping < 16;
+        pile(kept);
+        pile(lost);
+        lose(lost);
+        const uint64_t h0 = tt_world_hash(lost);
+        tt_test_alloc_fail_from(n);
+        const tt_result r = tt_world_step(lost, 1.0 / 60);
+        refused = tt_test_alloc_ok();
+        if (r != TT_OK) { /* as it was, then the same step again */
+            *inside += strstr(tt_last_error(lost), "inside the step") != NULL;
+            bad += tt_world_hash(lost) != h0;
+            bad += tt_world_step(lost, 1.0 / 60) != TT_OK;
+        }
+        tt_world_step(kept, 1.0 / 60);
+        for (int s = 0; s < 3; s++) {
+            lose(lost);
+            tt_world_step(kept, 1.0 / 60);
+            tt_world_step(lost, 1.0 / 60);
+        }
+        if (tt_world_hash(kept) != tt_world_hash(lost) || scene_positions_digest(kept) != scene_positions_digest(lost))
+            bad++;
+        if (bad) tt_test_fail(__FILE__, __LINE__, "scratch %s, allocation %ld refused: differs", how, n);
+        tt_world_destroy(kept);
+        tt_world_destroy(lost);
+    }
+    return bad;
+}
+
+TEST(a_step_out_of_memory_after_its_scratch_was_lost_is_put_back_as_it_began)
+{
+    int inside = 0;
+    ENSURE(refused_after_loss(world_free, "freed", &inside) == 0);
+    ENSURE(refused_after_loss(sleep_garbage, "of sleeping, garbage", &inside) == 0);
+    ENSURE(inside >= 2); /* the case: refused inside the step, after the waking */
 }
