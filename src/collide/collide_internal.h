@@ -290,6 +290,11 @@ typedef struct tt__collide {
     double clear_gap, clear_used, clear_scale;
     uint64_t clear_epoch;         /* the world epoch the bound holds for */
     uint32_t probe_wait, probe_fails;
+    /* contact_skip.c, before the step: the bound holds through every substep of step step_at (stats.steps),
+     * with clear_used = step_used after its last; no substep measures anything then */
+    bool step_clear;
+    uint64_t step_at;
+    double step_used;
     uint8_t reach_side;   /* the side of the static shapes the particles last lay on (contact_reach.c) */
     float reach_rmax;     /* contact_reach.c: the largest radius, read at reach_epoch over reach_n particles */
     uint32_t reach_n;
@@ -410,6 +415,12 @@ bool tt__grid_any_near(const tt__grid *g, double gap);
 typedef enum { TT__PAIRS_BUILD, TT__PAIRS_NONE, TT__PAIRS_PROBE } tt__pair_plan;
 tt__pair_plan tt__pairs_skip(tt_world *w, tt__collide *c, uint32_t n);
 void tt__pairs_probed(tt_world *w, tt__collide *c, bool clear, bool bound, double gap, double scale);
+/* Before the step (contacts_reserve): whether the bound holds through the
+ * whole step, read from the positions as it begins (c->step_clear). */
+void tt__pairs_plan_step(tt_world *w, tt__collide *c, uint32_t n);
+/* Whether no radius is above zero, as tt__grid_any_radius reads it, kept
+ * per world epoch (contact_undo.c): no pair can be found then. */
+bool tt__contacts_points_only(const tt_world *w, tt__collide *c, uint32_t n);
 /* Whether some particle among the first n has a radius other than +0: a
  * pair needs one (two radius-0 particles never collide), so a world of
  * points skips its grid. About half an instruction a particle. */

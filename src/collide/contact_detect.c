@@ -90,6 +90,7 @@ static bool grow_xy(const tt_world *w, double **x, double **y, uint32_t *cap, ui
 bool tt__contacts_reserve(tt_world *w, void *self)
 {
     tt__collide *c = self;
+    c->step_clear = false; /* until tt__pairs_plan_step says otherwise for this step */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) return false;
     const bool pairs = c->set.particles;
     if (!tt__contacts_detect_any(c)) return true;
@@ -118,6 +119,7 @@ bool tt__contacts_reserve(tt_world *w, void *self)
             c->scr.near_cap = cells;
         }
     }
+    if (pairs) tt__pairs_plan_step(w, c, n);
     return (!pairs || tt__batches_reserve(&c->scr.bat, n)) && tt__contacts_bound(w, c, n);
 }
 
@@ -178,7 +180,7 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
         c->bp_step = w->stats.steps;
         c->bp_ms = 0.0;
     }
-    if (!tt__grid_any_radius(w, n)) { /* points only: no pair, whatever the broadphase */
+    if (tt__contacts_points_only(w, c, n)) { /* no pair, whatever the broadphase */
         ok = true;
         c->scr.grid.epoch = UINT64_MAX; /* not built: a query builds its own */
     } else if (no_pair_near(w, c, n)) { /* no two particles near enough: no pair, as the build would find */

@@ -19,11 +19,11 @@ bool tt__contacts_fallible(const tt_world *w, const void *self)
     return tt__contacts_detect_any(c) && !c->scr.bounded;
 }
 
-/* Whether no radius is above zero, as detect_pairs reads it (its bits):
- * then no pair can be found, whatever the broadphase. Radii change only
- * between steps and bump the epoch (after_step carries the answer past the
- * step's own bump), so the scan runs once, not per step. */
-static bool points_only(const tt_world *w, tt__collide *c, uint32_t n)
+/* Whether no radius is above zero (its bits): then no pair can be found,
+ * whatever the broadphase. Radii change only between steps and bump the
+ * epoch (after_step carries the answer past the step's own bump), so the
+ * scan runs once, not per substep. */
+bool tt__contacts_points_only(const tt_world *w, tt__collide *c, uint32_t n)
 {
     if (c->radii_epoch != w->epoch || c->radii_n != n) {
         c->radii_any = tt__grid_any_radius(w, n);
@@ -38,7 +38,8 @@ static bool points_only(const tt_world *w, tt__collide *c, uint32_t n)
  * bytes a particle a step), when every buffer a substep may grow has its
  * room already:
  * - pairs: none can be found when pairs are off or every radius is zero
- *   (detect_pairs then builds no grid, probes nothing and plans no batch);
+ *   (detect_pairs then builds no grid, probes nothing and plans no batch),
+ *   nor in a step contact_skip.c's bound holds through (c->step_clear);
  * - shape contacts: the static index visits a primitive at most once per
  *   particle and query (its stamps), and detect_shapes queries once per
  *   particle a substep, so a substep makes at most n·nprim; room for that
@@ -56,7 +57,8 @@ bool tt__contacts_bound(tt_world *w, tt__collide *c, uint32_t n)
 {
     c->scr.bounded = false;
     if (c->set.events || c->nbullets || c->terr || c->nprim > 1) return true;
-    if (c->set.particles && (!points_only(w, c, n) || (c->nprim && c->scr.lift_cap <= c->scr.paircap))) return true;
+    if (c->set.particles && (!(tt__contacts_points_only(w, c, n) || c->step_clear) || (c->nprim && c->scr.lift_cap <= c->scr.paircap)))
+        return true;
     if (c->nprim && !tt__grow((void **)&c->scr.sc, &c->scr.sccap, n ? n : 1, sizeof *c->scr.sc))
         return true; /* no room for all: the copies then, or the undo's own reserve fails the step */
     c->scr.bounded = true;

@@ -166,6 +166,7 @@ typedef struct tt__world_scratch {
     uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */
     const char *step_oom; /* what memory was refused inside the step (tt__step_oom), NULL: none */
     uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
+    double step_h;        /* the substep length of the step being reserved and run (reserve hooks read it) */
     tt__undo undo;        /* the world as the step began (step_undo.c) */
 } tt__world_scratch;
 

@@ -154,6 +154,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     /* the world as the calls left it, before the step's own preparations touch it */
     if (w->journal) w->journal_hooks->before(w->journal, w);
     /* Everything the step's counts call for, before anything changes. */
+    const double h = w->scr.step_h = dt / w->substeps;
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w) || !tt__undo_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
     w->scr.step_oom = NULL;
@@ -167,7 +168,6 @@ tt_result tt_world_step(tt_world *w, double dt)
     w->stats.iterations = 0;
     w->stats.max_error = 0.0;
 
-    const double h = dt / w->substeps;
     for (uint32_t s = 0; s < w->substeps; s++) {
         w->scr.substep = s;
         tt__integrate(w, h); /* forces are evaluated inside, as often as the integrator needs */
