@@ -55,7 +55,7 @@ static bool planned(const tt_world *w)
     const tt__collide *c = tt__collide_peek(w);
     tt_stats st;
     tt_world_get_stats(w, &st);
-    return c->step_clear && c->step_at + 1 == st.steps && c->bounded;
+    return c->step_clear && c->step_at + 1 == st.steps && c->scr.bounded;
 }
 
 /* The twins stepped side by side, bit for bit; the steps planned clear,
