@@ -143,11 +143,11 @@ uint32_t tt__contacts_units(const tt_world *w, const void *self)
     return pair_units(c) + c->nsc;
 }
 
+/* Batches (contact_detect.c: Gauss-Seidel, several sweeps, particle pairs on) in vector lanes. */
 bool tt__contacts_rows(const tt_world *w, const void *self)
 {
-    (void)w;
     const tt__collide *c = self;
-    return c->batched && tt__batches_want_rows(&c->bat);
+    return w->order == TT_GAUSS_SEIDEL && w->iterations > 1 && c->set.particles && tt__batches_want_rows(&c->bat);
 }
 
 /* Pairs [k0, k1) one by one, unbatched (Jacobi, or a single sweep). */

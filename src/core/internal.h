@@ -93,8 +93,10 @@ typedef struct tt__group_ops {
     uint32_t (*units)(const tt_world *w, const void *self);
     /* optional: set when the group reads and writes positions only through
      * the block's layout; true when its vector sweeps want the solver's
-     * rows (st = 4) this substep (asked after begin). The solver packs rows
-     * only when every group with sweeps has this hook and one says true. */
+     * rows (st = 4) this step (asked before the step, to size them, and
+     * before each substep's sweeps). The solver packs
+     * rows only when every group with sweeps has this hook and one says
+     * true. */
     bool (*rows)(const tt_world *w, const void *self);
     /* once per substep right after the last sweep, the world's arrays the
      * positions again */

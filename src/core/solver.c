@@ -46,11 +46,11 @@ static bool rows_possible(const tt_world *w)
     return true;
 }
 
-/* Rows this substep: Gauss-Seidel (Jacobi's averaging goes through the
+/* Rows this step: Gauss-Seidel (Jacobi's averaging goes through the
  * world's arrays), every group reads through the layout, one wants them. */
 static bool rows_wanted(const tt_world *w)
 {
-    if (w->order != TT_GAUSS_SEIDEL || !rows_possible(w) || w->scr.rows_cap <= w->ppool.count) return false;
+    if (w->order != TT_GAUSS_SEIDEL || !rows_possible(w)) return false;
     for (int g = 0; g < w->group_count; g++) {
         const tt__group_ops *ops = w->groups[g].ops;
         if (ops->relax && ops->rows(w, w->groups[g].self)) return true;
@@ -61,7 +61,7 @@ static bool rows_wanted(const tt_world *w)
 static void lay_begin(tt_world *w)
 {
     const uint32_t n = w->ppool.count;
-    if (rows_wanted(w)) {
+    if (rows_wanted(w) && w->scr.rows_cap > n) { /* tt__solver_reserve made the room */
         double *r = w->scr.rows;
         tt__rows_pack(r, w->px, w->py, w->inv_mass, n);
         memset(r + 4 * (size_t)n, 0, 4 * sizeof *r); /* the padding row: no mass, at the origin */
@@ -91,10 +91,11 @@ static double sweep(tt_world *w, double h, bool first, bool *moved)
     for (int g = 0; g < w->group_count; g++) {
         const tt__group_ops *ops = w->groups[g].ops;
         if (!ops->relax) continue;
-        const uint32_t n = ops->units ? ops->units(w, w->groups[g].self) : 1;
-        for (uint32_t b = 0; b < k; b++) {
-            const tt__block blk = {h, &w->scr.lay, (uint32_t)((uint64_t)n * b / k), (uint32_t)((uint64_t)n * (b + 1) / k), first};
-            if (blk.u0 == blk.u1 && (ops->units || b > 0)) continue;
+        /* a group without units is one unit: one block */
+        const uint32_t n = ops->units ? ops->units(w, w->groups[g].self) : 1, kg = ops->units ? k : 1;
+        for (uint32_t b = 0; b < kg; b++) {
+            const tt__block blk = {h, &w->scr.lay, (uint32_t)((uint64_t)n * b / kg), (uint32_t)((uint64_t)n * (b + 1) / kg), first};
+            if (blk.u0 == blk.u1) continue;
             const double e = ops->relax(w, w->groups[g].self, &blk);
             *moved |= e != 0.0;
             if (e > err) err = e;
@@ -119,8 +120,7 @@ bool tt__solver_reserve(tt_world *w)
             return false;
         w->scr.bcap = w->pcap;
     }
-    if (sweeps && w->order == TT_GAUSS_SEIDEL && rows_possible(w) && !tt__rows_reserve(&w->scr.rows, &w->scr.rows_cap, n + 1))
-        return false;
+    if (sweeps && rows_wanted(w) && !tt__rows_reserve(&w->scr.rows, &w->scr.rows_cap, n + 1)) return false;
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->reserve && !w->groups[g].ops->reserve(w, w->groups[g].self)) return false;
     return true;
