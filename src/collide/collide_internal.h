@@ -112,11 +112,10 @@ typedef struct tt__batches {
     uint8_t *solo;        /* per batch: its lanes share a particle, so they go one by one */
     uint32_t *stamp;      /* planner: per particle slot, the last batch (+ mark) naming it */
     uint32_t stamp_cap, mark;
-    double *xy;           /* xy rows (simd.h) of particles [0, np) and the padding row np */
-    uint32_t xy_cap, np;
+    double *xy;           /* the velocity pass's xy rows (simd.h) of particles [0, np) and the padding row np */
+    uint32_t xy_cap, np;  /* np: the particle count the plan was made for; the sweeps' padding row */
     double *q, *v0;       /* the velocity pass's xy rows: x_old, y_old; pre-solve vx, vy */
     uint32_t q_cap, v0_cap;
-    bool live;            /* xy holds the positions; w->px, py are stale until tt__batches_release */
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
 
@@ -128,9 +127,11 @@ typedef struct tt__batches {
 bool tt__batches_reserve(tt__batches *B, uint32_t np);
 bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
                       const double *inv, uint32_t np);
-/* One Gauss-Seidel sweep over the batches; returns the deepest overlap
- * seen. keep: leave the positions in the rows for the next sweep. */
-double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep);
+/* Batches [t0, t1) of a Gauss-Seidel sweep on positions L (in vector
+ * lanes on the solver's rows, st = 4); returns the deepest overlap seen. */
+double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1);
+/* The batches' sweep runs in vector lanes when the solver packs rows. */
+bool tt__batches_want_rows(const tt__batches *B);
 /* What the velocity pass of a batch reads besides the world. */
 typedef struct tt__respond_in {
     const double *vx0, *vy0; /* pre-solve velocities */
@@ -143,8 +144,6 @@ typedef struct tt__respond_in {
  * centre) through pair_end. False, touching nothing, when there are no
  * vector lanes here: then the caller runs pair_end on every pair. */
 bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t), void *ctx);
-/* Positions back from the rows when they hold them. */
-void tt__batches_release(tt_world *w, tt__batches *B);
 void tt__batches_free(tt__batches *B);
 size_t tt__batches_bytes(const tt__batches *B);
 /* The same-centre direction of pair (a, b): fixed and deterministic. */
@@ -339,7 +338,9 @@ static inline bool tt__contacts_detect_any(const tt__collide *c)
  * (contact_response.c), events after the step (contact_events.c). */
 bool tt__contacts_reserve(tt_world *w, void *self);
 void tt__contacts_begin(tt_world *w, void *self, double h);
-double tt__contacts_relax(tt_world *w, void *self, double h);
+double tt__contacts_relax(tt_world *w, void *self, const tt__block *b);
+uint32_t tt__contacts_units(const tt_world *w, const void *self);
+bool tt__contacts_rows(const tt_world *w, const void *self);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);
 void tt__contacts_stopped(tt_world *w, void *self, uint32_t i);
@@ -348,7 +349,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self);
 /* The step's undo (contact_undo.c; tt__group_ops), and the room for the
  * events after_step publishes (contact_events.c). contacts_bound, last in
  * contacts_reserve: room for every contact the step can make where that is
- * bounded and small, then nothing needs undoing (c->bounded); never fails
+ * bounded and small, then nothing needs undoing (c->scr.bounded); never fails
  * the reserve (false only for the reserve's own failures, none here). */
 bool tt__contacts_fallible(const tt_world *w, const void *self);
 bool tt__contacts_bound(tt_world *w, tt__collide *c, uint32_t n);
@@ -429,7 +430,7 @@ bool tt__grid_any_radius(const tt_world *w, uint32_t n);
  * bounded by tt__grid_max_cells); false on no memory. */
 bool tt__grid_reserve(tt__grid *g, uint32_t n);
 uint32_t tt__grid_max_cells(uint32_t n);
-/* Appends candidate pairs (gap < margin) to c->pairs; false on no memory. */
+/* Appends candidate pairs (gap < margin) to c->scr.pairs; false on no memory. */
 bool tt__grid_pairs(tt_world *w, tt__collide *c);
 void tt__grid_free(tt__grid *g);
 size_t tt__grid_bytes(const tt__grid *g);

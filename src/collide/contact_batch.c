@@ -162,13 +162,15 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
 
 #ifdef TT_SIMD_X86
 /* One batch in "pair form" (as distance_sweep.c: a ymm holds (x, y) of lanes
- * 0 and 2, or of 1 and 3). Returns false, touching nothing, when an active
- * lane has two particles on one centre: the scalar code takes that batch. */
-TT_AVX2 TT_INLINE bool batch(double *xy, const tt__batches *B, uint32_t k, __m256d *err)
+ * 0 and 2, or of 1 and 3) on the solver's rows pk. Returns false, touching
+ * nothing, when an active lane has two particles on one centre: the scalar
+ * code takes that batch. */
+#define R(i) (4 * (size_t)(i)) /* particle i's row in pk */
+TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m256d *err)
 {
     const uint32_t *A = B->a + k, *Bb = B->b + k;
-    const __m256d pa02 = tt__xy_load2(xy, A[0], A[2]), pa13 = tt__xy_load2(xy, A[1], A[3]);
-    const __m256d pb02 = tt__xy_load2(xy, Bb[0], Bb[2]), pb13 = tt__xy_load2(xy, Bb[1], Bb[3]);
+    const __m256d pa02 = tt__rows_loadxy2(pk, R(A[0]), R(A[2])), pa13 = tt__rows_loadxy2(pk, R(A[1]), R(A[3]));
+    const __m256d pb02 = tt__rows_loadxy2(pk, R(Bb[0]), R(Bb[2])), pb13 = tt__rows_loadxy2(pk, R(Bb[1]), R(Bb[3]));
     const __m256d zero = _mm256_setzero_pd();
     const __m256d d02 = _mm256_sub_pd(pa02, pb02), d13 = _mm256_sub_pd(pa13, pb13); /* dx0 dy0 dx2 dy2 */
     const __m256d q02 = _mm256_mul_pd(d02, d02), q13 = _mm256_mul_pd(d13, d13);
@@ -187,22 +189,25 @@ TT_AVX2 TT_INLINE bool batch(double *xy, const tt__batches *B, uint32_t k, __m25
     const __m256d sign = _mm256_set1_pd(-0.0);
     const __m256d ca = _mm256_mul_pd(t, _mm256_xor_pd(wa, sign)), cb = _mm256_mul_pd(t, wb);
     const __m256d u02 = _mm256_unpacklo_pd(act, act), u13 = _mm256_unpackhi_pd(act, act);
-    tt__xy_store2(xy, A[0], A[2], _mm256_sub_pd(pa02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(ca, ca)), u02)));
-    tt__xy_store2(xy, A[1], A[3], _mm256_sub_pd(pa13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)), u13)));
-    tt__xy_store2(xy, Bb[0], Bb[2], _mm256_sub_pd(pb02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(cb, cb)), u02)));
-    tt__xy_store2(xy, Bb[1], Bb[3], _mm256_sub_pd(pb13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(cb, cb)), u13)));
+    tt__rows_store2(pk, R(A[0]), R(A[2]), _mm256_sub_pd(pa02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(ca, ca)), u02)));
+    tt__rows_store2(pk, R(A[1]), R(A[3]), _mm256_sub_pd(pa13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)), u13)));
+    tt__rows_store2(pk, R(Bb[0]), R(Bb[2]), _mm256_sub_pd(pb02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(cb, cb)), u02)));
+    tt__rows_store2(pk, R(Bb[1]), R(Bb[3]), _mm256_sub_pd(pb13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(cb, cb)), u13)));
     const __m256d got = _mm256_and_pd(pen, act); /* lam ≥ +0 stays as it was plus +0 */
     _mm256_storeu_pd(B->lam + k, _mm256_add_pd(_mm256_loadu_pd(B->lam + k), got));
     *err = _mm256_max_pd(*err, got);
     return true;
 }
 
-TT_AVX2 TT_INLINE double batches_run(tt__batches *B)
+#undef R
+
+/* Batches [t0, t1) on the rows pk. */
+TT_AVX2 TT_INLINE double batches_run(tt__batches *B, double *pk, uint32_t t0, uint32_t t1)
 {
-    double *xy = B->xy, err = 0.0;
+    double err = 0.0;
     __m256d e = _mm256_setzero_pd();
-    for (uint32_t k = 0; k < B->n; k += 4)
-        if (B->solo[k / 4] || !batch(xy, B, k, &e)) err = solve(B, xy, xy + 1, 2, k, k + 4, err);
+    for (uint32_t k = 4 * t0; k < 4 * t1; k += 4)
+        if (B->solo[k / 4] || !batch(pk, B, k, &e)) err = solve(B, pk, pk + 1, 4, k, k + 4, err);
     double l[4];
     _mm256_storeu_pd(l, e);
     for (int j = 0; j < 4; j++)
@@ -211,8 +216,8 @@ TT_AVX2 TT_INLINE double batches_run(tt__batches *B)
 }
 
 /* The same code for AVX2, and with AVX-512VL for its 32 registers. */
-TT_AVX2 static double run_avx2(tt__batches *B) { return batches_run(B); }
-TT_AVX512 static double run_avx512(tt__batches *B) { return batches_run(B); }
+TT_AVX2 static double run_avx2(tt__batches *B, double *pk, uint32_t t0, uint32_t t1) { return batches_run(B, pk, t0, t1); }
+TT_AVX512 static double run_avx512(tt__batches *B, double *pk, uint32_t t0, uint32_t t1) { return batches_run(B, pk, t0, t1); }
 
 #define LO(v) _mm256_unpacklo_pd((v), (v)) /* lanes 0, 2 of a per-lane vector in pair form */
 #define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
@@ -368,7 +373,7 @@ bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, 
 #ifdef TT_SIMD_X86
     const uint8_t kind = tt__simd_kind(B->simd);
     const uint32_t np = B->np;
-    if (kind == TT__SIMD_SCALAR || B->live || !tt__xy_reserve(&B->xy, &B->xy_cap, np + 1) ||
+    if (kind == TT__SIMD_SCALAR || !tt__xy_reserve(&B->xy, &B->xy_cap, np + 1) ||
         !tt__xy_reserve(&B->q, &B->q_cap, np + 1) || !tt__xy_reserve(&B->v0, &B->v0_cap, np + 1))
         return false;
     tt__xy_pack(B->xy, w->px, w->py, np);
@@ -386,32 +391,18 @@ bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, 
 #endif
 }
 
-double tt__batches_sweep(tt_world *w, tt__batches *B, bool keep)
+bool tt__batches_want_rows(const tt__batches *B) { return tt__simd_kind(B->simd) != TT__SIMD_SCALAR; }
+
+double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1)
 {
     const uint8_t kind = tt__simd_kind(B->simd);
-    if (kind == TT__SIMD_SCALAR || !tt__xy_reserve(&B->xy, &B->xy_cap, B->np + 1)) {
-        tt__batches_release(w, B);
-        return solve(B, w->px, w->py, 1, 0, B->n, 0.0);
-    }
+    if (kind == TT__SIMD_SCALAR || L->st != 4) return solve(B, L->x, L->y, L->st, 4 * t0, 4 * t1, 0.0);
 #ifdef TT_SIMD_X86
-    if (!B->live) {
-        tt__xy_pack(B->xy, w->px, w->py, B->np);
-        B->xy[2 * (size_t)B->np] = B->xy[2 * (size_t)B->np + 1] = 0.0; /* padding: no mass, never active */
-    }
-    const double err = kind == TT__SIMD_AVX512 ? run_avx512(B) : run_avx2(B);
-    B->live = keep;
-    if (!keep) tt__xy_unpack(B->xy, w->px, w->py, B->np);
-    return err;
+    /* the rows' padding row (np, past the last particle) is zero: no mass, never active */
+    return kind == TT__SIMD_AVX512 ? run_avx512(B, L->x, t0, t1) : run_avx2(B, L->x, t0, t1);
 #else
-    (void)keep; /* never reached: no vector kind without TT_SIMD_X86 */
-    return 0.0;
+    return 0.0; /* never reached: no vector kind without TT_SIMD_X86 */
 #endif
-}
-
-void tt__batches_release(tt_world *w, tt__batches *B)
-{
-    if (B->live) tt__xy_unpack(B->xy, w->px, w->py, B->np);
-    B->live = false;
 }
 
 void tt__batches_free(tt__batches *B)

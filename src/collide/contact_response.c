@@ -132,50 +132,58 @@ static void uncross(const tt__collide *c, const tt__prim *p, double x, double y,
     hit->depth = r + far;
 }
 
-/* Moves particle i by (dx, dy) on positions X, Y (stride st): the rows
- * while the batches keep them, else through tt__correct (Jacobi). */
-static inline void move(tt_world *w, double *X, double *Y, size_t st, uint32_t i, double dx, double dy)
+/* Units of a sweep: the pair contacts (batches of four when batched,
+ * else pairs), then the static contacts, each in its order. */
+static uint32_t pair_units(const tt__collide *c) { return c->scr.batched ? c->scr.bat.n / 4 : c->scr.npairs; }
+
+uint32_t tt__contacts_units(const tt_world *w, const void *self)
 {
-    if (st == 1) {
-        tt__correct(w, i, dx, dy);
-    } else {
-        X[i * st] += dx;
-        Y[i * st] += dy;
-    }
+    (void)w;
+    const tt__collide *c = self;
+    return pair_units(c) + c->scr.nsc;
 }
 
-double tt__contacts_relax(tt_world *w, void *self, double h)
+/* Batches (contact_detect.c: Gauss-Seidel, several sweeps, particle pairs on) in vector lanes. */
+bool tt__contacts_rows(const tt_world *w, const void *self)
 {
-    (void)h;
-    tt__collide *c = self;
+    const tt__collide *c = self;
+    return w->order == TT_GAUSS_SEIDEL && w->iterations > 1 && c->set.particles && tt__batches_want_rows(&c->scr.bat);
+}
+
+/* Pairs [k0, k1) one by one, unbatched (Jacobi, or a single sweep). */
+static double relax_pairs(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k0, uint32_t k1)
+{
+    const double *inv = w->inv_mass, *X = L->x, *Y = L->y;
+    const size_t st = L->st;
     double err = 0.0;
-    double *X = w->px, *Y = w->py;
-    size_t st = 1;
-    if (c->scr.batched) { /* Gauss-Seidel, several sweeps */
-        err = tt__batches_sweep(w, &c->scr.bat, tt__groups_relaxing(w) == 1); /* rows kept while nothing else sweeps */
-        if (c->scr.bat.live) {
-            X = c->scr.bat.xy;
-            Y = c->scr.bat.xy + 1;
-            st = 2;
-        }
-    } else {
-        const double *inv = w->inv_mass;
-        for (uint32_t k = 0; k < c->scr.npairs; k++) {
-            tt__pair *p = &c->scr.pairs[k];
-            const uint32_t a = p->a, b = p->b;
-            const double ia = inv[a], ib = inv[b], ws = ia + ib;
-            if (ws == 0.0) continue;
-            double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
-            if (!tt__pair_push(a, b, p->rs, ws, &dx, &dy, &pen, &t)) continue;
-            tt__correct(w, a, dx * t * ia, dy * t * ia);
-            tt__correct(w, b, -dx * t * ib, -dy * t * ib);
-            p->lambda += (float)pen;
-            if (pen > err) err = pen;
-        }
+    for (uint32_t k = k0; k < k1; k++) {
+        tt__pair *p = &c->scr.pairs[k];
+        const uint32_t a = p->a, b = p->b;
+        const double ia = inv[a], ib = inv[b], ws = ia + ib;
+        if (ws == 0.0) continue;
+        double dx = X[a * st] - X[b * st], dy = Y[a * st] - Y[b * st], pen, t;
+        if (!tt__pair_push(a, b, p->rs, ws, &dx, &dy, &pen, &t)) continue;
+        tt__correct(w, a, dx * t * ia, dy * t * ia);
+        tt__correct(w, b, -dx * t * ib, -dy * t * ib);
+        p->lambda += (float)pen;
+        if (pen > err) err = pen;
     }
+    return err;
+}
+
+double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
+{
+    tt__collide *c = self;
+    const tt__lay *L = blk->lay;
+    const uint32_t np = pair_units(c), p1 = blk->u1 < np ? blk->u1 : np;
+    double err = 0.0;
+    if (blk->u0 < p1) err = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : relax_pairs(w, c, L, blk->u0, p1);
+    const double *X = L->x, *Y = L->y;
+    const size_t st = L->st;
     const double *sx = start_x(w, c), *sy = start_y(w, c);
     const bool fr = rub_in_sweeps(w);
-    for (uint32_t k = 0; k < c->scr.nsc; k++) {
+    const uint32_t s0 = blk->u0 > np ? blk->u0 - np : 0, s1 = blk->u1 > np ? blk->u1 - np : 0;
+    for (uint32_t k = s0; k < s1 && k < c->scr.nsc; k++) {
         tt__scontact *s = &c->scr.sc[k];
         const uint32_t a = s->a;
         tt__hit hit;
@@ -186,7 +194,7 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
             if (hit.nx * s->nx + hit.ny * s->ny < 0.0) uncross(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], s, &hit);
         }
         if (hit.depth > 0.0) {
-            move(w, X, Y, st, a, hit.nx * hit.depth, hit.ny * hit.depth);
+            tt__correct(w, a, hit.nx * hit.depth, hit.ny * hit.depth);
             s->nx = hit.nx;
             s->ny = hit.ny;
             if (s->lambda == 0.0) {
@@ -200,13 +208,13 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
         if (s->lambda == 0.0 || s->ccd || !fr) continue; /* a sweep's contact gets its friction with its restart, in end */
         const double tx = -s->ny, ty = s->nx;
         double f = rub((X[a * st] - sx[a] - s->cx) * tx + (Y[a * st] - sy[a] - s->cy) * ty, s->lambda, s->mu, &s->lambda_t);
-        if (f != 0.0) move(w, X, Y, st, a, tx * f, ty * f);
+        if (f != 0.0) tt__correct(w, a, tx * f, ty * f);
     }
     return err;
 }
 
-/* After the last sweep: the positions back from the batches' rows, then
- * the guard. A particle carried by the corrections (another particle's
+/* After the last sweep (the solver has the positions back in the world's
+ * arrays): the guard. A particle carried by the corrections (another particle's
  * push-out, a constraint) into a static shape it had no contact with when
  * the substep began would stay in it, unresolved, and could cross a thin
  * one in the next substep (balls spawned into each other in the Galton
@@ -218,7 +226,6 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
 void tt__contacts_sweeps_done(tt_world *w, void *self)
 {
     tt__collide *c = self;
-    tt__batches_release(w, &c->scr.bat);
     const uint32_t n = w->ppool.count;
     if (!c->nprim || !c->scr.guard || c->scr.gcap < n) return;
     for (uint32_t i = 0; i < n; i++) {

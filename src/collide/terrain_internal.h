@@ -71,7 +71,7 @@ double tt__terrain_sample(const tt__terrain *T, double x, double y, double *nx, 
 void tt__terrain_hit(const tt__collide *c, uint32_t code, double x, double y, double r, tt__hit *out);
 void tt__terrain_material(const tt__collide *c, uint32_t code, double *e, double *fs, double *fk);
 tt_terrain tt__terrain_handle(const tt__collide *c, uint32_t code);
-/* The substep's particle–terrain contacts, appended to c->sc; false when
+/* The substep's particle–terrain contacts, appended to c->scr.sc; false when
  * memory ran out (the rest were skipped). */
 bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n);
 /* A bullet's path from (x0, y0) to (x1, y1) marched through the distance

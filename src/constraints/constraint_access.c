@@ -50,16 +50,20 @@ static double gen_error(const tt_world *w, const tt__gcon *c)
     case TT_CONSTRAINT_BOUNDS: {
         double e = 0.0, dx, dy;
         if (c->n) {
-            for (uint32_t k = 0; k < c->n; k++) e = fmax(e, tt__constraint_bounds_violation(w, c, c->list[k], &dx, &dy));
+            for (uint32_t k = 0; k < c->n; k++) {
+                const uint32_t i = c->list[k];
+                e = fmax(e, tt__constraint_bounds_violation(w, c, i, w->px[i], w->py[i], &dx, &dy));
+            }
         } else {
             for (uint32_t i = 0; i < w->ppool.count; i++)
-                if (w->flags[i] & TT__PF_ALIVE) e = fmax(e, tt__constraint_bounds_violation(w, c, i, &dx, &dy));
+                if (w->flags[i] & TT__PF_ALIVE) e = fmax(e, tt__constraint_bounds_violation(w, c, i, w->px[i], w->py[i], &dx, &dy));
         }
         return e;
     }
     case TT_CONSTRAINT_ANGLE:
         return fabs(tt__constraint_angle_error(tt__constraint_angle_at(w, c->p[0], c->p[1], c->p[2]), c->v[0], c->v[1]));
-    case TT_CONSTRAINT_AREA: return fabs(tt__constraint_polygon_area(w, c->list, c->n) - c->v[0] * c->v[1]);
+    case TT_CONSTRAINT_AREA:
+        return fabs(tt__constraint_polygon_area(&(tt__lay){w->px, w->py, w->inv_mass, 1}, c->list, c->n) - c->v[0] * c->v[1]);
     case TT_CONSTRAINT_COLLINEAR: {
         uint32_t a = c->p[0], b = c->p[1], cc = c->p[2];
         double ex = w->px[cc] - w->px[a], ey = w->py[cc] - w->py[a], L = hypot(ex, ey);

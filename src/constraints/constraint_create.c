@@ -346,7 +346,7 @@ tt_constraint tt_area_create(tt_world *w, const tt_area_def *d)
     c->list = list;
     c->k = d->stiffness;
     c->alpha = d->compliance;
-    c->v[0] = d->use_current ? tt__constraint_polygon_area(w, list, d->count) : d->area;
+    c->v[0] = d->use_current ? tt__constraint_polygon_area(&(tt__lay){w->px, w->py, w->inv_mass, 1}, list, d->count) : d->area;
     c->v[1] = d->pressure;
     tt__cgroup_gen_refs(tt__cgroup_find(w), c, +1);
     return h;

@@ -138,7 +138,7 @@ size_t tt__cgroup_memory(const tt_world *w, const void *self)
     b += tt__pair_set_bytes(&g->pairs);
     b += (size_t)(g->scr.cap_new + g->cap_pub) * sizeof(tt_break_event);
     b += (size_t)g->scr.grad_cap * 2 * sizeof(double) + (size_t)g->refs_cap * sizeof(uint32_t);
-    b += ((size_t)g->scr.plan_cap + g->scr.stamp_cap) * sizeof(uint32_t) + (size_t)g->scr.pk_cap * 4 * sizeof(double);
+    b += ((size_t)g->scr.plan_cap + g->scr.stamp_cap) * sizeof(uint32_t);
     b += (size_t)g->scr.hot_cap * (4 * sizeof(double) + 2 * sizeof(uint32_t));
     b += (size_t)g->moving_cap * sizeof(tt__mover);
     return b + tt__composites_memory(g) + tt__cgroup_undo_bytes(g);
@@ -149,7 +149,7 @@ void tt__cgroup_scratch_free(tt_world *w, void *self)
     (void)w;
     tt__cgroup *g = self;
     tt__cscratch *s = &g->scr;
-    free(s->plan); free(s->stamp); free(s->pk); free(s->h_lo); /* h_lo: the hot copies' one block */
+    free(s->plan); free(s->stamp); free(s->h_lo); /* h_lo: the hot copies' one block */
     free(s->grad);
     free(s->ev_new);
     tt__cgroup_undo_free(g);

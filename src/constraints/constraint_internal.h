@@ -93,8 +93,7 @@ typedef struct tt__composite {
 /* What the sweeps and the step work in: neither saved nor hashed, and its
  * loss between two steps (tt__cgroup_scratch_free) changes nothing
  * (tests/core/test_scratch.c): the group's reserve sizes it again and the
- * plan is rebuilt while plan_ok is false. Between steps pk_live is false
- * and nnew 0. */
+ * plan is rebuilt while plan_ok is false. Between steps nnew is 0. */
 typedef struct tt__cscratch {
     /* Gauss-Seidel vector plan: the links in order as pairs (scalar run
      * length, vector block count), each block plan_w consecutive links that
@@ -102,16 +101,12 @@ typedef struct tt__cscratch {
      * loop bit for bit. Rebuilt on the next sweep after the a, b list changes. */
     uint32_t *plan, *stamp; /* stamp: per particle, 1 + the last link naming it (build scratch) */
     uint32_t nplan, plan_cap, plan_w, plan_np, stamp_cap; /* plan_np: 1 + the largest particle named */
-    double *pk;        /* the vector sweep's copy of x, y, inverse mass: 4 doubles per particle */
-    uint32_t pk_cap;   /* particles */
     /* the plan's copy of the links' hot fields, one array each, by dense
-     * index (setters keep it current); ra, rb: 4·a, 4·b (row offsets in pk) */
+     * index (setters keep it current); ra, rb: 4·a, 4·b (offsets in the solver's rows) */
     double *h_lo, *h_hi, *h_k, *h_alpha;
     uint32_t *h_ra, *h_rb;
     uint32_t hot_cap;
     bool plan_ok;
-    bool pk_live;      /* pk holds the positions, w->px/py are stale until sweeps_done */
-    bool first_sweep;  /* the substep's first: linked particles on one spot part (group_begin sets it) */
     double *grad;      /* gradients of an area constraint: room for the largest */
     uint32_t grad_cap;
     tt_break_event *ev_new; /* break events gathered during the step, published after it */
@@ -201,16 +196,23 @@ static inline double tt__constraint_dist_of(const tt_world *w, uint32_t a, uint3
     double dx = w->px[b] - w->px[a], dy = w->py[b] - w->py[a];
     return sqrt(dx * dx + dy * dy);
 }
+/* The same on positions L (the sweeps'). */
+static inline double tt__constraint_dist_on(const tt__lay *L, uint32_t a, uint32_t b)
+{
+    double dx = L->x[b * L->st] - L->x[a * L->st], dy = L->y[b * L->st] - L->y[a * L->st];
+    return sqrt(dx * dx + dy * dy);
+}
 double tt__constraint_angle_at(const tt_world *w, uint32_t a, uint32_t b, uint32_t c);
 double tt__constraint_angle_error(double th, double lo, double hi);
-double tt__constraint_polygon_area(const tt_world *w, const uint32_t *p, uint32_t n);
-/* How far particle i is on the wrong side of bounds c; (*dx, *dy): the move that fixes it. */
-double tt__constraint_bounds_violation(const tt_world *w, const tt__gcon *c, uint32_t i, double *dx, double *dy);
+double tt__constraint_polygon_area(const tt__lay *L, const uint32_t *p, uint32_t n);
+/* How far particle i at (x, y) is on the wrong side of bounds c; (*dx, *dy): the move that fixes it. */
+double tt__constraint_bounds_violation(const tt_world *w, const tt__gcon *c, uint32_t i, double x, double y, double *dx, double *dy);
 
 /* ---- the group's hooks (tt__group_ops), registered by constraints.c -------- */
 void tt__cgroup_begin(tt_world *w, void *self, double h);                  /* constraint_relax.c */
-double tt__cgroup_relax(tt_world *w, void *self, double h);                /* constraint_relax.c */
-void tt__cgroup_sweeps_done(tt_world *w, void *self);                       /* distance_sweep.c */
+double tt__cgroup_relax(tt_world *w, void *self, const tt__block *b);      /* constraint_relax.c */
+uint32_t tt__cgroup_units(const tt_world *w, const void *self);             /* constraint_relax.c */
+bool tt__cgroup_rows(const tt_world *w, const void *self);                  /* constraint_relax.c */
 void tt__cgroup_end(tt_world *w, void *self, double h);                    /* constraint_relax.c */
 void tt__cgroup_after_step(tt_world *w, void *self);                        /* constraint_breaks.c */
 /* the group's section of the snapshot stream (constraint_hash.c) */
@@ -224,8 +226,9 @@ bool tt__cgroup_reserve(tt_world *w, void *self);                           /* c
 bool tt__constraints_set_simd(tt_world *w, tt__simd_mode mode);
 void tt__distance_hot_sync(tt__cgroup *g, uint32_t i);
 bool tt__distance_plan_reserve(tt_world *w, tt__cgroup *g);
-double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h);
-double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, double h);
+bool tt__distance_wants_rows(const tt_world *w, const tt__cgroup *g);
+double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, const tt__block *b, uint32_t u0, uint32_t u1);
+double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, const tt__block *b, uint32_t u0, uint32_t u1);
 
 /* ---- targets the script moves (constraint_relax.c) ----------------------- */
 /* Moves slot's target (a distance's length in to[0], a pin's anchor) to `to`

@@ -31,19 +31,21 @@ double tt__constraint_angle_error(double th, double lo, double hi)
     return fabs(el) < fabs(eh) ? el : eh;
 }
 
-double tt__constraint_polygon_area(const tt_world *w, const uint32_t *p, uint32_t n)
+double tt__constraint_polygon_area(const tt__lay *L, const uint32_t *p, uint32_t n)
 {
+    const double *X = L->x, *Y = L->y;
+    const size_t st = L->st;
     double a = 0.0;
     for (uint32_t i = 0; i < n; i++) {
         uint32_t j = i + 1 == n ? 0 : i + 1;
-        a += w->px[p[i]] * w->py[p[j]] - w->px[p[j]] * w->py[p[i]];
+        a += X[p[i] * st] * Y[p[j] * st] - X[p[j] * st] * Y[p[i] * st];
     }
     return 0.5 * a;
 }
 
-double tt__constraint_bounds_violation(const tt_world *w, const tt__gcon *c, uint32_t i, double *dx, double *dy)
+double tt__constraint_bounds_violation(const tt_world *w, const tt__gcon *c, uint32_t i, double x, double y, double *dx, double *dy)
 {
-    double r = w->radius[i], x = w->px[i], y = w->py[i];
+    double r = w->radius[i];
     double x0 = c->v[0] + r, y0 = c->v[1] + r, x1 = c->v[2] - r, y1 = c->v[3] - r;
     *dx = *dy = 0.0;
     if (!c->outside) {
@@ -165,7 +167,6 @@ void tt__cgroup_begin(tt_world *w, void *self, double h)
     if (g->nxpbd)
         for (uint32_t i = 0; i < g->ndist; i++) g->dx[i].lambda = 0.0;
     for (uint32_t i = 0; i < g->ngen; i++) g->gen[i].lambda = 0.0;
-    g->scr.first_sweep = true;
 }
 
 /* PBD / XPBD step of a scalar constraint C with gradients grad[2k] over particles idx[k]. */
@@ -189,40 +190,44 @@ static void solve_scalar(tt_world *w, tt__gcon *c, const uint32_t *idx, uint32_t
     }
 }
 
-static double relax_pin(tt_world *w, tt__gcon *c, double h)
+/* The kinds below read positions on the sweeps' layout L (X(i), Y(i)). */
+#define X(i) L->x[(size_t)(i) * L->st]
+#define Y(i) L->y[(size_t)(i) * L->st]
+
+static double relax_pin(tt_world *w, const tt__lay *L, tt__gcon *c, double h)
 {
     uint32_t i = c->p[0];
-    double dx = w->px[i] - c->v[0], dy = w->py[i] - c->v[1], len = sqrt(dx * dx + dy * dy);
+    double dx = X(i) - c->v[0], dy = Y(i) - c->v[1], len = sqrt(dx * dx + dy * dy);
     if (len == 0.0) return 0.0;
     double g[2] = {dx / len, dy / len};
     if (w->inv_mass[i] > 0.0) solve_scalar(w, c, &i, 1, g, len, h);
     return len;
 }
 
-static double relax_bounds_one(tt_world *w, const tt__gcon *c, uint32_t i)
+static double relax_bounds_one(tt_world *w, const tt__lay *L, const tt__gcon *c, uint32_t i)
 {
     if (w->inv_mass[i] == 0.0) return 0.0;
-    double dx, dy, e = tt__constraint_bounds_violation(w, c, i, &dx, &dy);
+    double dx, dy, e = tt__constraint_bounds_violation(w, c, i, X(i), Y(i), &dx, &dy);
     if (e > 0.0) tt__correct(w, i, dx, dy);
     return e;
 }
 
-static double relax_bounds(tt_world *w, const tt__gcon *c)
+static double relax_bounds(tt_world *w, const tt__lay *L, const tt__gcon *c)
 {
     double e = 0.0;
     if (c->n) {
-        for (uint32_t k = 0; k < c->n; k++) e = fmax(e, relax_bounds_one(w, c, c->list[k]));
+        for (uint32_t k = 0; k < c->n; k++) e = fmax(e, relax_bounds_one(w, L, c, c->list[k]));
     } else {
-        for (uint32_t i = 0; i < w->ppool.count; i++) e = fmax(e, relax_bounds_one(w, c, i));
+        for (uint32_t i = 0; i < w->ppool.count; i++) e = fmax(e, relax_bounds_one(w, L, c, i));
     }
     return e;
 }
 
-static double relax_angle(tt_world *w, tt__gcon *c, double h)
+static double relax_angle(tt_world *w, const tt__lay *L, tt__gcon *c, double h)
 {
     uint32_t a = c->p[0], b = c->p[1], cc = c->p[2];
-    double ux = w->px[a] - w->px[b], uy = w->py[a] - w->py[b];
-    double vx = w->px[cc] - w->px[b], vy = w->py[cc] - w->py[b];
+    double ux = X(a) - X(b), uy = Y(a) - Y(b);
+    double vx = X(cc) - X(b), vy = Y(cc) - Y(b);
     double uu = ux * ux + uy * uy, vv = vx * vx + vy * vy;
     if (uu == 0.0 || vv == 0.0) return 0.0;
     double C = tt__constraint_angle_error(atan2(ux * vy - uy * vx, ux * vx + uy * vy), c->v[0], c->v[1]);
@@ -234,50 +239,65 @@ static double relax_angle(tt_world *w, tt__gcon *c, double h)
     return fabs(C) * sqrt(fmax(uu, vv)); /* as an arc length, m */
 }
 
-static double relax_area(tt_world *w, tt__cgroup *g, tt__gcon *c, double h)
+static double relax_area(tt_world *w, const tt__lay *L, tt__cgroup *g, tt__gcon *c, double h)
 {
     const uint32_t n = c->n, *p = c->list;
     double *grad = g->scr.grad, perim = 0.0;
     for (uint32_t k = 0; k < n; k++) {
         uint32_t prev = p[k == 0 ? n - 1 : k - 1], next = p[k + 1 == n ? 0 : k + 1];
-        grad[2 * k] = 0.5 * (w->py[next] - w->py[prev]);
-        grad[2 * k + 1] = 0.5 * (w->px[prev] - w->px[next]);
-        perim += tt__constraint_dist_of(w, p[k], next);
+        grad[2 * k] = 0.5 * (Y(next) - Y(prev));
+        grad[2 * k + 1] = 0.5 * (X(prev) - X(next));
+        perim += tt__constraint_dist_on(L, p[k], next);
     }
-    double C = tt__constraint_polygon_area(w, p, n) - c->v[0] * c->v[1];
+    double C = tt__constraint_polygon_area(L, p, n) - c->v[0] * c->v[1];
     if (C == 0.0) return 0.0;
     solve_scalar(w, c, p, n, grad, C, h);
     return perim > 0.0 ? fabs(C) / perim : fabs(C); /* the mean normal move that fixes it, m */
 }
 
-static double relax_collinear(tt_world *w, tt__gcon *c, double h)
+static double relax_collinear(tt_world *w, const tt__lay *L, tt__gcon *c, double h)
 {
     uint32_t a = c->p[0], b = c->p[1], cc = c->p[2];
-    double d1x = w->px[b] - w->px[a], d1y = w->py[b] - w->py[a];
-    double d2x = w->px[cc] - w->px[a], d2y = w->py[cc] - w->py[a];
-    double C = d1x * d2y - d1y * d2x, L = sqrt(d2x * d2x + d2y * d2y);
+    double d1x = X(b) - X(a), d1y = Y(b) - Y(a);
+    double d2x = X(cc) - X(a), d2y = Y(cc) - Y(a);
+    double C = d1x * d2y - d1y * d2x, len = sqrt(d2x * d2x + d2y * d2y);
     if (C == 0.0) return 0.0;
     double gb[2] = {d2y, -d2x}, gcc[2] = {-d1y, d1x};
     double grad[6] = {-gb[0] - gcc[0], -gb[1] - gcc[1], gb[0], gb[1], gcc[0], gcc[1]};
     solve_scalar(w, c, c->p, 3, grad, C, h);
-    return L > 0.0 ? fabs(C) / L : fabs(C);
+    return len > 0.0 ? fabs(C) / len : fabs(C);
 }
 
-double tt__cgroup_relax(tt_world *w, void *self, double h)
+#undef X
+#undef Y
+
+/* Units: the distance links in order, then the other kinds in theirs. */
+uint32_t tt__cgroup_units(const tt_world *w, const void *self)
+{
+    (void)w;
+    const tt__cgroup *g = self;
+    return g->ndist + g->ngen;
+}
+
+bool tt__cgroup_rows(const tt_world *w, const void *self) { return tt__distance_wants_rows(w, self); }
+
+double tt__cgroup_relax(tt_world *w, void *self, const tt__block *b)
 {
     tt__cgroup *g = self;
-    bool jacobi = w->scr.jn && w->order == TT_JACOBI;
-    double err = jacobi ? tt__distance_sweep_jacobi(w, g, h) : tt__distance_sweep_gs(w, g, h);
-    g->scr.first_sweep = false;
-    for (uint32_t i = 0; i < g->ngen; i++) {
+    const bool jacobi = w->scr.jn && w->order == TT_JACOBI;
+    const uint32_t nd = g->ndist, d1 = b->u1 < nd ? b->u1 : nd;
+    double err = 0.0;
+    if (b->u0 < d1) err = jacobi ? tt__distance_sweep_jacobi(w, g, b, b->u0, d1) : tt__distance_sweep_gs(w, g, b, b->u0, d1);
+    const uint32_t g0 = b->u0 > nd ? b->u0 - nd : 0, g1 = b->u1 > nd ? b->u1 - nd : 0;
+    for (uint32_t i = g0; i < g1 && i < g->ngen; i++) {
         tt__gcon *c = &g->gen[i];
         double e = 0.0;
         switch (c->kind) {
-        case TT_CONSTRAINT_PIN: e = relax_pin(w, c, h); break;
-        case TT_CONSTRAINT_BOUNDS: e = relax_bounds(w, c); break;
-        case TT_CONSTRAINT_ANGLE: e = relax_angle(w, c, h); break;
-        case TT_CONSTRAINT_AREA: e = relax_area(w, g, c, h); break;
-        case TT_CONSTRAINT_COLLINEAR: e = relax_collinear(w, c, h); break;
+        case TT_CONSTRAINT_PIN: e = relax_pin(w, b->lay, c, b->h); break;
+        case TT_CONSTRAINT_BOUNDS: e = relax_bounds(w, b->lay, c); break;
+        case TT_CONSTRAINT_ANGLE: e = relax_angle(w, b->lay, c, b->h); break;
+        case TT_CONSTRAINT_AREA: e = relax_area(w, b->lay, g, c, b->h); break;
+        case TT_CONSTRAINT_COLLINEAR: e = relax_collinear(w, b->lay, c, b->h); break;
         }
         if (e > err) err = e;
     }

@@ -19,9 +19,10 @@ void tt__distance_hot_sync(tt__cgroup *g, uint32_t i)
 
 /* Part of a sweep over the distance constraints: links [i, n), err the
  * largest error so far. Particle k is at px[k·st], py[k·st], im[k·st] (st = 1:
- * the world's arrays; 4: the vector sweep's packed copy). `jacobi` and `st`
- * are constants at each call site, so each gets a lean loop. */
-static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi,
+ * the world's arrays; 4: the solver's rows). `jacobi` and `st` are
+ * constants at each call site, so each gets a lean loop. first: the
+ * substep's first sweep. */
+static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, tt__cgroup *g, double h, bool jacobi, bool first,
                                                                    double *px, double *py, const double *im, size_t st,
                                                                    uint32_t i, uint32_t n, double err)
 {
@@ -44,7 +45,7 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
              * get one from those; still together when the substep's sweeps
              * begin, they may never get one (two particles at rest), so b
              * parts to +x of a. */
-            if (!g->scr.first_sweep) continue;
+            if (!first) continue;
             dx = 1.0;
             dy = 0.0;
             len = 1.0;
@@ -78,9 +79,9 @@ static inline __attribute__((always_inline)) double sweep_distance(tt_world *w, 
  * side by side gives the sequential loop's result bit for bit, as long as each
  * lane does the scalar arithmetic: the same IEEE operations in the same order
  * (these functions enable no FMA, and the build has -ffp-contract=off) with
- * every branch turned into a mask. The sweep works on a packed copy of x, y
- * and inverse mass (one 32-byte row per particle) so a particle is one load
- * and one store, and reads the links' hot fields from arrays (h_*) so a
+ * every branch turned into a mask. The sweep works on the solver's rows
+ * (x, y and inverse mass in one 32-byte row per particle) so a particle is
+ * one load and one store, and reads the links' hot fields from arrays (h_*) so a
  * block's parameters are one vector load each. Measured on a 128² cloth at 10
  * sweeps (Zen 4, make bench, median of 5): the scalar loop 6.2 ms a step,
  * this 1.97 ms. */
@@ -91,7 +92,6 @@ static bool plan_reserve(tt__cgroup *g, uint32_t n, uint32_t np, uint32_t W)
     if (!tt__grow((void **)&g->scr.stamp, &g->scr.stamp_cap, np, sizeof *g->scr.stamp) ||
         !tt__grow((void **)&g->scr.plan, &g->scr.plan_cap, 2 * (n / W + 1), sizeof *g->scr.plan))
         return false;
-    if (!tt__rows_reserve(&g->scr.pk, &g->scr.pk_cap, np)) return false;
     if (n > g->scr.hot_cap) { /* one block: four double arrays, then two uint32 ones */
         uint32_t cap = n > UINT32_MAX / 2 ? n : n + n / 2;
         double *h = malloc((size_t)cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)));
@@ -319,47 +319,47 @@ TT_RUNS(TT_AVX512, run_avx512)
 static const run_fn runs_avx2[4] = {run_avx2_gg, run_avx2_gr, run_avx2_xg, run_avx2_xr};
 static const run_fn runs_avx512[4] = {run_avx512_gg, run_avx512_gr, run_avx512_xg, run_avx512_xr};
 
-/* The plan's scalar runs (on the rows, through the scalar loop itself) and
- * vector runs; runs[2·xpbd + rigid]. The rows are made from w->px, py and
- * inv_mass unless they already hold the positions (pk_live), and written back
- * unless `keep`: the solver sweeps nothing else between these sweeps, so they
- * stay live until sweeps_done (saves ~8 % of a 128² cloth step). */
-TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, double h, const run_fn *runs, bool keep)
+/* Links [u0, u1) of a run of vector blocks [v0, v0 + 4·nb): the whole
+ * blocks inside in lanes, the links of a block cut by u0 or u1 through the
+ * scalar loop on the rows (the same result, link by link in order). */
+TT_AVX2 static double run_part(tt_world *w, tt__cgroup *g, const tt__block *b, run_fn run, uint32_t v0, uint32_t nb, uint32_t u0,
+                               uint32_t u1, double err)
 {
-    double *pk = g->scr.pk;
-    if (!g->scr.pk_live) tt__rows_pack(pk, w->px, w->py, w->inv_mass, g->scr.plan_np);
+    double *pk = b->lay->x;
+    const uint32_t lo = u0 > v0 ? u0 : v0, hi = u1 < v0 + 4 * nb ? u1 : v0 + 4 * nb;
+    if (lo >= hi) return err;
+    uint32_t a = v0 + (lo - v0 + 3) / 4 * 4, e = v0 + (hi - v0) / 4 * 4; /* whole blocks: [a, e) */
+    if (a > hi) a = hi;
+    err = sweep_distance(w, g, b->h, false, b->first, pk, pk + 1, pk + 2, 4, lo, a, err);
+    if (a < e) {
+        const kern_in in = {pk, g->scr.h_lo + a, g->scr.h_hi + a, g->scr.h_k + a, g->scr.h_alpha + a, g->scr.h_ra + a, g->scr.h_rb + a,
+                            g->dx + a, 1.0 / (b->h * b->h), b->first};
+        const double m = run(&in, (e - a) / 4);
+        if (m > err) err = m; /* a max: the order it is taken in does not matter */
+    }
+    return sweep_distance(w, g, b->h, false, b->first, pk, pk + 1, pk + 2, 4, a > e ? a : e, hi, err);
+}
+
+/* Links [u0, u1) by the plan: its scalar runs (on the rows, through the
+ * scalar loop itself) and vector runs; runs[2·xpbd + rigid]. */
+TT_AVX2 static double sweep_planned(tt_world *w, tt__cgroup *g, const tt__block *b, const run_fn *runs, uint32_t u0, uint32_t u1)
+{
+    double *pk = b->lay->x;
     const int xpbd = g->nxpbd > 0; /* else no lane has alpha > 0: the kernels without that branch */
     double err = 0.0;
     uint32_t i = 0;
-    for (uint32_t k = 0; k < g->scr.nplan; k += 2) {
+    for (uint32_t k = 0; k < g->scr.nplan && i < u1; k += 2) {
         const uint32_t ns = g->scr.plan[k], nb = g->scr.plan[k + 1] & ~PLAN_RIGID;
-        err = sweep_distance(w, g, h, false, pk, pk + 1, pk + 2, 4, i, i + ns, err);
+        const uint32_t lo = u0 > i ? u0 : i, hi = u1 < i + ns ? u1 : i + ns;
+        if (lo < hi) err = sweep_distance(w, g, b->h, false, b->first, pk, pk + 1, pk + 2, 4, lo, hi, err);
         i += ns;
         if (!nb) continue;
-        const kern_in in = {pk, g->scr.h_lo + i, g->scr.h_hi + i, g->scr.h_k + i, g->scr.h_alpha + i, g->scr.h_ra + i, g->scr.h_rb + i,
-                            g->dx + i, 1.0 / (h * h), g->scr.first_sweep};
-        double e = runs[2 * xpbd + (g->scr.plan[k + 1] >= PLAN_RIGID)](&in, nb);
-        if (e > err) err = e; /* a max: the order it is taken in does not matter */
+        err = run_part(w, g, b, runs[2 * xpbd + (g->scr.plan[k + 1] >= PLAN_RIGID)], i, nb, u0, u1, err);
         i += 4 * nb;
     }
-    g->scr.pk_live = keep;
-    if (!keep) tt__rows_unpack(pk, w->px, w->py, g->scr.plan_np);
     return err;
 }
 #endif
-
-/* The rows back into w->px, py if they hold the positions. */
-static void rows_release(tt_world *w, tt__cgroup *g)
-{
-#ifdef TT_SIMD_X86
-    if (g->scr.pk_live) tt__rows_unpack(g->scr.pk, w->px, w->py, g->scr.plan_np);
-#else
-    (void)w;
-#endif
-    g->scr.pk_live = false;
-}
-
-void tt__cgroup_sweeps_done(tt_world *w, void *self) { rows_release(w, self); }
 
 /* The plan wanted at the next sweep, before a step: its arrays are then in
  * place, so a plan redone inside the step (links broke: fewer of them)
@@ -370,28 +370,31 @@ bool tt__distance_plan_reserve(tt_world *w, tt__cgroup *g)
     return (g->scr.plan_ok && g->scr.plan_w == 4) || plan_build(g, 4, 2);
 }
 
-double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, double h)
+bool tt__distance_wants_rows(const tt_world *w, const tt__cgroup *g)
 {
+    return w->order == TT_GAUSS_SEIDEL && tt__simd_kind(g->simd) != TT__SIMD_SCALAR && g->ndist >= 8;
+}
+
+double tt__distance_sweep_gs(tt_world *w, tt__cgroup *g, const tt__block *b, uint32_t u0, uint32_t u1)
+{
+    const tt__lay *L = b->lay;
     uint8_t kind = tt__simd_kind(g->simd);
-    if (kind != TT__SIMD_SCALAR && g->ndist >= 8 && !(g->scr.plan_ok && g->scr.plan_w == 4)) {
-        rows_release(w, g); /* a new plan may move the rows */
-        if (!plan_build(g, 4, 2)) kind = TT__SIMD_SCALAR;
-    }
-    if (kind == TT__SIMD_SCALAR || g->ndist < 8) {
-        rows_release(w, g);
-        return sweep_distance(w, g, h, false, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0);
+    if (kind != TT__SIMD_SCALAR && g->ndist >= 8 && !(g->scr.plan_ok && g->scr.plan_w == 4) && !plan_build(g, 4, 2))
+        kind = TT__SIMD_SCALAR;
+    if (kind == TT__SIMD_SCALAR || g->ndist < 8 || L->st != 4) {
+        if (L->st == 4) /* the rows without lanes: plan refused (no memory) */
+            return sweep_distance(w, g, b->h, false, b->first, L->x, L->x + 1, L->x + 2, 4, u0, u1, 0.0);
+        return sweep_distance(w, g, b->h, false, b->first, L->x, L->y, L->im, 1, u0, u1, 0.0);
     }
 #ifdef TT_SIMD_X86
-    /* keep the rows only while this sweep is all the solver does to positions */
-    const bool keep = g->ngen == 0 && tt__groups_relaxing(w) == 1;
-    return sweep_planned(w, g, h, kind == TT__SIMD_AVX512 ? runs_avx512 : runs_avx2, keep);
+    return sweep_planned(w, g, b, kind == TT__SIMD_AVX512 ? runs_avx512 : runs_avx2, u0, u1);
 #else
     return 0.0;
 #endif
 }
 
-double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, double h)
+double tt__distance_sweep_jacobi(tt_world *w, tt__cgroup *g, const tt__block *b, uint32_t u0, uint32_t u1)
 {
-    return sweep_distance(w, g, h, true, w->px, w->py, w->inv_mass, 1, 0, g->ndist, 0.0);
+    return sweep_distance(w, g, b->h, true, b->first, b->lay->x, b->lay->y, b->lay->im, 1, u0, u1, 0.0); /* Jacobi: st = 1 */
 }
 

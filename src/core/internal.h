@@ -36,9 +36,10 @@ enum { TT_SCRATCH_AX, TT_SCRATCH_AY, TT_SCRATCH_RK4_FIRST, TT_SCRATCH_COUNT = TT
 /* A group of position constraints swept by the relaxation loop: the
  * constraints feature and the collision feature each register one (or more)
  * the first time a world uses them, so a world that uses neither pays nothing.
- * Groups are swept in registration order (deterministic). Only relax is
- * required. A group moves particles only through tt__correct, so the same
- * code serves Gauss-Seidel and Jacobi. */
+ * Groups are swept in rank order (deterministic). Only relax is
+ * required. A group moves particles only through tt__correct (or, for
+ * Gauss-Seidel only, its block's layout), so the same code serves
+ * Gauss-Seidel and Jacobi. */
 /* The order groups relax in, whatever order a script first used them in:
  * constraints, then contacts, so non-penetration has the last word in every
  * sweep (README "Solver order"). Ties (tests' own groups) keep their order. */
@@ -46,6 +47,28 @@ enum { TT__RANK_TEST = 0, TT__RANK_CONSTRAINTS = 10, TT__RANK_CONTACTS = 20 };
 
 struct tt__sink;
 struct tt__source;
+
+/* The positions the sweeps work on, owned by the solver (solver.c):
+ * particle i is at x[i·st], y[i·st], its inverse mass at im[i·st]. st = 4:
+ * the solver's rows (simd.h: x, y, w, w per particle, and one more row of
+ * zeros past the last particle for vector lanes that pad); st = 1: the
+ * world's own px, py, inv_mass. Between the sweeps the world's arrays are
+ * the truth; during them only this is. */
+typedef struct tt__lay {
+    double *x, *y;
+    const double *im;
+    size_t st;
+} tt__lay;
+
+/* One call of a group's relax: its units [u0, u1) (constraints, contact
+ * batches...: what `units` counts), in their order, on the positions lay.
+ * first: the substep's first sweep. */
+typedef struct tt__block {
+    double h;
+    const tt__lay *lay;
+    uint32_t u0, u1;
+    bool first;
+} tt__block;
 
 typedef struct tt__group_ops {
     const char *name;
@@ -58,10 +81,25 @@ typedef struct tt__group_ops {
     /* once per substep after integration, before the sweeps (detection, rest data) */
     /* relax may be NULL for a group without sweeps (sleep.c): the solve then runs as if it were absent */
     void (*begin)(tt_world *w, void *self, double h);
-    /* one sweep over every constraint; returns the largest error seen before correcting, m */
-    double (*relax)(tt_world *w, void *self, double h);
-    /* once per substep right after the last sweep, before anything else reads
-     * positions (a group may keep them in its own layout across its sweeps) */
+    /* Part of a sweep: units [b->u0, b->u1) of the group, moved on b->lay
+     * only (reads through it, writes through tt__correct or it); returns
+     * the largest error seen before correcting, m. The solver calls it for
+     * consecutive blocks that together cover [0, units) once a sweep, in
+     * order, so any split into blocks gives the same result bit for bit
+     * (tests/core/test_blocks.c); a group keeps nothing per block. */
+    double (*relax)(tt_world *w, void *self, const tt__block *b);
+    /* optional: how many units a sweep relaxes (read once a sweep, after
+     * begin); NULL: the group is one unit, relaxed in one call */
+    uint32_t (*units)(const tt_world *w, const void *self);
+    /* optional: set when the group reads and writes positions only through
+     * the block's layout; true when its vector sweeps want the solver's
+     * rows (st = 4) this step (asked before the step, to size them, and
+     * before each substep's sweeps). The solver packs
+     * rows only when every group with sweeps has this hook and one says
+     * true. */
+    bool (*rows)(const tt_world *w, const void *self);
+    /* once per substep right after the last sweep, the world's arrays the
+     * positions again */
     void (*sweeps_done)(tt_world *w, void *self);
     /* once per substep after the sweeps and the velocity fix-up (restitution, friction, breaking) */
     void (*end)(tt_world *w, void *self, double h);
@@ -163,6 +201,10 @@ typedef struct tt__world_scratch {
     uint32_t jcap;
     double *bx, *by;      /* positions before the sweeps: the velocity fix-up and the guard's fallback */
     uint32_t bcap;
+    double *rows;         /* the sweeps' rows (tt__lay, st = 4): particles and the padding row */
+    uint32_t rows_cap;
+    tt__lay lay;          /* where positions are during the sweeps (tt__solve sets it) */
+    uint64_t packs;       /* rows packed or unpacked since the world was made: what tests count */
     uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */
     const char *step_oom; /* what memory was refused inside the step (tt__step_oom), NULL: none */
     uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
@@ -207,6 +249,7 @@ struct tt_world {
     uint32_t substeps, iterations;
     double tolerance;
     tt_solver_order order;
+    uint32_t blocks;      /* debug: each group's sweep in this many blocks (0, 1: one); same results */
     tt__group groups[TT_MAX_GROUPS];
     int group_count;
 
@@ -367,8 +410,9 @@ static inline void tt__correct(tt_world *w, uint32_t i, double dx, double dy)
         w->scr.jy[i] += dy;
         w->scr.jn[i]++;
     } else {
-        w->px[i] += dx;
-        w->py[i] += dy;
+        const size_t at = i * w->scr.lay.st;
+        w->scr.lay.x[at] += dx;
+        w->scr.lay.y[at] += dy;
     }
 }
 /* Constraints (constraint_group.c): true when a constraint joining particle slots

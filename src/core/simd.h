@@ -1,8 +1,9 @@
 /* tether — what the SIMD sweeps share (distance_sweep.c, contact_batch.c):
  * the runtime choice of vector width, and "rows": a packed copy of x, y and
  * inverse mass, one 32-byte row (x, y, w, w) per particle, so a particle is
- * one vector load and one store; or "xy rows", (x, y) alone in 16 bytes,
- * for sweeps that keep the inverse masses beside their own entries.
+ * one vector load and one store (the solver's layout for the sweeps,
+ * solver.c); or "xy rows", (x, y) alone in 16 bytes, for the contacts'
+ * velocity pass after the sweeps.
  * Kernels that give bit-identical results to their scalar loops do the
  * scalar arithmetic lane by lane (no FMA: the build has -ffp-contract=off
  * and these targets enable none). */
@@ -33,27 +34,25 @@ TT_AVX2 TT_INLINE void tt__rows_load2(const double *pk, size_t r0, size_t r1, __
     *w = _mm256_permute2f128_pd(a, b, 0x31);
 }
 
-/* xy rows of particles i0, i1 into (x0, y0, x1, y1): the second half goes
- * in with a load-and-insert, no lane-crossing shuffle. */
-TT_AVX2 TT_INLINE __m256d tt__xy_load2(const double *xy, size_t i0, size_t i1)
+/* The (x, y) pairs at offsets r0, r1 of rows (4·slot) or xy rows (2·slot)
+ * into (x0, y0, x1, y1): the second half goes in with a load-and-insert,
+ * no lane-crossing shuffle. */
+TT_AVX2 TT_INLINE __m256d tt__rows_loadxy2(const double *pk, size_t r0, size_t r1)
 {
-    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(xy + 2 * i0)), _mm_load_pd(xy + 2 * i1), 1);
+    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(pk + r0)), _mm_load_pd(pk + r1), 1);
 }
 
-/* (x0, y0, x1, y1) back into xy rows i0, i1: stores the size of the loads,
- * so the next load of either row is served from its store. */
-TT_AVX2 TT_INLINE void tt__xy_store2(double *xy, size_t i0, size_t i1, __m256d v)
-{
-    _mm_store_pd(xy + 2 * i0, _mm256_castpd256_pd128(v));
-    _mm_store_pd(xy + 2 * i1, _mm256_extractf128_pd(v, 1));
-}
-
-/* (x, y) of both back into rows r0, r1; their w stays. */
+/* (x0, y0, x1, y1) back at offsets r0, r1 (a row's w stays): stores the
+ * size of the loads, so the next load of either is served from its store. */
 TT_AVX2 TT_INLINE void tt__rows_store2(double *pk, size_t r0, size_t r1, __m256d v)
 {
     _mm_store_pd(pk + r0, _mm256_castpd256_pd128(v));
     _mm_store_pd(pk + r1, _mm256_extractf128_pd(v, 1));
 }
+
+/* The same on xy rows by particle: i0, i1 at offsets 2·i0, 2·i1. */
+TT_AVX2 TT_INLINE __m256d tt__xy_load2(const double *xy, size_t i0, size_t i1) { return tt__rows_loadxy2(xy, 2 * i0, 2 * i1); }
+TT_AVX2 TT_INLINE void tt__xy_store2(double *xy, size_t i0, size_t i1, __m256d v) { tt__rows_store2(xy, 2 * i0, 2 * i1, v); }
 #endif
 
 /* The mode m runs as on this processor and build: TT__SIMD_SCALAR when it has none. */

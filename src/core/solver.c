@@ -4,6 +4,7 @@
  * integrators that store them. Verlet needs no fix: its velocity is implied
  * by the corrected positions. */
 #include "internal.h"
+#include "simd.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -27,6 +28,82 @@ static void jacobi_zero(tt_world *w)
     tt__zero(w->scr.jn, n * sizeof(uint32_t));
 }
 
+/* ---- the sweeps' layout ----------------------------------------------------
+ * The solver owns where positions are while the groups sweep: the world's
+ * own arrays, or rows (simd.h) packed once before the first sweep and
+ * unpacked once after the last, which the vector sweeps of every group
+ * (distance links, contact batches) read and write in place. A group moves
+ * positions through its block's layout only, so no group can read a stale
+ * copy, and no group packs its own. */
+
+/* Every group with sweeps reads positions through the layout (has `rows`). */
+static bool rows_possible(const tt_world *w)
+{
+    for (int g = 0; g < w->group_count; g++) {
+        const tt__group_ops *ops = w->groups[g].ops;
+        if (ops->relax && !ops->rows) return false;
+    }
+    return true;
+}
+
+/* Rows this step: Gauss-Seidel (Jacobi's averaging goes through the
+ * world's arrays), every group reads through the layout, one wants them. */
+static bool rows_wanted(const tt_world *w)
+{
+    if (w->order != TT_GAUSS_SEIDEL || !rows_possible(w)) return false;
+    for (int g = 0; g < w->group_count; g++) {
+        const tt__group_ops *ops = w->groups[g].ops;
+        if (ops->relax && ops->rows(w, w->groups[g].self)) return true;
+    }
+    return false;
+}
+
+static void lay_begin(tt_world *w)
+{
+    const uint32_t n = w->ppool.count;
+    if (rows_wanted(w) && w->scr.rows_cap > n) { /* tt__solver_reserve made the room */
+        double *r = w->scr.rows;
+        tt__rows_pack(r, w->px, w->py, w->inv_mass, n);
+        memset(r + 4 * (size_t)n, 0, 4 * sizeof *r); /* the padding row: no mass, at the origin */
+        w->scr.lay = (tt__lay){r, r + 1, r + 2, 4};
+        w->scr.packs++;
+    } else {
+        w->scr.lay = (tt__lay){w->px, w->py, w->inv_mass, 1};
+    }
+}
+
+static void lay_end(tt_world *w)
+{
+    if (w->scr.lay.st == 4) {
+        tt__rows_unpack(w->scr.rows, w->px, w->py, w->ppool.count);
+        w->scr.packs++;
+    }
+    w->scr.lay = (tt__lay){0};
+}
+
+/* One sweep: the groups in rank order, each in w->blocks consecutive
+ * blocks of its units (one by default); returns the largest error and
+ * notes in *moved whether some block found one. */
+static double sweep(tt_world *w, double h, bool first, bool *moved)
+{
+    const uint32_t k = w->blocks > 1 ? w->blocks : 1;
+    double err = 0.0;
+    for (int g = 0; g < w->group_count; g++) {
+        const tt__group_ops *ops = w->groups[g].ops;
+        if (!ops->relax) continue;
+        /* a group without units is one unit: one block */
+        const uint32_t n = ops->units ? ops->units(w, w->groups[g].self) : 1, kg = ops->units ? k : 1;
+        for (uint32_t b = 0; b < kg; b++) {
+            const tt__block blk = {h, &w->scr.lay, (uint32_t)((uint64_t)n * b / kg), (uint32_t)((uint64_t)n * (b + 1) / kg), first};
+            if (blk.u0 == blk.u1) continue;
+            const double e = ops->relax(w, w->groups[g].self, &blk);
+            *moved |= e != 0.0;
+            if (e > err) err = e;
+        }
+    }
+    return err;
+}
+
 bool tt__solver_reserve(tt_world *w)
 {
     if (w->group_count == 0) return true;
@@ -43,6 +120,7 @@ bool tt__solver_reserve(tt_world *w)
             return false;
         w->scr.bcap = w->pcap;
     }
+    if (sweeps && rows_wanted(w) && !tt__rows_reserve(&w->scr.rows, &w->scr.rows_cap, n + 1)) return false;
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->reserve && !w->groups[g].ops->reserve(w, w->groups[g].self)) return false;
     return true;
@@ -220,18 +298,14 @@ void tt__solve(tt_world *w, double h)
     double err = 0.0;
     uint32_t it = 0;
     bool moved = false; /* some sweep found an error (or a NaN) to correct */
+    lay_begin(w);
     while (it < w->iterations) {
-        err = 0.0;
-        for (int g = 0; g < w->group_count; g++) {
-            if (!w->groups[g].ops->relax) continue;
-            double e = w->groups[g].ops->relax(w, w->groups[g].self, h);
-            moved |= e != 0.0;
-            if (e > err) err = e;
-        }
+        err = sweep(w, h, it == 0, &moved);
         if (jacobi) jacobi_apply(w);
         it++;
         if (err <= w->tolerance) break;
     }
+    lay_end(w);
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->sweeps_done) w->groups[g].ops->sweeps_done(w, w->groups[g].self);
     w->stats.iterations += it;
@@ -272,7 +346,8 @@ void tt__solver_particle_removed(tt_world *w, uint32_t index)
 
 size_t tt__solver_memory(const tt_world *w)
 {
-    size_t bytes = (size_t)w->scr.jcap * (2 * sizeof(double) + sizeof(uint32_t)) + (size_t)w->scr.bcap * 2 * sizeof(double);
+    size_t bytes = (size_t)w->scr.jcap * (2 * sizeof(double) + sizeof(uint32_t)) + (size_t)w->scr.bcap * 2 * sizeof(double) +
+                   (size_t)w->scr.rows_cap * 4 * sizeof(double);
     for (int g = 0; g < w->group_count; g++)
         if (w->groups[g].ops->memory) bytes += w->groups[g].ops->memory(w, w->groups[g].self);
     return bytes;

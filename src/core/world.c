@@ -136,7 +136,7 @@ void tt__world_scratch_free(tt_world *w)
     tt__world_scratch *s = &w->scr;
     for (int k = 0; k < TT_SCRATCH_COUNT; k++) free(s->buf[k]);
     free(s->jx); free(s->jy); free(s->jn);
-    free(s->bx); free(s->by);
+    free(s->bx); free(s->by); free(s->rows);
     free(s->ends);
     tt__undo_free(w);
     *s = (tt__world_scratch){0};

@@ -135,6 +135,21 @@ ts_grid ts_grid_default(void);          /* none yet: 1 column, spacing 1, radius
  * when the world refused one, e.g. out of capacity). */
 uint32_t ts_grid_add(tt_world *w, const ts_grid *g);
 
+/* A cloth that catches balls: an n × n cloth 2 cm apart (1 g and radius
+ * 1 cm a particle) hung from its two top corners, and `balls` circles
+ * (radius 2 cm, 10 g) in a staggered grid 5 cm apart from 10 cm above its
+ * top edge, falling onto it under default gravity: distance links and
+ * particle contacts relaxed in the same sweeps. Gauss-Seidel, 1 substep,
+ * tolerance 0 (every sweep runs). */
+typedef struct ts_cloth_catch {
+    uint32_t n;          /* cloth particles along a side, at least 2 */
+    uint32_t balls;
+    uint32_t iterations; /* sweeps per step */
+} ts_cloth_catch;
+/* A new world holding the scene (the cloth's handle in *cloth when not
+ * NULL; its particles are slots [0, n²)); NULL when it cannot be made. */
+tt_world *ts_cloth_catch_build(const ts_cloth_catch *d, tt_composite *cloth);
+
 /* --- measures shared by the bench and the cross-check (scene_metrics.c) --- */
 
 typedef struct ts_pile {

@@ -20,11 +20,11 @@ typedef struct watch {
     double fastest;      /* the largest displacement ÷ substep dt seen, m/s */
 } watch;
 
-static double watch_relax(tt_world *w, void *self, double h)
+static double watch_relax(tt_world *w, void *self, const tt__block *b)
 {
     (void)w;
     (void)self;
-    (void)h;
+    (void)b;
     return 0.0;
 }
 

@@ -37,6 +37,7 @@ static void world_garbage(tt_world *w)
     fill(s->jn, (size_t)s->jcap * sizeof(uint32_t));
     fill(s->bx, (size_t)s->bcap * sizeof(double));
     fill(s->by, (size_t)s->bcap * sizeof(double));
+    fill(s->rows, (size_t)s->rows_cap * 4 * sizeof(double));
     fill(s->ends, (size_t)s->ends_cap * sizeof(uint32_t));
     tt__undo *u = &s->undo;
     double *d[] = {u->px, u->py, u->qx, u->qy, u->inv_mass};
@@ -50,8 +51,7 @@ static void world_garbage(tt_world *w)
     s->step_oom = "garbage";
 }
 
-/* The constraint group's scratch as garbage: the sweep's packed rows,
- * the plan builder's stamps, the area gradients, the break events' buffer,
+/* The constraint group's scratch as garbage: the plan builder's stamps, the area gradients, the break events' buffer,
  * the undo's copies, and lambda in every link. The plan and its hot copies
  * are a cache valid while plan_ok (setters keep it current): losing them
  * is freeing them, which world_free does. */
@@ -60,7 +60,6 @@ static void constraints_garbage(tt_world *w)
     tt__cgroup *g = tt__cgroup_find(w);
     if (!g) return;
     tt__cscratch *s = &g->scr;
-    fill(s->pk, (size_t)s->pk_cap * 4 * sizeof(double));
     fill(s->stamp, (size_t)s->stamp_cap * sizeof(uint32_t));
     fill(s->grad, (size_t)s->grad_cap * 2 * sizeof(double));
     fill(s->ev_new, (size_t)s->cap_new * sizeof *s->ev_new);
@@ -75,7 +74,6 @@ static void constraints_garbage(tt_world *w)
     fill(u->refs, (size_t)u->refs_cap * sizeof(uint32_t));
     fill(u->pair_n, (size_t)u->n_cap * sizeof(uint32_t));
     fill(u->pair_key, (size_t)u->key_cap * sizeof(uint64_t));
-    s->first_sweep = true;
     for (uint32_t i = 0; i < g->ndist; i++) fill(&g->dx[i].lambda, sizeof g->dx[i].lambda);
     for (uint32_t i = 0; i < g->ngen; i++) fill(&g->gen[i].lambda, sizeof g->gen[i].lambda);
 }

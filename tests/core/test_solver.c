@@ -7,10 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double floor_relax(tt_world *w, void *self, double h)
+static double floor_relax(tt_world *w, void *self, const tt__block *b)
 {
     (void)self;
-    (void)h;
+    (void)b;
     double err = 0;
     for (uint32_t i = 0; i < w->ppool.count; i++) {
         if (w->inv_mass[i] == 0.0 || w->py[i] >= 0.0) continue;
@@ -23,10 +23,10 @@ static double floor_relax(tt_world *w, void *self, double h)
 static const tt__group_ops floor_ops = {.name = "floor", .relax = floor_relax};
 
 /* Rigid links between consecutive particles 0-1-2-…, rest length 1. */
-static double chain_relax(tt_world *w, void *self, double h)
+static double chain_relax(tt_world *w, void *self, const tt__block *b)
 {
     (void)self;
-    (void)h;
+    (void)b;
     double err = 0;
     for (uint32_t i = 0; i + 1 < w->ppool.count; i++) {
         double dx = w->px[i + 1] - w->px[i], dy = w->py[i + 1] - w->py[i];
