@@ -108,6 +108,7 @@ bool tt__contacts_reserve(tt_world *w, void *self)
     if (!grow_xy(w, &c->vx0, &c->vy0, &c->vcap, n)) return false;
     if (w->integrator != TT_VERLET && !grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return false;
     if (c->nprim && !grow_xy(w, &c->gx0, &c->gy0, &c->gcap, n)) return false;
+    if (pairs && !grow_xy(w, &c->px0, &c->py0, &c->pcap, n)) return false;
     if (pairs && c->set.broadphase == TT_BROADPHASE_GRID) {
         if (!tt__grid_reserve(&c->grid, n)) return false;
         const uint32_t cells = tt__grid_max_cells(n);
@@ -280,6 +281,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->npairs || c->nsc)) substep_start(w, c, h, n);
+    if (c->npairs) tt__contacts_prestab(w, c, n);
     c->quiet_last = c->npairs == 0 && c->nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->npairs > c->pair_peak) c->pair_peak = c->npairs;

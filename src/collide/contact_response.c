@@ -144,6 +144,25 @@ static inline void move(tt_world *w, double *X, double *Y, size_t st, uint32_t i
     }
 }
 
+double tt__pairs_sweep(tt_world *w, tt__collide *c, double scale)
+{
+    const double *inv = w->inv_mass;
+    double err = 0.0;
+    for (uint32_t k = 0; k < c->npairs; k++) {
+        tt__pair *p = &c->pairs[k];
+        const uint32_t a = p->a, b = p->b;
+        const double ia = inv[a], ib = inv[b], ws = ia + ib;
+        if (ws == 0.0) continue;
+        double dx = w->px[a] - w->px[b], dy = w->py[a] - w->py[b], pen, t;
+        if (!tt__pair_push(a, b, p->rs * scale, ws, &dx, &dy, &pen, &t)) continue;
+        tt__correct(w, a, dx * t * ia, dy * t * ia);
+        tt__correct(w, b, -dx * t * ib, -dy * t * ib);
+        p->lambda += (float)pen;
+        if (pen > err) err = pen;
+    }
+    return err;
+}
+
 double tt__contacts_relax(tt_world *w, void *self, double h)
 {
     (void)h;
@@ -159,19 +178,7 @@ double tt__contacts_relax(tt_world *w, void *self, double h)
             st = 2;
         }
     } else {
-        const double *inv = w->inv_mass;
-        for (uint32_t k = 0; k < c->npairs; k++) {
-            tt__pair *p = &c->pairs[k];
-            const uint32_t a = p->a, b = p->b;
-            const double ia = inv[a], ib = inv[b], ws = ia + ib;
-            if (ws == 0.0) continue;
-            double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
-            if (!tt__pair_push(a, b, p->rs, ws, &dx, &dy, &pen, &t)) continue;
-            tt__correct(w, a, dx * t * ia, dy * t * ia);
-            tt__correct(w, b, -dx * t * ib, -dy * t * ib);
-            p->lambda += (float)pen;
-            if (pen > err) err = pen;
-        }
+        err = tt__pairs_sweep(w, c, 1.0);
     }
     const double *sx = start_x(w, c), *sy = start_y(w, c);
     const bool fr = rub_in_sweeps(w);
