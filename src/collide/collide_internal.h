@@ -12,6 +12,11 @@
 /* Candidate pairs are kept when their gap is under this fraction of the
  * radii sum, so pairs that close during the sweeps are solved at once. */
 #define TT__CONTACT_MARGIN 0.1
+/* Pre-stabilisation (contact_prestab.c) undoes only the overlap deeper
+ * than this fraction of the radii sum: a pile at rest keeps its overlaps
+ * under it (at 1 × 8 the reference pour's deepest at 20 s is 10 %) and is
+ * left as it was (see contact_prestab.c for what no slop did). */
+#define TT__PRESTAB_SLOP 0.1
 
 /* Every shape becomes primitives: rounded segments (capsule; a circle has
  * a == b, a segment r == 0) or convex polygons (radius 0). */
@@ -107,6 +112,7 @@ typedef struct tt__pair { /* 16 bytes: hundreds of thousands are written every s
 typedef struct tt__batches {
     uint32_t *a, *b;      /* particle slots, 4 per batch; padding lanes name np */
     double *rs, *lam;     /* radii sum; normal correction accumulated this substep, m */
+    double *pre;          /* radii sum less the pre-stabilisation slop (TT__PRESTAB_SLOP) */
     double *wa, *wb;      /* inverse masses of a and b (0: padding), beside the entry the sweeps read them with */
     uint32_t n, cap;      /* entries (a multiple of 4), room */
     uint8_t *solo;        /* per batch: its lanes share a particle, so they go one by one */
@@ -221,6 +227,8 @@ typedef struct tt__collide_scratch {
     double *gx0, *gy0;    /* positions before the sweeps (shapes present): the guard against pushes through walls */
     uint32_t gcap;
     bool guard;           /* gx0, gy0 hold this substep's */
+    double *px0, *py0;    /* pre-stabilisation's copy of the start positions (contact_prestab.c) */
+    uint32_t pcap;
     tt__lift *lift;       /* the bottom-up velocity pass's scratch: touched pairs, band starts, their order */
     uint32_t *lift_start, *lift_order;
     uint32_t lift_cap;    /* of all three */
@@ -341,6 +349,14 @@ void tt__contacts_begin(tt_world *w, void *self, double h);
 double tt__contacts_relax(tt_world *w, void *self, const tt__block *b);
 uint32_t tt__contacts_units(const tt_world *w, const void *self);
 bool tt__contacts_rows(const tt_world *w, const void *self);
+/* One Gauss-Seidel sweep over pairs [k0, k1) of the substep, unbatched, on
+ * positions L, each pair's radii sum times scale; returns the deepest
+ * overlap it met (contact_response.c). */
+double tt__pairs_sweep(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k0, uint32_t k1, double scale);
+/* Pre-stabilisation: the overlap the substep starts with is undone on the
+ * start positions and the predicted ones alike, so it makes no velocity
+ * (contact_prestab.c). After detection, in begin. */
+void tt__contacts_prestab(tt_world *w, tt__collide *c, uint32_t n);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);
 void tt__contacts_stopped(tt_world *w, void *self, uint32_t i);

@@ -33,15 +33,16 @@ static bool reserve(tt__batches *B, uint32_t n)
     if (n <= B->cap) return true;
     uint32_t cap = B->cap ? B->cap : 1024;
     while (cap < n) cap = cap > UINT32_MAX / 2 ? n : cap * 2;
-    /* one block: rs, lam, wa, wb (doubles), then a and b, then solo */
-    double *p = malloc((size_t)cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + cap / 4);
+    /* one block: rs, lam, wa, wb, pre (doubles), then a and b, then solo */
+    double *p = malloc((size_t)cap * (5 * sizeof(double) + 2 * sizeof(uint32_t)) + cap / 4);
     if (!p) return false;
     free(B->rs);
     B->rs = p;
     B->lam = p + cap;
     B->wa = p + 2 * (size_t)cap;
     B->wb = p + 3 * (size_t)cap;
-    B->a = (uint32_t *)(p + 4 * (size_t)cap);
+    B->pre = p + 4 * (size_t)cap;
+    B->a = (uint32_t *)(p + 5 * (size_t)cap);
     B->b = B->a + cap;
     B->solo = (uint8_t *)(B->b + cap);
     B->cap = cap;
@@ -96,7 +97,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
     }
     /* locals: the stores below could otherwise alias B's fields */
     uint32_t *restrict A = B->a, *restrict Bb = B->b, *restrict stamp = B->stamp;
-    double *restrict rs = B->rs, *restrict wa = B->wa, *restrict wb = B->wb;
+    double *restrict rs = B->rs, *restrict pre = B->pre, *restrict wa = B->wa, *restrict wb = B->wb;
     uint8_t *restrict solo = B->solo;
     memset(B->lam, 0, (size_t)nb * 4 * sizeof *B->lam);
     for (uint32_t t = 0; t < nb; t++) {
@@ -112,7 +113,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
             const uint32_t e = 4 * t + s - s0;
             if (c->p == c->end) { /* the part has no more: padding */
                 A[e] = Bb[e] = np;
-                rs[e] = wa[e] = wb[e] = 0.0;
+                rs[e] = pre[e] = wa[e] = wb[e] = 0.0;
                 continue;
             }
             const tt__pair *pr = &pairs[c->p++];
@@ -120,6 +121,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
             A[e] = a;
             Bb[e] = b;
             rs[e] = pr->rs;
+            pre[e] = pr->rs * (1.0 - TT__PRESTAB_SLOP);
             wa[e] = inv[a];
             wb[e] = inv[b];
             shared |= stamp[a] == id || stamp[b] == id;
@@ -417,6 +419,6 @@ void tt__batches_free(tt__batches *B)
 
 size_t tt__batches_bytes(const tt__batches *B)
 {
-    return (size_t)B->cap * (4 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
+    return (size_t)B->cap * (5 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
            ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double);
 }

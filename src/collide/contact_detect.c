@@ -109,6 +109,7 @@ bool tt__contacts_reserve(tt_world *w, void *self)
     if (!grow_xy(w, &c->scr.vx0, &c->scr.vy0, &c->scr.vcap, n)) return false;
     if (w->integrator != TT_VERLET && !grow_xy(w, &c->sx0, &c->sy0, &c->scap, n)) return false;
     if (c->nprim && !grow_xy(w, &c->scr.gx0, &c->scr.gy0, &c->scr.gcap, n)) return false;
+    if (pairs && !grow_xy(w, &c->scr.px0, &c->scr.py0, &c->scr.pcap, n)) return false;
     if (pairs && c->set.broadphase == TT_BROADPHASE_GRID) {
         if (!tt__grid_reserve(&c->scr.grid, n)) return false;
         const uint32_t cells = tt__grid_max_cells(n);
@@ -282,6 +283,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);
+    if (c->scr.npairs) tt__contacts_prestab(w, c, n);
     c->quiet_last = c->scr.npairs == 0 && c->scr.nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->scr.npairs > c->pair_peak) c->pair_peak = c->scr.npairs;

@@ -150,8 +150,9 @@ bool tt__contacts_rows(const tt_world *w, const void *self)
     return w->order == TT_GAUSS_SEIDEL && w->iterations > 1 && c->set.particles && tt__batches_want_rows(&c->scr.bat);
 }
 
-/* Pairs [k0, k1) one by one, unbatched (Jacobi, or a single sweep). */
-static double relax_pairs(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k0, uint32_t k1)
+/* Pairs [k0, k1) one by one, unbatched (Jacobi, or a single sweep);
+ * pre-stabilisation's sweeps too (scale: its slop). */
+double tt__pairs_sweep(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k0, uint32_t k1, double scale)
 {
     const double *inv = w->inv_mass, *X = L->x, *Y = L->y;
     const size_t st = L->st;
@@ -162,7 +163,7 @@ static double relax_pairs(tt_world *w, tt__collide *c, const tt__lay *L, uint32_
         const double ia = inv[a], ib = inv[b], ws = ia + ib;
         if (ws == 0.0) continue;
         double dx = X[a * st] - X[b * st], dy = Y[a * st] - Y[b * st], pen, t;
-        if (!tt__pair_push(a, b, p->rs, ws, &dx, &dy, &pen, &t)) continue;
+        if (!tt__pair_push(a, b, p->rs * scale, ws, &dx, &dy, &pen, &t)) continue;
         tt__correct(w, a, dx * t * ia, dy * t * ia);
         tt__correct(w, b, -dx * t * ib, -dy * t * ib);
         p->lambda += (float)pen;
@@ -177,7 +178,7 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
     const tt__lay *L = blk->lay;
     const uint32_t np = pair_units(c), p1 = blk->u1 < np ? blk->u1 : np;
     double err = 0.0;
-    if (blk->u0 < p1) err = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : relax_pairs(w, c, L, blk->u0, p1);
+    if (blk->u0 < p1) err = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : tt__pairs_sweep(w, c, L, blk->u0, p1, 1.0);
     const double *X = L->x, *Y = L->y;
     const size_t st = L->st;
     const double *sx = start_x(w, c), *sy = start_y(w, c);
