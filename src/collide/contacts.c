@@ -71,7 +71,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     const tt__collide *c = self;
     size_t b = sizeof *c + tt__shapes_bytes(c) + tt__grid_bytes(&c->grid);
     b += ((size_t)c->vcap + c->scap + c->gcap) * 2 * sizeof(double);
-    b += (size_t)c->lift_cap * (sizeof(tt__lift) + 2 * sizeof(uint32_t));
+    b += (size_t)c->lift_cap * (sizeof(tt__lift) + 2 * sizeof(uint32_t)) + (size_t)c->roll_cap * sizeof *c->roll;
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
     b += tt__pair_set_bytes(&c->excl);
     b += (size_t)c->paircap * sizeof(tt__pair) + (size_t)c->sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->bat);
@@ -88,7 +88,7 @@ void tt__contacts_destroy(tt_world *w, void *self)
     tt__shapes_free(c);
     tt__grid_free(&c->grid);
     free(c->vx0); free(c->vy0); free(c->sx0); free(c->sy0); free(c->gx0); free(c->gy0);
-    free(c->lift); free(c->lift_start); free(c->lift_order);
+    free(c->lift); free(c->lift_start); free(c->lift_order); free(c->roll);
     free(c->mat); free(c->bullet); free(c->ccd_prim);
     tt__pair_set_free(&c->excl);
     free(c->pairs); free(c->sc); free(c->runs); free(c->near);

@@ -1,5 +1,6 @@
 /* tether — the world: creation, settings, the step pipeline, stats. */
 #include "internal.h"
+#include "spin.h"
 
 #include <stdatomic.h>
 #include <stdio.h>
@@ -114,6 +115,11 @@ tt_world *tt_world_create(const tt_world_def *def)
     }
     if (d.sleep && !tt__sleep_enable(w, d.sleep_speed, d.sleep_time)) {
         tt__fail(NULL, TT_ENOMEM, "%s: out of memory for sleeping", fn);
+        tt_world_destroy(w);
+        return NULL;
+    }
+    if (d.spin && !tt__spin_enable(w)) {
+        tt__fail(NULL, TT_ENOMEM, "%s: out of memory for spin", fn);
         tt_world_destroy(w);
         return NULL;
     }
