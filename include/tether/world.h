@@ -77,7 +77,7 @@ typedef struct tt_stats {
 /// Mechanical energy of the world now, J. Computed on request (O(n)), so a
 /// world that never asks never pays. Pinned particles count no energy.
 typedef struct tt_energy {
-    double kinetic;   ///< Σ ½ m |v|²
+    double kinetic;   ///< Σ ½ m |v|², and Σ ¼ m r² ω² where particles turn (tt_world_def.spin)
     double gravity;   ///< Σ −m g·x (zero at the origin)
     double spring;    ///< Σ ½ k (|xa − xb| − rest)²
     double constraint;///< Σ ½ C²/α over compliant (XPBD) constraints: what they store as springs of stiffness 1/α

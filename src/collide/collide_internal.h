@@ -325,7 +325,10 @@ typedef struct tt__roll_contact {
 } tt__roll_contact;
 /* Lists a contact for tt__roll_solve (room made by tt__roll_room). */
 static inline void tt__roll_add(tt__collide *c, const tt__roll_contact *k) { c->roll[c->nroll++] = *k; }
-bool tt__roll_room(tt__collide *c, uint32_t n); /* room for n contacts, none listed; false on no memory */
+/* Room for every contact the substep can list (the pair and shape contact
+ * lists' room: it grows only when they grow, so a world at steady state
+ * allocates nothing), none listed; false on no memory. */
+bool tt__roll_room(tt__collide *c);
 /* The listed contacts' friction, solved together in rounds. */
 void tt__roll_solve(tt_world *w, tt__collide *c, struct tt__spin *sp, double h);
 static inline tt__collide *tt__collide_peek(const tt_world *w)

@@ -433,7 +433,7 @@ void tt__contacts_end(tt_world *w, void *self, double h)
     const bool events = c->set.events != 0;
     const double *inv = w->inv_mass;
     tt__spin *sp = tt__spin_peek(w);
-    if (sp && !tt__roll_room(c, (c->batched ? c->bat.n : c->npairs) + c->nsc)) {
+    if (sp && !tt__roll_room(c)) {
         tt__step_oom(w, "the friction of particles that turn");
         sp = NULL; /* this substep without friction; the step is undone */
     }

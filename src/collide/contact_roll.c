@@ -26,10 +26,11 @@
 #include "collide_internal.h"
 #include "core/spin.h"
 
-bool tt__roll_room(tt__collide *c, uint32_t n)
+bool tt__roll_room(tt__collide *c)
 {
     c->nroll = 0;
-    return tt__grow((void **)&c->roll, &c->roll_cap, n ? n : 1, sizeof *c->roll);
+    const uint32_t pairs = c->bat.cap > c->paircap ? c->bat.cap : c->paircap; /* batched or not */
+    return tt__grow((void **)&c->roll, &c->roll_cap, pairs + c->sccap + 1, sizeof *c->roll);
 }
 
 /* One round at one contact: the slip at the contact point removed as far

@@ -90,7 +90,12 @@ TEST(spin_spinning_disc_on_a_floor_ends_rolling_at_a_third)
     tt_particle_set_material(w, p, 0, 0.3, 0.3);
     const double w0 = 12.0;
     ENSURE_OK(tt_particle_set_spin(w, p, w0));
+    tt_energy e0, e1;
+    ENSURE_OK(tt_world_get_energy(w, &e0));
+    ENSURE_NEAR(e0.kinetic, 0.25 * 0.25 * w0 * w0, 1e-12); /* ½·(m r²/2)·ω0² */
     for (int s = 0; s < 180; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE_OK(tt_world_get_energy(w, &e1));
+    ENSURE_NEAR(e1.kinetic / e0.kinetic, 1.0 / 3.0, 0.01); /* rolling at ω0/3 keeps a third: the skid took the rest */
     tt_vec2 v;
     double om;
     tt_particle_get_velocity(w, p, &v);
