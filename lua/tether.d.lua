@@ -55,6 +55,7 @@ local tether = {}
 ---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default true
 ---@field sleep_speed? number a particle rests while it stays within sleep_speed·sleep_time of where it was (or leaves slower than this), m/s, in [0, 1e12]; default 0.01
 ---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 1
+---@field spin? boolean particles turn: each a solid disc with an angle and an angular velocity, contact friction acting at the contact point (README "Particles that turn"); default false
 ---@field fixed_point? boolean|number positions on a fixed-point lattice, so `w:reverse()` runs back bit for bit: true for the quantum 2^-32 m (range ±2^19 m), or the quantum itself, a power of two 2^-k, k = 1..60 (range ±2^51 quanta); positions given are rounded onto it, one outside the range raises; needs integrator "verlet"; default false
 ---@field snapshot? tether.snapshot|string a saved world (w:snapshot() or its bytes): the new world is that world, settings included; no other option may be given
 ---@field file? string a snapshot file (w:save(path), tt_world_save_file): the new world is the saved one; a file that cannot be read or is damaged raises; no other option may be given
@@ -368,6 +369,21 @@ function world:pinned(p) end
 ---@param p tether.particle
 ---@return boolean
 function world:asleep(p) end
+
+---The particle's angle, rad in [-pi, pi], counter-clockwise (a world made with spin = true; else raises).
+---@param p tether.particle
+---@return number
+function world:rotation(p) end
+
+---The particle's angular velocity, rad/s, counter-clockwise (spin = true; else raises).
+---@param p tether.particle
+---@return number
+function world:spin(p) end
+
+---Sets the angular velocity, rad/s in [-1e12, 1e12] (spin = true; else raises).
+---@param p tether.particle
+---@param omega number
+function world:set_spin(p, omega) end
 
 ---Pinning stops the particle where it is.
 ---@param p tether.particle

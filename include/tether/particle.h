@@ -42,6 +42,12 @@ TT_API tt_result tt_particle_set_position(tt_world *w, tt_particle p, tt_vec2 po
 TT_API tt_result tt_particle_get_velocity(const tt_world *w, tt_particle p, tt_vec2 *out);
 /// Sets velocity exactly (pinned particles: TT_ESTATE, they never move).
 TT_API tt_result tt_particle_set_velocity(tt_world *w, tt_particle p, tt_vec2 v);
+/// Angle, rad in [−π, π], counter-clockwise, of a world made with tt_world_def.spin (else TT_ESTATE).
+TT_API tt_result tt_particle_get_angle(const tt_world *w, tt_particle p, double *out);
+/// Angular velocity, rad/s, counter-clockwise (tt_world_def.spin; else TT_ESTATE).
+TT_API tt_result tt_particle_get_spin(const tt_world *w, tt_particle p, double *out);
+/// Sets the angular velocity, rad/s, |spin| ≤ TT_MAX_VALUE (tt_world_def.spin; else TT_ESTATE).
+TT_API tt_result tt_particle_set_spin(tt_world *w, tt_particle p, double spin);
 TT_API tt_result tt_particle_get_mass(const tt_world *w, tt_particle p, double *out);
 /// kg, > 0. The mass is kept while pinned and comes back on unpin.
 TT_API tt_result tt_particle_set_mass(tt_world *w, tt_particle p, double mass);

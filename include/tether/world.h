@@ -40,6 +40,9 @@ typedef struct tt_world_def {
                               ///< a multiple of q within |x| ≤ 2^51·q (2^19 m = 524 288 m for 2^-32), so position
                               ///< Verlet runs backwards bit for bit (tt_world_reverse). Positions given are rounded
                               ///< to the nearest multiple; one outside the range is refused. Needs TT_VERLET.
+    bool spin;                ///< particles turn: each is a solid disc (I = m·r²/2) with an angle and an angular
+                              ///< velocity, and contact friction acts at the contact point, shared between its
+                              ///< translation and its spin (README "Particles that turn"); default false
 } tt_world_def;
 
 /// The fixed-point quantum to use when in doubt: 2^-32 m (0.23 nm), range ±2^19 m.
@@ -74,7 +77,7 @@ typedef struct tt_stats {
 /// Mechanical energy of the world now, J. Computed on request (O(n)), so a
 /// world that never asks never pays. Pinned particles count no energy.
 typedef struct tt_energy {
-    double kinetic;   ///< Σ ½ m |v|²
+    double kinetic;   ///< Σ ½ m |v|², and Σ ¼ m r² ω² where particles turn (tt_world_def.spin)
     double gravity;   ///< Σ −m g·x (zero at the origin)
     double spring;    ///< Σ ½ k (|xa − xb| − rest)²
     double constraint;///< Σ ½ C²/α over compliant (XPBD) constraints: what they store as springs of stiffness 1/α

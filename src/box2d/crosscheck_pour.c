@@ -13,7 +13,7 @@
 #include <string.h>
 
 #define BLOCK 30
-#define MAX_TT 4
+#define MAX_TT 5
 
 typedef struct pour_run {
     ts_scene scene;
@@ -37,7 +37,9 @@ static void pour_close(pour_run *p)
 
 static bool pour_open(pour_run *p, bool quick, const char **why)
 {
-    static const uint32_t full[MAX_TT][2] = {{1, 8}, {1, 16}, {8, 8}, {16, 8}}, fast[2][2] = {{1, 8}, {8, 8}};
+    /* the last row of each: particles that turn (tt_world_def.spin) */
+    static const uint32_t full[MAX_TT][3] = {{1, 8, 0}, {1, 16, 0}, {8, 8, 0}, {16, 8, 0}, {1, 8, 1}};
+    static const uint32_t fast[3][3] = {{1, 8, 0}, {8, 8, 0}, {1, 8, 1}};
     memset(p, 0, sizeof *p);
     ts_scene_named(&p->scene, "pour", quick);
     tb_world_def d = tb_world_def_default();
@@ -45,11 +47,12 @@ static bool pour_open(pour_run *p, bool quick, const char **why)
     p->b2[0] = tb_scene_build(&p->scene, &d, why);
     p->b2[1] = p->b2[0] ? tb_scene_build(&p->scene, &(tb_world_def){{0, 0}, 8, 3, true, true}, why) : NULL;
     if (!p->b2[1]) return pour_close(p), false;
-    const int n = quick ? 2 : MAX_TT;
+    const int n = quick ? 3 : MAX_TT;
     for (int k = 0; k < n; k++) {
         p->set[k] = ts_tether_settings_default();
         p->set[k].substeps = quick ? fast[k][0] : full[k][0];
         p->set[k].iterations = quick ? fast[k][1] : full[k][1];
+        p->set[k].spin = (quick ? fast[k][2] : full[k][2]) != 0;
         if (ts_tether_build(&p->scene, &p->set[k], &p->tt[k], why) != TT_OK) return pour_close(p), false;
         p->ntt = k + 1;
     }
@@ -133,7 +136,7 @@ static void report(cc_report *r, pour_run *p, pour_state st[][2])
     const size_t stride = p->scene.steps;
     for (int k = 0; k < p->ntt; k++) {
         char set[24];
-        snprintf(set, sizeof set, "%ux%u", p->set[k].substeps, p->set[k].iterations);
+        snprintf(set, sizeof set, "%ux%u%s", p->set[k].substeps, p->set[k].iterations, p->set[k].spin ? " spin" : "");
         rows_for(r, set, st[0], st[2 + k], true);
         cc_cost *c = cc_add_cost(r, "pour", set);
         if (!c) continue;

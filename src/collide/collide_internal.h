@@ -229,6 +229,8 @@ typedef struct tt__collide_scratch {
     bool guard;           /* gx0, gy0 hold this substep's */
     double *px0, *py0;    /* pre-stabilisation's copy of the start positions (contact_prestab.c) */
     uint32_t pcap;
+    struct tt__roll_contact *roll; /* particles that turn: this substep's contacts with friction (contact_roll.c) */
+    uint32_t nroll, roll_cap;
     tt__lift *lift;       /* the bottom-up velocity pass's scratch: touched pairs, band starts, their order */
     uint32_t *lift_start, *lift_order;
     uint32_t lift_cap;    /* of all three */
@@ -328,6 +330,36 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
 /* The velocity pass's last part: touched pairs bottom-up along gravity, the
  * upper particle's speed away cut to what the pair allows (contact_lift.c). */
 void tt__contacts_lift(tt_world *w, tt__collide *c, double thr);
+
+/* Moves particle i by (dx, dy) after the sweeps, its velocity with it. */
+static inline void tt__contact_shift(tt_world *w, uint32_t i, double dx, double dy, double h)
+{
+    w->px[i] += dx;
+    w->py[i] += dy;
+    if (w->integrator != TT_VERLET) {
+        w->qx[i] += dx / h;
+        w->qy[i] += dy / h;
+    }
+}
+
+/* Friction at the contact point of particles that turn (contact_roll.c):
+ * particle a against particle b (UINT32_MAX: a shape or terrain moving at
+ * (ux, uy) there), n from b to a, wa and wb the inverse-mass shares,
+ * load the normal velocity change Coulomb's bound takes, m/s. */
+struct tt__spin;
+typedef struct tt__roll_contact {
+    uint32_t a, b;
+    double nx, ny, ux, uy, wa, wb, mus, muk, load;
+    double acc; /* the velocity change given so far this substep (0 when listed) */
+} tt__roll_contact;
+/* Lists a contact for tt__roll_solve (room made by tt__roll_room). */
+static inline void tt__roll_add(tt__collide *c, const tt__roll_contact *k) { c->scr.roll[c->scr.nroll++] = *k; }
+/* Room for every contact the substep can list (the pair and shape contact
+ * lists' room: it grows only when they grow, so a world at steady state
+ * allocates nothing), none listed; false on no memory. */
+bool tt__roll_room(tt__collide *c);
+/* The listed contacts' friction, solved together in rounds. */
+void tt__roll_solve(tt_world *w, tt__collide *c, struct tt__spin *sp, double h);
 static inline tt__collide *tt__collide_peek(const tt_world *w)
 {
     return (tt__collide *)tt__group_find_id(w, TT__COLL_ID);

@@ -4,6 +4,7 @@
  * friction on velocities (Verlet: by moving x_old; others: v). */
 #include "collide_internal.h"
 #include "terrain_internal.h"
+#include "core/spin.h"
 
 /* --- friction ------------------------------------------------------------ */
 
@@ -26,9 +27,9 @@
  * links bring down on it (a lattice block slid down a 15° slope at
  * μs = 0.5). Friction between two particles is bounded by μ·Δvn: grains
  * that cannot roll would otherwise stand in columns. */
-static inline bool rub_in_sweeps(const tt_world *w)
+static inline bool rub_in_sweeps(const tt_world *w, const tt__spin *sp)
 {
-    return w->integrator == TT_VERLET || w->integrator == TT_SYMPLECTIC_EULER;
+    return (w->integrator == TT_VERLET || w->integrator == TT_SYMPLECTIC_EULER) && !sp; /* spin: contact_roll.c */
 }
 
 /* slide: relative tangential displacement since the substep began; returns the correction. */
@@ -55,17 +56,6 @@ static inline double unrub(double slide, double lt, double ln, double mus, doubl
 /* Where each particle began the substep: Verlet's x_old, or the copy begin made. */
 static inline const double *start_x(const tt_world *w, const tt__collide *c) { return w->integrator == TT_VERLET ? w->qx : c->sx0; }
 static inline const double *start_y(const tt_world *w, const tt__collide *c) { return w->integrator == TT_VERLET ? w->qy : c->sy0; }
-
-/* Moves particle i by (dx, dy) after the sweeps, its velocity with it. */
-static inline void shift(tt_world *w, uint32_t i, double dx, double dy, double h)
-{
-    w->px[i] += dx;
-    w->py[i] += dy;
-    if (w->integrator != TT_VERLET) {
-        w->qx[i] += dx / h;
-        w->qy[i] += dy / h;
-    }
-}
 
 /* Velocity-pass static friction: undo the tangential part of the
  * particle's displacement in this substep relative to what it touches
@@ -182,7 +172,7 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
     const double *X = L->x, *Y = L->y;
     const size_t st = L->st;
     const double *sx = start_x(w, c), *sy = start_y(w, c);
-    const bool fr = rub_in_sweeps(w);
+    const bool fr = rub_in_sweeps(w, tt__spin_peek(w));
     const uint32_t s0 = blk->u0 > np ? blk->u0 - np : 0, s1 = blk->u1 > np ? blk->u1 - np : 0;
     for (uint32_t k = s0; k < s1 && k < c->scr.nsc; k++) {
         tt__scontact *s = &c->scr.sc[k];
@@ -284,7 +274,8 @@ static inline __attribute__((always_inline)) void respond(double vx, double vy, 
 
 /* Velocity pass of a pair that touched this substep; the normal (b to a)
  * from where the sweeps left the pair. */
-static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b, double h, double thr, bool events)
+static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b, double lam, double h, double thr,
+                            bool events, tt__spin *sp)
 {
     const double *inv = w->inv_mass;
     double ia = inv[a], ib = inv[b], ws = ia + ib;
@@ -311,14 +302,16 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
     }
     double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0), e = ea > eb ? ea : eb;
     double dvx, dvy, sx, sy, dvn;
-    respond(rvx, rvy, c->scr.vx0[a] - c->scr.vx0[b], c->scr.vy0[a] - c->scr.vy0[b], nx, ny, e, true, mus, muk, thr, 0.0, &dvx, &dvy, &sx,
-            &sy, &dvn);
+    respond(rvx, rvy, c->scr.vx0[a] - c->scr.vx0[b], c->scr.vy0[a] - c->scr.vy0[b], nx, ny, e, true, sp ? 0.0 : mus, sp ? 0.0 : muk, thr,
+            0.0, &dvx, &dvy, &sx, &sy, &dvn);
     if (sx != 0.0 || sy != 0.0) { /* both sides slid; each undoes its own share of the slide */
         unslide(w, c, a, h, nx, ny, wa, sx, sy, 0.0, 0.0);
         unslide(w, c, b, h, nx, ny, wb, -sx, -sy, 0.0, 0.0);
     }
     tt__add_velocity(w, a, dvx * wa, dvy * wa);
     tt__add_velocity(w, b, -dvx * wb, -dvy * wb);
+    if (sp && (mus != 0.0 || muk != 0.0))
+        tt__roll_add(c, &(tt__roll_contact){a, b, nx, ny, 0.0, 0.0, wa, wb, mus, muk, fmax(dvn, lam / h), 0.0});
     if (events)
         tt__record_contact(w, c, tt__pair_key(a, b), a < b ? a : b, a < b ? b : a, UINT32_MAX, false, a < b ? nx : -nx,
                            a < b ? ny : -ny, dvn / ws);
@@ -328,13 +321,14 @@ typedef struct pair_ctx {
     tt_world *w;
     tt__collide *c;
     double h, thr;
+    tt__spin *sp;
 } pair_ctx;
 
 /* Batch entry k through pair_end (no events: the vector pass runs without them). */
 static void pair_one(void *ctx, uint32_t k)
 {
     pair_ctx *p = ctx;
-    pair_end(p->w, p->c, p->c->scr.bat.a[k], p->c->scr.bat.b[k], p->h, p->thr, false);
+    pair_end(p->w, p->c, p->c->scr.bat.a[k], p->c->scr.bat.b[k], p->c->scr.bat.lam[k], p->h, p->thr, false, p->sp);
 }
 
 /* A bounce off a still surface, placed in time. The velocity pass alone
@@ -375,7 +369,7 @@ static bool bounce_in_time(double a, double vbar, double gn, double e, double h,
  * relative to the shape where it meets the particle: a kinematic shape
  * (moved by the script) carries what rests on it and throws what it hits
  * at its own speed. */
-static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double h, double thr, bool events)
+static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double h, double thr, bool events, tt__spin *sp)
 {
     const uint32_t a = s->a;
     double se, sfs, sfk;
@@ -396,10 +390,10 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
             w->qy[a] = vy;
         }
     } else {
-        if (rub_in_sweeps(w)) {
+        if (rub_in_sweeps(w, sp)) {
             double slide = (w->px[a] - start_x(w, c)[a] - s->cx) * -s->ny + (w->py[a] - start_y(w, c)[a] - s->cy) * s->nx;
             double d = unrub(slide, s->lambda_t, s->lambda, mus, muk);
-            if (d != 0.0) shift(w, a, -s->ny * d, s->nx * d, h);
+            if (d != 0.0) tt__contact_shift(w, a, -s->ny * d, s->nx * d, h);
             mus = muk = 0.0;
         }
         tt_vec2 v = tt__velocity(w, a);
@@ -408,8 +402,9 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     }
     double ea = tt__mat(c, a, 0), e = ea > se ? ea : se;
     double dvx, dvy, sx, sy, dvn;
-    respond(vx - ux, vy - uy, c->scr.vx0[a] - ux, c->scr.vy0[a] - uy, s->nx, s->ny, e, true, mus, muk, thr, s->lambda / h, &dvx,
-            &dvy, &sx, &sy, &dvn);
+    const bool roll = sp && !s->ccd && (mus != 0.0 || muk != 0.0); /* a sweep's restart keeps its plain friction */
+    respond(vx - ux, vy - uy, c->scr.vx0[a] - ux, c->scr.vy0[a] - uy, s->nx, s->ny, e, true, roll ? 0.0 : mus, roll ? 0.0 : muk,
+            thr, s->lambda / h, &dvx, &dvy, &sx, &sy, &dvn);
     if (s->ccd) {
         dvx -= sx;
         dvy -= sy;
@@ -417,13 +412,15 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
         unslide(w, c, a, h, s->nx, s->ny, 1.0, sx, sy, s->cx, s->cy);
     }
     tt__add_velocity(w, a, dvx, dvy);
+    if (roll)
+        tt__roll_add(c, &(tt__roll_contact){a, UINT32_MAX, s->nx, s->ny, ux, uy, 1.0, 0.0, mus, muk, fmax(dvn, s->lambda / h), 0.0});
     const double vn0 = c->scr.vx0[a] * s->nx + c->scr.vy0[a] * s->ny;
     double dn, vn;
 
     if (in_time && e > 0.0 && vn0 < -thr && !s->ccd && s->cx == 0.0 && s->cy == 0.0 &&
         bounce_in_time(above, vn0, w->gravity.x * s->nx + w->gravity.y * s->ny, e, h, &dn, &vn)) {
         /* respond left the normal velocity at −e·vn0 (> 0 here); the flight replaces it */
-        shift(w, a, dn * s->nx, dn * s->ny, h);
+        tt__contact_shift(w, a, dn * s->nx, dn * s->ny, h);
         const double now = -e * vn0 + dn / h; /* shift carried the velocity along */
         tt__add_velocity(w, a, (vn - now) * s->nx, (vn - now) * s->ny);
     }
@@ -443,21 +440,27 @@ void tt__contacts_end(tt_world *w, void *self, double h)
     const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
     const bool events = c->set.events != 0;
     const double *inv = w->inv_mass;
+    tt__spin *sp = tt__spin_peek(w);
+    if (sp && !tt__roll_room(c)) {
+        tt__step_oom(w, "the friction of particles that turn");
+        sp = NULL; /* this substep without friction; the step is undone */
+    }
     if (c->scr.batched) {
         tt__batches *B = &c->scr.bat;
         /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, world materials) */
         const tt__respond_in in = {c->scr.vx0, c->scr.vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
-        pair_ctx pc = {w, c, h, thr};
-        if (!(w->integrator == TT_VERLET && !c->mat && !events && tt__batches_respond(w, B, &in, pair_one, &pc)))
+        pair_ctx pc = {w, c, h, thr, sp};
+        if (!(w->integrator == TT_VERLET && !c->mat && !events && !sp && tt__batches_respond(w, B, &in, pair_one, &pc)))
             for (uint32_t k = 0; k < B->n; k++)
-                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], h, thr, events);
+                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], B->lam[k], h, thr, events, sp);
     } else {
         for (uint32_t k = 0; k < c->scr.npairs; k++)
-            if (c->scr.pairs[k].lambda > 0.0f) pair_end(w, c, c->scr.pairs[k].a, c->scr.pairs[k].b, h, thr, events);
+            if (c->scr.pairs[k].lambda > 0.0f) pair_end(w, c, c->scr.pairs[k].a, c->scr.pairs[k].b, c->scr.pairs[k].lambda, h, thr, events, sp);
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)
-        if ((c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) && inv[c->scr.sc[k].a] != 0.0) shape_end(w, c, &c->scr.sc[k], h, thr, events);
+        if ((c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) && inv[c->scr.sc[k].a] != 0.0) shape_end(w, c, &c->scr.sc[k], h, thr, events, sp);
     if (c->set.particles) tt__contacts_lift(w, c, thr);
+    if (sp) tt__roll_solve(w, c, sp, h);
     /* kept only where the substep detects: then reserve made the arrays, whatever earlier steps did
      * (one whose shapes are gone since still has them; a world loaded from its stream has not) */
     if (w->integrator != TT_VERLET && tt__contacts_detect_any(c) && c->sx0 && c->scap >= w->ppool.count) {

@@ -7,6 +7,7 @@
  * dropped; the events published by the last step were not touched (that
  * happens after the step, which no longer fails then). */
 #include "collide_internal.h"
+#include "core/spin.h"
 
 #include <stdlib.h>
 
@@ -46,6 +47,8 @@ bool tt__contacts_points_only(const tt_world *w, tt__collide *c, uint32_t n)
  *   is made here while it is small (one primitive: 72 bytes a particle,
  *   address space the contacts write only where they occur, against the
  *   copies' 42 that are written every step);
+ * - particles that turn list their contacts' friction (contact_roll.c):
+ *   room for as many as the lists above have room for;
  * - the bottom-up pass (pairs on) grows to the pair list's room + 1, which
  *   cannot grow in such a step: it must have that room already;
  * - events (records grow per contact), bullets' sweeps and terrains have no
@@ -59,7 +62,8 @@ bool tt__contacts_bound(tt_world *w, tt__collide *c, uint32_t n)
     if (c->set.events || c->nbullets || c->terr || c->nprim > 1) return true;
     if (c->set.particles && (!(tt__contacts_points_only(w, c, n) || c->step_clear) || (c->nprim && c->scr.lift_cap <= c->scr.paircap)))
         return true;
-    if (c->nprim && !tt__grow((void **)&c->scr.sc, &c->scr.sccap, n ? n : 1, sizeof *c->scr.sc))
+    if (c->nprim && (!tt__grow((void **)&c->scr.sc, &c->scr.sccap, n ? n : 1, sizeof *c->scr.sc) ||
+                     (tt__spin_peek(w) && !tt__roll_room(c))))
         return true; /* no room for all: the copies then, or the undo's own reserve fails the step */
     c->scr.bounded = true;
     return true;

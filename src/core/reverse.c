@@ -7,6 +7,7 @@
  * differently: the round trip comes back close, not bit for bit (the test
  * measures how close). */
 #include "core/internal.h"
+#include "core/spin.h"
 #include "tether/collide.h"
 #include "tether/constraint.h"
 
@@ -43,6 +44,8 @@ tt_result tt_world_reverse(tt_world *w)
         w->qx[i] = x;
         w->qy[i] = y;
     }
+    tt__spin *sp = tt__spin_peek(w); /* particles that turn turn back (nothing here changes their spin) */
+    for (uint32_t i = 0; sp && i < n && i < sp->cap; i++) sp->omega[i] = 0.0 - sp->omega[i]; /* 0 stays +0 */
     w->epoch++;
     return TT_OK;
 }

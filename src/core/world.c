@@ -1,5 +1,6 @@
 /* tether — the world: creation, settings, the step pipeline, stats. */
 #include "internal.h"
+#include "spin.h"
 
 #include <stdatomic.h>
 #include <stdio.h>
@@ -114,6 +115,11 @@ tt_world *tt_world_create(const tt_world_def *def)
     }
     if (d.sleep && !tt__sleep_enable(w, d.sleep_speed, d.sleep_time)) {
         tt__fail(NULL, TT_ENOMEM, "%s: out of memory for sleeping", fn);
+        tt_world_destroy(w);
+        return NULL;
+    }
+    if (d.spin && !tt__spin_enable(w)) {
+        tt__fail(NULL, TT_ENOMEM, "%s: out of memory for spin", fn);
         tt_world_destroy(w);
         return NULL;
     }
@@ -342,6 +348,10 @@ tt_result tt_world_get_energy(const tt_world *w, tt_energy *out)
         ke += 0.5 * m * (v.x * v.x + v.y * v.y);
         pe -= m * (w->gravity.x * w->px[i] + w->gravity.y * w->py[i]);
     }
+    const tt__spin *sp = tt__spin_peek(w); /* a turning disc's own: ½·(m r²/2)·ω² */
+    for (uint32_t i = 0; sp && i < w->ppool.count && i < sp->cap; i++)
+        if ((w->flags[i] & (TT__PF_ALIVE | TT__PF_PINNED)) == TT__PF_ALIVE && sp->omega[i] != 0.0)
+            ke += 0.25 * w->mass[i] * (double)w->radius[i] * w->radius[i] * sp->omega[i] * sp->omega[i];
     out->kinetic = ke;
     out->gravity = pe;
     out->spring = tt__springs_energy(w);

@@ -127,6 +127,36 @@ static int w_set_velocity(lua_State *L)
     return 0;
 }
 
+/* w:rotation(p), w:spin(p): rad and rad/s, counter-clockwise (worlds made with spin = true);
+ * w:angle(a, b, c) is the angle constraint's */
+static int w_angle(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
+    double a;
+    tl_check_result(L, w, tt_particle_get_angle(w, p, &a));
+    lua_pushnumber(L, a);
+    return 1;
+}
+
+static int w_spin(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
+    double s;
+    tl_check_result(L, w, tt_particle_get_spin(w, p, &s));
+    lua_pushnumber(L, s);
+    return 1;
+}
+
+static int w_set_spin(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    tt_particle p = tl_check_particle(L, w, 2);
+    tl_check_result(L, w, tt_particle_set_spin(w, p, tl_checknumber(L, 3, &TL_R_COORD)));
+    return 0;
+}
+
 static int w_mass(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -283,6 +313,9 @@ static const luaL_Reg particle_methods[] = {
     { "set_position", w_set_position },
     { "velocity", w_velocity },
     { "set_velocity", w_set_velocity },
+    { "rotation", w_angle },
+    { "spin", w_spin },
+    { "set_spin", w_set_spin },
     { "mass", w_mass },
     { "set_mass", w_set_mass },
     { "pinned", w_pinned },

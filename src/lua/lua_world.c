@@ -113,6 +113,7 @@ static const tl_opt world_opts[] = {
     TL_OPT_BYHAND("snapshot"),
     TL_OPT_BYHAND("file"),
     TL_OPT_FLAG(tt_world_def, "sleep", sleep),
+    TL_OPT_FLAG(tt_world_def, "spin", spin),
     TL_OPT_NUM(tt_world_def, "sleep_speed", sleep_speed, &TL_R_NONNEG),
     TL_OPT_NUM(tt_world_def, "sleep_time", sleep_time, &TL_R_NONNEG),
     TL_OPT_BYHAND("fixed_point"), /* a boolean or the quantum: opt_fixed_point */

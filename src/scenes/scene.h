@@ -168,6 +168,7 @@ void ts_pile_measure(double *xy, uint32_t n, double r, ts_pile *out);
 typedef struct ts_tether_settings {
     uint32_t substeps, iterations;      /* the world's; default 1 and 8 */
     uint32_t lattice;                   /* particles along a box's shorter side, 2 … 64; default 4 */
+    bool spin;                          /* particles turn (tt_world_def.spin); default false */
 } ts_tether_settings;
 
 /* What each body became: a particle (dynamic circle), a lattice composite

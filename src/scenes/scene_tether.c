@@ -12,7 +12,7 @@
 
 ts_tether_settings ts_tether_settings_default(void)
 {
-    ts_tether_settings s = {1, 8, 4};
+    ts_tether_settings s = {1, 8, 4, false};
     return s;
 }
 
@@ -212,6 +212,7 @@ static tt_world *make_world(const ts_scene *s, const ts_tether_settings *set)
     wd.dt_hint = s->dt;
     wd.substeps = set->substeps;
     wd.iterations = set->iterations;
+    wd.spin = set->spin;
     wd.capacity = s->body_count;
     wd.sleep = false; /* the cross-check and the bench compare motion with Box2D's, run with its sleeping off */
     tt_world *w = tt_world_create(&wd);

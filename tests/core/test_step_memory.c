@@ -52,6 +52,7 @@ static tt_world *every_feature(tt_integrator in, tt_solver_order order, moved *k
     wd.iterations = 4;
     wd.sleep = in == TT_VERLET; /* the pile's corner falls asleep, the swinging box wakes it */
     wd.sleep_time = 0.2;
+    wd.spin = (in + order) % 2 == 1; /* half the worlds' particles turn (their friction lists its contacts) */
     tt_world *w = tt_world_create(&wd);
     tt_collision_settings cs = tt_collision_settings_default();
     cs.events = TT_EVENT_BEGIN | TT_EVENT_PERSIST | TT_EVENT_END;
