@@ -145,6 +145,13 @@ void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double
     wake_listed(w, s);
 }
 
+bool tt__sleep_reach(tt_world *w, const uint32_t *list, uint32_t n, double f,
+                     void (*visit)(void *ctx, uint32_t a, uint32_t j), void *ctx)
+{
+    tt__sleep *s = peek(w);
+    return !s || s->asleep == 0 || tt__sleep_grid_reach(w, s, list, n, f, visit, ctx);
+}
+
 uint32_t tt__sleep_count(const tt_world *w)
 {
     const tt__sleep *s = peek(w);

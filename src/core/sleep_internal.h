@@ -11,6 +11,7 @@ typedef struct tt__sleep_grid {
     bool built;
     uint32_t m;           /* sleepers listed */
     double ox, oy, inv, rmax;
+    double hx, hy;        /* the sleepers' centres lie in [ox, hx] × [oy, hy] */
     int32_t nx, ny;
     uint32_t *start, *idx;
     uint32_t cap_cells, cap;
@@ -78,6 +79,12 @@ void *tt__sleep_load(tt_world *w, struct tt__source *src);
  * having visited none, when the grid cannot be built (no memory). */
 bool tt__sleep_grid_visit(const tt_world *w, tt__sleep *s, double lox, double loy, double hix, double hiy,
                           void (*visit)(void *ctx, uint32_t i), void *ctx);
+
+/* Calls visit(ctx, a, j) for each awake particle a of list[0..n) that can
+ * move and each sleeper j whose cell lies within (r_a + r_j)·f of it (a
+ * superset of those nearer than that); false on no memory. */
+bool tt__sleep_grid_reach(const tt_world *w, tt__sleep *s, const uint32_t *list, uint32_t n, double f,
+                          void (*visit)(void *ctx, uint32_t a, uint32_t j), void *ctx);
 
 /* The step's undo hooks (sleep_undo.c). */
 bool tt__sleep_undo_reserve(tt_world *w, void *self);
