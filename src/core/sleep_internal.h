@@ -26,11 +26,12 @@ typedef struct tt__sleep {
     double *held;         /* per slot: seconds since its anchor was set (awake particles) */
     double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
     uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
+    uint32_t *ring;       /* per slot: the next sleeper of its island, round to the first (sleepers only) */
     uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
     uint64_t tick;        /* steps since sleeping went on, from 2 (0 in seen: never held) */
     uint32_t *parent;     /* union-find scratch */
     double *minrest;      /* per root: the least time at rest in its island */
-    uint32_t *wake;       /* islands to wake at the end of the step */
+    uint64_t *wake;       /* islands to wake at the end of the step: (island << 32) | one sleeper of it */
     uint32_t nwake, wake_cap;
     /* The particles springs and constraints hold (bounds aside), each once:
      * scratch, rebuilt when a spring or constraint slot was made or freed
@@ -69,6 +70,11 @@ uint32_t tt__sleep_constraint_parts(const struct tt__cgroup *g, uint32_t slot, u
 void tt__sleep_rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready);
 /* The arrays grown to cover n slots; the state freed (sleep_state.c). */
 bool tt__sleep_grow(tt__sleep *s, uint32_t n);
+/* Each island's sleepers linked into its ring, from the islands alone (a
+ * loaded state); false on no memory (sleep_state.c). */
+bool tt__sleep_link_rings(const tt_world *w, tt__sleep *s);
+/* qsort's order of uint64_t keys (sleep_state.c). */
+int tt__sleep_cmp_u64(const void *a, const void *b);
 void tt__sleep_destroy(tt_world *w, void *self);
 /* Its section of the snapshot (sleep_stream.c). */
 void tt__sleep_save(const tt_world *w, const void *self, struct tt__sink *snk);
