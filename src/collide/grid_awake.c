@@ -64,7 +64,7 @@ bool tt__grid_detect(tt_world *w, tt__collide *c)
     reach q = {w, g, 0, true};
     if (!tt__sleep_reach(w, g->list, na, 1.0 + TT__CONTACT_MARGIN, within_reach, &q) || !q.ok) return false;
     uint32_t nc = 0; /* each sleeper once: one may be within reach of several */
-    qsort(g->cand, q.n, sizeof *g->cand, cmp_u32);
+    if (q.n > 1) qsort(g->cand, q.n, sizeof *g->cand, cmp_u32); /* (none found: g->cand may be NULL) */
     for (uint32_t k = 0; k < q.n; k++)
         if (nc == 0 || g->cand[k] != g->cand[nc - 1]) g->cand[nc++] = g->cand[k];
     return tt__grid_build_list(w, g, c->set.cell_size, merge(g, na, nc)) && tt__grid_pairs(w, c);
