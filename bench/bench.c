@@ -216,6 +216,7 @@ int main(int argc, char **argv)
     for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++)
         if (!only || strcmp(only, sections[k].name) == 0) sections[k].run(dir);
     if (only && strcmp(only, "sleep-quick") == 0) bench_sleep_quick(dir); /* for callgrind: not in the full run */
+    if (only && strcmp(only, "sleep-wake") == 0) bench_sleep_wake(dir);   /* likewise */
     if (only && strcmp(only, "payonly-cg") == 0) bench_payonly_cg(dir);   /* likewise (bench/payonly_cg.sh) */
     return 0;
 }

@@ -32,6 +32,7 @@ void bench_journal(const char *dir);
 /* Sleeping: the settled reference pour asleep vs awake, a ball dropped on it (bench_sleep.c). */
 void bench_sleep(const char *dir);
 void bench_sleep_quick(const char *dir);
+void bench_sleep_wake(const char *dir); /* for callgrind: waking one small island in a large sleeping world */
 /* Unused features against a plain world, 100 000 particles (bench_payonly.c); _cg for callgrind. */
 void bench_payonly(const char *dir);
 void bench_payonly_cg(const char *dir);

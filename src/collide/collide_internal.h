@@ -93,6 +93,8 @@ typedef struct tt__grid {
     uint8_t *bits;                /* sorted: TT__GRID_OUTSIDE, TT__GRID_PINNED */
     bool one_layer;               /* every particle has the same category and mask, and they match */
     uint32_t *out_list, nout;     /* particle slots outside the grid */
+    uint32_t *list;               /* cap_n: the slots a listed build sorts (grid_awake.c) */
+    uint32_t *cand, cand_cap;     /* scratch: sleepers within reach of an awake particle, found per awake one */
     uint32_t cap_cells, cap_n;
     uint64_t epoch;               /* w->epoch the grid reflects (queries), or UINT64_MAX */
 } tt__grid;
@@ -447,13 +449,21 @@ static inline bool tt__shape_filter(const tt_world *w, const tt_shape_def *d, ui
     return (w->category[a] & d->mask) && (d->category & w->mask[a]);
 }
 
-/* Grid (grid.c). */
+/* Grid (grid.c). Two particles within (r_a + r_b)·(1 + margin) make a pair:
+ * its square's factor. */
+#define TT__MARGIN2 ((1.0 + TT__CONTACT_MARGIN) * (1.0 + TT__CONTACT_MARGIN))
 /* No particle (removed ones too: conservative), grown by the largest radius
  * and the margin, can reach a static primitive this substep. */
 bool tt__shapes_out_of_reach(const tt_world *w, tt__collide *c, uint32_t n);
 bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell);
 /* As tt__grid_build with cells wide times as wide (contact_skip.c's probe). */
 bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide);
+/* As tt__grid_build over the slots g->list[0..n) only, in that order. */
+bool tt__grid_build_list(tt_world *w, tt__grid *g, double min_cell, uint32_t n);
+/* The substep's pair grid and its pairs (grid_awake.c): over every particle,
+ * or, while some sleep, over the awake ones and the sleepers within contact
+ * reach of one; the same pair set either way. False on no memory. */
+bool tt__grid_detect(tt_world *w, tt__collide *c);
 /* After a build: whether two particles (filters aside) are nearer than their
  * contact reach plus gap, for gap up to the widening's extra width. */
 bool tt__grid_any_near(const tt__grid *g, double gap);

@@ -191,7 +191,7 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
         ok = tt__brute_pairs(w, c);
         c->scr.grid.epoch = UINT64_MAX;
     } else {
-        ok = tt__grid_build(w, &c->scr.grid, c->set.cell_size) && tt__grid_pairs(w, c);
+        ok = tt__grid_detect(w, c);
         c->cells_used = c->scr.grid.ncell; /* the stat: a probe's grid (no_pair_near) is not the pairs' */
         grid_built = ok;
     }

@@ -25,7 +25,7 @@ static bool grow_n(tt__grid *g, uint32_t need)
     while (n < need) n = n > UINT32_MAX / 2 ? need : n * 2;
     void *p;
 #define GROW(f, t, pad) if (!(p = realloc(g->f, ((size_t)n + pad) * sizeof(t)))) return false; g->f = p
-    GROW(cell, uint32_t, 0); GROW(idx, uint32_t, TT__GRID_PAD); GROW(bits, uint8_t, 0); GROW(out_list, uint32_t, 0);
+    GROW(cell, uint32_t, 0); GROW(idx, uint32_t, TT__GRID_PAD); GROW(bits, uint8_t, 0); GROW(out_list, uint32_t, 0); GROW(list, uint32_t, 0);
     GROW(sx, double, TT__GRID_PAD); GROW(sy, double, TT__GRID_PAD); GROW(sr, double, TT__GRID_PAD);
 #undef GROW
     g->cap_n = n;
@@ -50,9 +50,10 @@ static void fit(tt__grid *g, double lox, double loy, double hix, double hiy)
     g->ny = cells_across(loy, hiy, g->inv);
 }
 
-/* The counting sort of the live particles into the grid's ncell cells,
- * laid out: each particle's cell, the cells' starts, the sorted copies. */
-static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
+/* The counting sort of the live particles (list[0..n) when list is not
+ * NULL, else slots 0..n) into the grid's ncell cells, laid out: each
+ * particle's cell, the cells' starts, the sorted copies. */
+TT_INLINE void sort_into_cells(const tt_world *w, tt__grid *g, const uint32_t *list, uint32_t n)
 {
     /* locals: the uint8_t stores below may alias any field of w or g */
     const uint16_t *flags = w->flags;
@@ -66,7 +67,8 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     memset(start, 0, (size_t)ncell * sizeof *start);
     const double ox = g->ox, oy = g->oy, inv = g->inv;
     const int32_t nx = g->nx, ny = g->ny;
-    for (uint32_t i = 0; i < n; i++) {
+    for (uint32_t k = 0; k < n; k++) {
+        const uint32_t i = list ? list[k] : k;
         if (!(flags[i] & TT__PF_ALIVE)) continue;
         int32_t cx = tt__cell_coord(px[i], ox, inv), cy = tt__cell_coord(py[i], oy, inv);
         bool out = cx < 0 || cy < 0 || cx >= nx || cy >= ny;
@@ -85,7 +87,8 @@ static void sort_into_cells(const tt_world *w, tt__grid *g, uint32_t n)
     start[ncell] = m;
     /* scatter backwards, so each cell fills from its end and keeps slot order
      * (stable, deterministic); start[c] ends at cell c's beginning */
-    for (uint32_t i = n; i-- > 0;) {
+    for (uint32_t q = n; q-- > 0;) {
+        const uint32_t i = list ? list[q] : q;
         if (!(flags[i] & TT__PF_ALIVE)) continue;
         uint32_t c = cell[i] & 0x7FFFFFFFu, k = --start[c];
         idx[k] = i;
@@ -136,20 +139,21 @@ bool tt__grid_reserve(tt__grid *g, uint32_t n)
 
 uint32_t tt__grid_max_cells(uint32_t n) { return max_cells(n); }
 
-bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell) { return tt__grid_build_wide(w, g, min_cell, 1.0); }
-
-bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
+/* The build over list[0..n), or over slots 0..n when list is NULL: one
+ * copy of each, so the plain build pays nothing for the list. */
+TT_INLINE bool build(tt_world *w, tt__grid *g, double min_cell, double wide, const uint32_t *list, uint32_t n)
 {
-    const uint32_t n = w->ppool.count;
+    const uint32_t slots = w->ppool.count;
     g->epoch = UINT64_MAX;
-    if (!grow_n(g, n ? n : 1)) return false;
+    if (!grow_n(g, slots ? slots : 1)) return false;
     const uint16_t *flags = w->flags, *cat = w->category, *msk = w->mask;
     const double *px = w->px, *py = w->py;
     const float *rad = w->radius;
     double lox = INFINITY, loy = INFINITY, hix = -INFINITY, hiy = -INFINITY, rmax = 0.0;
     uint32_t m = 0;
     uint16_t cat_or = 0, cat_and = 0xFFFF, mask_or = 0, mask_and = 0xFFFF;
-    for (uint32_t i = 0; i < n; i++) {
+    for (uint32_t k = 0; k < n; k++) {
+        const uint32_t i = list ? list[k] : k;
         if (!(flags[i] & TT__PF_ALIVE)) continue;
         double x = px[i], y = py[i];
         double r = rad[i];
@@ -182,7 +186,8 @@ bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
     fit(g, lox, loy, hix, hiy);
     if ((double)g->nx * g->ny > limit) { /* a few particles far away: a second pass for the spread */
         double sx = 0, sy = 0, sxx = 0, syy = 0;
-        for (uint32_t i = 0; i < n; i++) {
+        for (uint32_t k = 0; k < n; k++) {
+            const uint32_t i = list ? list[k] : k;
             if (!(flags[i] & TT__PF_ALIVE)) continue;
             double x = px[i], y = py[i];
             sx += x; sy += y; sxx += x * x; syy += y * y;
@@ -201,8 +206,20 @@ bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
     const uint32_t ncell = (uint32_t)g->nx * (uint32_t)g->ny;
     if (!tt__grow((void **)&g->start, &g->cap_cells, ncell + 1, sizeof *g->start)) return false;
     g->ncell = ncell;
-    sort_into_cells(w, g, n);
+    sort_into_cells(w, g, list, n);
     return true;
+}
+
+bool tt__grid_build(tt_world *w, tt__grid *g, double min_cell) { return build(w, g, min_cell, 1.0, NULL, w->ppool.count); }
+
+bool tt__grid_build_wide(tt_world *w, tt__grid *g, double min_cell, double wide)
+{
+    return build(w, g, min_cell, wide, NULL, w->ppool.count);
+}
+
+bool tt__grid_build_list(tt_world *w, tt__grid *g, double min_cell, uint32_t n)
+{
+    return build(w, g, min_cell, 1.0, g->list, n);
 }
 
 /* The pair list while it is filled: kept in locals, because every store
@@ -253,8 +270,6 @@ TT_INLINE bool all_pinned(const uint8_t *bits, uint32_t a, uint32_t b)
         if (!(bits[k] & TT__GRID_PINNED)) return false;
     return true;
 }
-
-#define TT__MARGIN2 ((1.0 + TT__CONTACT_MARGIN) * (1.0 + TT__CONTACT_MARGIN))
 
 /* Pairs of sorted particle k with the sorted range [j0, j1), in j order. */
 TT_INLINE bool range_scalar(tt_world *w, tt__collide *c, emit *e, const tt__grid *g, bool plain, uint32_t k,
@@ -402,12 +417,12 @@ void tt__grid_free(tt__grid *g)
 {
     free(g->start); free(g->cell); free(g->idx);
     free(g->sx); free(g->sy); free(g->sr);
-    free(g->bits); free(g->out_list);
+    free(g->bits); free(g->out_list); free(g->list); free(g->cand);
     memset(g, 0, sizeof *g);
 }
 
 size_t tt__grid_bytes(const tt__grid *g)
 {
-    return (size_t)g->cap_cells * sizeof(uint32_t) +
-           (size_t)g->cap_n * (3 * sizeof(uint32_t) + 3 * sizeof(double) + sizeof(uint8_t));
+    return ((size_t)g->cap_cells + g->cand_cap) * sizeof(uint32_t) +
+           (size_t)g->cap_n * (4 * sizeof(uint32_t) + 3 * sizeof(double) + sizeof(uint8_t));
 }

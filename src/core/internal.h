@@ -433,6 +433,12 @@ void tt__sleep_touch(tt_world *w, uint32_t i);
 /* Wakes every island with a sleeper whose circle meets the box: for what
  * changes a region (terrain carved, an explosion, a shape placed). */
 void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double hiy);
+/* Calls visit(ctx, a, j) for each particle a of list[0..n) that can move
+ * (awake ones) and each sleeper j that may lie within (r_a + r_j)·f of it
+ * (a superset, from the sleepers' grid: the caller tests); false on no
+ * memory. */
+bool tt__sleep_reach(tt_world *w, const uint32_t *list, uint32_t n, double f,
+                     void (*visit)(void *ctx, uint32_t a, uint32_t j), void *ctx);
 /* After a load: no particle sleeps in a world without the sleep section. */
 bool tt__sleep_loaded_ok(const tt_world *w);
 

@@ -64,58 +64,58 @@ static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
     s->asleep--;
 }
 
-static int cmp_u32(const void *a, const void *b)
+/* Wakes sleeper i's island: its ring of members, so the cost is the
+ * island's, not the world's. The ring closes at i; a member no longer of
+ * the island (none, while the rings hold) ends it too. */
+static void wake_island(tt_world *w, tt__sleep *s, uint32_t i)
 {
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return (x > y) - (x < y);
+    const uint32_t k = s->island[i], n = tt__sleep_covered(w, s);
+    for (uint32_t j = i; k && j < n && s->island[j] == k;) {
+        const uint32_t next = s->ring[j];
+        wake_one(w, s, j);
+        j = next;
+    }
 }
 
-/* Wakes the islands listed in s->wake: one pass over the particles. */
+/* Wakes the islands listed in s->wake. */
 static void wake_listed(tt_world *w, tt__sleep *s)
 {
-    if (s->nwake == 0) return;
-    qsort(s->wake, s->nwake, sizeof *s->wake, cmp_u32);
-    for (uint32_t i = 0; i < tt__sleep_covered(w, s) && s->asleep; i++) {
-        uint32_t k = s->island[i];
-        if (k && bsearch(&k, s->wake, s->nwake, sizeof k, cmp_u32)) wake_one(w, s, i);
-    }
+    for (uint32_t k = 0; k < s->nwake; k++) wake_island(w, s, (uint32_t)s->wake[k]); /* one listed twice is awake by then */
     s->nwake = 0;
 }
 
-/* Lists island k to wake; false (and the island is woken at once, alone)
- * when the list cannot grow. */
-static void list_wake(tt_world *w, tt__sleep *s, uint32_t k)
+/* Lists sleeper i's island to wake; woken at once, alone, when the list
+ * cannot grow. */
+static void list_wake(tt_world *w, tt__sleep *s, uint32_t i)
 {
+    const uint64_t k = s->island[i];
     for (uint32_t j = 0; j < s->nwake && j < 8; j++)
-        if (s->wake[s->nwake - 1 - j] == k) return; /* the common repeat: the same island again */
+        if (s->wake[s->nwake - 1 - j] >> 32 == k) return; /* the common repeat: the same island again */
     if (s->nwake == s->wake_cap && s->nwake) { /* full of repeats? each island once: no more than sleepers */
-        qsort(s->wake, s->nwake, sizeof *s->wake, cmp_u32);
+        qsort(s->wake, s->nwake, sizeof *s->wake, tt__sleep_cmp_u64);
         uint32_t m = 1;
         for (uint32_t j = 1; j < s->nwake; j++)
-            if (s->wake[j] != s->wake[m - 1]) s->wake[m++] = s->wake[j];
+            if (s->wake[j] >> 32 != s->wake[m - 1] >> 32) s->wake[m++] = s->wake[j];
         s->nwake = m;
     }
     if (s->nwake == s->wake_cap) {
         uint32_t cap = s->wake_cap ? s->wake_cap * 2 : 16;
-        uint32_t *p = realloc(s->wake, (size_t)cap * sizeof *p);
+        uint64_t *p = realloc(s->wake, (size_t)cap * sizeof *p);
         if (!p) {
-            for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++)
-                if (s->island[i] == k) wake_one(w, s, i);
+            wake_island(w, s, i);
             return;
         }
         s->wake = p;
         s->wake_cap = cap;
     }
-    s->wake[s->nwake++] = k;
+    s->wake[s->nwake++] = k << 32 | i;
 }
 
 void tt__sleep_touch(tt_world *w, uint32_t i)
 {
     if (!(w->flags[i] & TT__PF_ASLEEP)) return;
     tt__sleep *s = peek(w);
-    if (!s) return;
-    list_wake(w, s, s->island[i]);
-    wake_listed(w, s);
+    if (s) wake_island(w, s, i);
 }
 
 typedef struct box_ctx {
@@ -128,7 +128,7 @@ static void wake_if_touching(void *ctx, uint32_t i)
 {
     const box_ctx *b = ctx;
     const double r = b->w->radius[i], x = b->w->px[i], y = b->w->py[i];
-    if (x + r >= b->lox && x - r <= b->hix && y + r >= b->loy && y - r <= b->hiy) list_wake(b->w, b->s, b->s->island[i]);
+    if (x + r >= b->lox && x - r <= b->hix && y + r >= b->loy && y - r <= b->hiy) list_wake(b->w, b->s, i);
 }
 
 /* The sleepers near the box come from the sleepers' grid (sleep_grid.c):
@@ -143,6 +143,13 @@ void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double
         for (uint32_t i = 0; i < tt__sleep_covered(w, s); i++)
             if (s->island[i]) wake_if_touching(&b, i);
     wake_listed(w, s);
+}
+
+bool tt__sleep_reach(tt_world *w, const uint32_t *list, uint32_t n, double f,
+                     void (*visit)(void *ctx, uint32_t a, uint32_t j), void *ctx)
+{
+    tt__sleep *s = peek(w);
+    return !s || s->asleep == 0 || tt__sleep_grid_reach(w, s, list, n, f, visit, ctx);
 }
 
 uint32_t tt__sleep_count(const tt_world *w)
@@ -189,7 +196,7 @@ static void wake_touched(tt_world *w, tt__sleep *s)
         if (!ia == !ib) continue; /* both awake or both asleep */
         uint32_t other = ia ? b : a;
         if (!dynamic(w, other)) continue; /* a pinned particle wakes nothing */
-        list_wake(w, s, ia ? ia : ib);
+        list_wake(w, s, ia ? a : b);
     }
     wake_listed(w, s);
 }
@@ -271,6 +278,8 @@ static void settle(tt_world *w, tt__sleep *s)
             s->minrest[r] = -(double)s->next_island++; /* the root's id, kept where its time was */
         }
         fall_asleep(w, s, i, (uint32_t)-s->minrest[r]);
+        s->ring[i] = r == i ? i : s->ring[r]; /* into the root's ring, after the root */
+        s->ring[r] = i;
     }
 }
 
@@ -309,7 +318,7 @@ static size_t memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__sleep *s = self;
-    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 2 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint32_t) +
+    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 3 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint64_t) +
            (size_t)s->scr.undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
            ((size_t)s->grid.cap_cells + s->grid.cap) * sizeof(uint32_t);
 }

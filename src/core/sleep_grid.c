@@ -45,7 +45,7 @@ static bool build(const tt_world *w, tt__sleep *s)
     double cs = fmax(sqrt((hix - lox) * (hiy - loy) / m), 2.0 * rmax);
     if (!(cs > 0.0)) cs = 1.0;
     while ((floor((hix - lox) / cs) + 1.0) * (floor((hiy - loy) / cs) + 1.0) > max_cells(m)) cs *= 2.0;
-    g->ox = lox, g->oy = loy, g->inv = 1.0 / cs;
+    g->ox = lox, g->oy = loy, g->hx = hix, g->hy = hiy, g->inv = 1.0 / cs;
     g->nx = (int32_t)floor((hix - lox) * g->inv) + 1;
     g->ny = (int32_t)floor((hiy - loy) * g->inv) + 1;
     const uint32_t ncell = (uint32_t)g->nx * (uint32_t)g->ny;
@@ -72,6 +72,8 @@ bool tt__sleep_grid_visit(const tt_world *w, tt__sleep *s, double lox, double lo
     if (!g->built && !build(w, s)) return false;
     if (g->m == 0) return true;
     const double r = g->rmax; /* a sleeper's centre lies in its cell: one within r of the box touches it */
+    const double e = r + 1.0 / g->inv; /* a cell more: no rounding can make it the test's edge */
+    if (lox - e > g->hx || hix + e < g->ox || loy - e > g->hy || hiy + e < g->oy) return true; /* off every sleeper */
     const uint32_t a = cell_of(g, lox - r, loy - r), b = cell_of(g, hix + r, hiy + r);
     const uint32_t x0 = a % (uint32_t)g->nx, x1 = b % (uint32_t)g->nx, y0 = a / (uint32_t)g->nx, y1 = b / (uint32_t)g->nx;
     const uint32_t n = tt__sleep_covered(w, s);
@@ -80,5 +82,37 @@ bool tt__sleep_grid_visit(const tt_world *w, tt__sleep *s, double lox, double lo
             const uint32_t i = g->idx[k];
             if (i < n && s->island[i]) visit(ctx, i);
         }
+    return true;
+}
+
+typedef struct reach_ctx {
+    void (*visit)(void *ctx, uint32_t a, uint32_t j);
+    void *ctx;
+    uint32_t a;
+} reach_ctx;
+
+static void reach_one(void *ctx, uint32_t j)
+{
+    const reach_ctx *q = ctx;
+    q->visit(q->ctx, q->a, j);
+}
+
+bool tt__sleep_grid_reach(const tt_world *w, tt__sleep *s, const uint32_t *list, uint32_t n, double f,
+                          void (*visit)(void *ctx, uint32_t a, uint32_t j), void *ctx)
+{
+    if (!s->grid.built && !build(w, s)) return false;
+    if (s->grid.m == 0) return true;
+    const double r = s->grid.rmax;
+    reach_ctx q = {visit, ctx, 0};
+    for (uint32_t k = 0; k < n; k++) {
+        const uint32_t a = list[k];
+        if (w->inv_mass[a] == 0.0) continue; /* pinned: it makes no pair with a sleeper */
+        const double x = w->px[a], y = w->py[a];
+        /* the reach with room for the rounding of the test and of the box's
+         * corners (visit adds r itself) */
+        const double h = ((double)w->radius[a] + r) * f * (1.0 + 1e-9) - r + 1e-14 * (fabs(x) + fabs(y));
+        q.a = a;
+        tt__sleep_grid_visit(w, s, x - h, y - h, x + h, y + h, reach_one, &q);
+    }
     return true;
 }

@@ -11,6 +11,7 @@ typedef struct tt__sleep_grid {
     bool built;
     uint32_t m;           /* sleepers listed */
     double ox, oy, inv, rmax;
+    double hx, hy;        /* the sleepers' centres lie in [ox, hx] × [oy, hy] */
     int32_t nx, ny;
     uint32_t *start, *idx;
     uint32_t cap_cells, cap;
@@ -40,11 +41,12 @@ typedef struct tt__sleep {
     double *held;         /* per slot: seconds since its anchor was set (awake particles) */
     double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
     uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
+    uint32_t *ring;       /* per slot: the next sleeper of its island, round to the first (sleepers only) */
     uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
     uint64_t tick;        /* steps since sleeping went on, from 2 (0 in seen: never held) */
     uint32_t *parent;     /* union-find scratch */
     double *minrest;      /* per root: the least time at rest in its island */
-    uint32_t *wake;       /* islands to wake at the end of the step */
+    uint64_t *wake;       /* islands to wake at the end of the step: (island << 32) | one sleeper of it */
     uint32_t nwake, wake_cap;
     /* The particles springs and constraints hold (bounds aside), each once:
      * scratch, rebuilt when a spring or constraint slot was made or freed
@@ -76,6 +78,11 @@ uint32_t tt__sleep_constraint_parts(const struct tt__cgroup *g, uint32_t slot, u
 void tt__sleep_rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready);
 /* The arrays grown to cover n slots; the state freed (sleep_state.c). */
 bool tt__sleep_grow(tt__sleep *s, uint32_t n);
+/* Each island's sleepers linked into its ring, from the islands alone (a
+ * loaded state); false on no memory (sleep_state.c). */
+bool tt__sleep_link_rings(const tt_world *w, tt__sleep *s);
+/* qsort's order of uint64_t keys (sleep_state.c). */
+int tt__sleep_cmp_u64(const void *a, const void *b);
 void tt__sleep_destroy(tt_world *w, void *self);
 /* Its section of the snapshot (sleep_stream.c). */
 void tt__sleep_save(const tt_world *w, const void *self, struct tt__sink *snk);
@@ -86,6 +93,12 @@ void *tt__sleep_load(tt_world *w, struct tt__source *src);
  * having visited none, when the grid cannot be built (no memory). */
 bool tt__sleep_grid_visit(const tt_world *w, tt__sleep *s, double lox, double loy, double hix, double hiy,
                           void (*visit)(void *ctx, uint32_t i), void *ctx);
+
+/* Calls visit(ctx, a, j) for each awake particle a of list[0..n) that can
+ * move and each sleeper j whose cell lies within (r_a + r_j)·f of it (a
+ * superset of those nearer than that); false on no memory. */
+bool tt__sleep_grid_reach(const tt_world *w, tt__sleep *s, const uint32_t *list, uint32_t n, double f,
+                          void (*visit)(void *ctx, uint32_t a, uint32_t j), void *ctx);
 
 /* The step's undo hooks (sleep_undo.c). */
 bool tt__sleep_undo_reserve(tt_world *w, void *self);

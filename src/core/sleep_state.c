@@ -20,6 +20,9 @@ bool tt__sleep_grow(tt__sleep *s, uint32_t n)
     uint64_t *sn = realloc(s->seen, (size_t)cap * sizeof *sn);
     if (!sn) return false;
     s->seen = sn;
+    uint32_t *rg = realloc(s->ring, (size_t)cap * sizeof *rg);
+    if (!rg) return false;
+    s->ring = rg;
     uint32_t *p = realloc(s->parent, (size_t)cap * sizeof *p);
     if (!p) return false;
     s->parent = p;
@@ -39,14 +42,14 @@ bool tt__sleep_grow(tt__sleep *s, uint32_t n)
     if (!hl) return false;
     s->holders.list = hl;
     if (s->wake_cap < cap) { /* an island per particle at most: waking at a step allocates nothing */
-        uint32_t *k = realloc(s->wake, (size_t)cap * sizeof *k);
+        uint64_t *k = realloc(s->wake, (size_t)cap * sizeof *k);
         if (!k) return false;
         s->wake = k;
         s->wake_cap = cap;
     }
     for (uint32_t i = s->cap; i < cap; i++) {
         s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = 0.0;
-        s->island[i] = 0;
+        s->island[i] = s->ring[i] = 0;
         s->seen[i] = 0;
     }
     s->cap = cap;
@@ -58,8 +61,31 @@ void tt__sleep_destroy(tt_world *w, void *self)
     (void)w;
     tt__sleep *s = self;
     if (!s) return;
-    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
+    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->ring); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
     free(s->grid.start); free(s->grid.idx);
     tt__sleep_scratch_free(w, s);
     free(s);
+}
+
+int tt__sleep_cmp_u64(const void *a, const void *b)
+{
+    const uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+bool tt__sleep_link_rings(const tt_world *w, tt__sleep *s)
+{
+    const uint32_t n = tt__sleep_covered(w, s);
+    uint64_t *key = malloc(((size_t)s->asleep + 1) * sizeof *key);
+    if (!key) return false;
+    uint32_t m = 0; /* (island, slot): each island's sleepers side by side */
+    for (uint32_t i = 0; i < n && m < s->asleep; i++)
+        if (s->island[i]) key[m++] = (uint64_t)s->island[i] << 32 | i;
+    qsort(key, m, sizeof *key, tt__sleep_cmp_u64);
+    for (uint32_t a = 0, b; a < m; a = b) {
+        for (b = a + 1; b < m && key[b] >> 32 == key[a] >> 32; b++) s->ring[(uint32_t)key[b - 1]] = (uint32_t)key[b];
+        s->ring[(uint32_t)key[b - 1]] = (uint32_t)key[a];
+    }
+    free(key);
+    return true;
 }

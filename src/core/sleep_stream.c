@@ -83,6 +83,7 @@ void *tt__sleep_load(tt_world *w, tt__source *src)
     if (s->next_island == 0) tt__src_fail(src, "sleep: island counter 0");
     for (uint32_t i = 0; i < w->ppool.count && !src->failed; i++)
         if (w->flags[i] & TT__PF_ALIVE) load_one(w, s, src, i, rec);
+    if (!src->failed && !tt__sleep_link_rings(w, s)) tt__src_fail(src, "out of memory for the sleep state");
     if (src->failed) {
         tt__sleep_destroy(w, s);
         return NULL;

@@ -3,7 +3,9 @@
  * coincident centres, layers and exclusions); no per-step malloc after
  * warm-up; a world without collisions has no collision state at all; the
  * grid keeps at least one row and column, and cell counts an int holds, for
- * particles on one row and for absurd cell sizes. */
+ * particles on one row and for absurd cell sizes; while some sleep, the
+ * grid holds the awake ones and the sleepers within reach of one, with the
+ * same pairs. */
 #include "test.h"
 #include "collide/collide_internal.h"
 
@@ -301,4 +303,128 @@ TEST(an_absurdly_small_cell_size_does_not_overflow_the_cell_counts)
         ENSURE(np == 100);
         tt_world_destroy(w);
     }
+}
+
+/* The pair grid while some particles sleep (grid_awake.c): it holds the
+ * awake particles and the sleepers within reach of one, so a sleeping pile
+ * adds nothing to it; the pairs are those of brute force over every
+ * particle, whatever the radii, layers or distances. */
+
+static uint32_t sleeping(const tt_world *w)
+{
+    tt_stats st;
+    tt_world_get_stats(w, &st);
+    return st.sleeping;
+}
+
+static void platform(tt_world *w, double x0, double x1, double top)
+{
+    tt_shape_def g = tt_shape_def_default();
+    g.type = TT_SHAPE_AABB;
+    g.a = (tt_vec2){x0, top - 1.0}, g.b = (tt_vec2){x1, top};
+    ENSURE(tt_shape_is_valid(w, tt_shape_create(w, &g)));
+}
+
+/* Two rows of circles of radii 0.05 to 0.8 resting on two floors, some
+ * touching their neighbours, some on another layer, all asleep: saved into
+ * *buf, *size bytes. */
+static void sleeping_rows(unsigned char **buf, size_t *size)
+{
+    tt_world *w = tt_world_create(NULL);
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    platform(w, -40.0, 40.0, 0.0);
+    platform(w, -40.0, 40.0, 3.0);
+    rng_state = 7;
+    uint32_t m = 0;
+    for (int row = 0; row < 2; row++)
+        for (double x = -30.0; x < 30.0; m++) {
+            tt_particle_def pd = tt_particle_def_default();
+            pd.radius = rnd() < 0.1 ? 0.8 : 0.05 + 0.3 * rnd();
+            x += pd.radius;
+            pd.position = (tt_vec2){x, 3.0 * row + pd.radius};
+            x += pd.radius + (rnd() < 0.4 ? 0.0 : 0.2 * rnd());
+            if (rnd() < 0.1) pd.category = 2;
+            tt_particle_create(w, &pd);
+        }
+    for (int s = 0; s < 600 && sleeping(w) < m; s++) tt_world_step(w, 1.0 / 60.0);
+    ENSURE(sleeping(w) == m);
+    ENSURE(tt_world_save(w, NULL, 0, size) == TT_ENOMEM);
+    *buf = malloc(*size);
+    ENSURE_OK(tt_world_save(w, *buf, *size, size));
+    tt_world_destroy(w);
+}
+
+/* Awake particles dropped among the sleepers at random (radii 0 to 1.2,
+ * pinned ones, one far off, some on another layer): the grid's pairs are
+ * brute force's, and the grid holds far fewer than every particle. */
+TEST(grid_with_sleepers_gives_the_brute_force_pair_set)
+{
+    unsigned char *buf = NULL;
+    size_t size = 0;
+    sleeping_rows(&buf, &size);
+    uint64_t mixed = 0;
+    for (uint64_t seed = 1; seed <= 16; seed++) {
+        tt_world *w = tt_world_load(buf, size);
+        ENSURE(w);
+        const uint32_t asleep = sleeping(w);
+        rng_state = seed * 0x9E3779B97F4A7C15ull + 1;
+        for (int k = 0; k < 40; k++) {
+            tt_particle_def pd = tt_particle_def_default();
+            const double kind = rnd();
+            pd.radius = kind < 0.05 ? 0.0 : 0.05 + rnd() * (kind < 0.5 ? 0.3 : 1.2);
+            pd.position = (tt_vec2){rnd() * 64 - 32, rnd() * 5 - 0.5};
+            if (kind > 0.97) pd.position = (tt_vec2){(rnd() - 0.5) * 2e6, (rnd() - 0.5) * 2e6};
+            pd.pinned = kind > 0.9 && kind <= 0.93;
+            if (rnd() < 0.1) pd.mask = 1;
+            ENSURE(tt_particle_is_valid(w, tt_particle_create(w, &pd)));
+        }
+        ENSURE(sleeping(w) == asleep); /* made beside the sleepers: nothing woke */
+        tt__collide *c = tt__collide_peek(w);
+        c->scr.npairs = 0;
+        ENSURE(tt__grid_detect(w, c));
+        ENSURE(c->scr.grid.n < 40 + asleep / 2); /* the sleepers far from every awake one are not in it */
+        const uint32_t ng = c->scr.npairs;
+        uint64_t *g = pair_set(c);
+        c->scr.npairs = 0;
+        ENSURE(tt__brute_pairs(w, c));
+        uint64_t *b = pair_set(c);
+        ENSURE(ng == c->scr.npairs);
+        for (uint32_t i = 0; i < ng && i < c->scr.npairs; i++) ENSURE(g[i] == b[i]);
+        for (uint32_t i = 0; i < ng; i++) /* pairs of an awake particle with a sleeper */
+            mixed += !(w->flags[g[i] >> 32] & TT__PF_ASLEEP) != !(w->flags[(uint32_t)g[i]] & TT__PF_ASLEEP);
+        free(g);
+        free(b);
+        tt_world_destroy(w);
+    }
+    ENSURE(mixed > 50); /* the scenes test what they are for */
+    free(buf);
+}
+
+/* One particle falling far above a sleeping pile: each substep's grid holds
+ * it alone (one cell, or none when no grid was needed), and it falls freely
+ * while the pile sleeps on. */
+TEST(grid_of_one_awake_particle_beside_a_sleeping_pile_is_one_cell)
+{
+    unsigned char *buf = NULL;
+    size_t size = 0;
+    sleeping_rows(&buf, &size);
+    tt_world *w = tt_world_load(buf, size);
+    const uint32_t asleep = sleeping(w);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){0.0, 1e4};
+    pd.radius = 0.5;
+    tt_particle p = tt_particle_create(w, &pd);
+    for (int s = 0; s < 30; s++) {
+        ENSURE_OK(tt_world_step(w, 1.0 / 60.0));
+        tt_collision_stats st;
+        ENSURE_OK(tt_world_get_collision_stats(w, &st));
+        ENSURE(st.cells <= 1);
+    }
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    ENSURE(x.y < 1e4 - 1.2 && x.y > 1e4 - 1.3); /* 0.5 s of free fall: 1.23 m (1.27 as the steps sum it) */
+    ENSURE(sleeping(w) == asleep);
+    tt_world_destroy(w);
+    free(buf);
 }
