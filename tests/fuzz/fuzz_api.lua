@@ -152,7 +152,7 @@ local KEYS = { "mass", "radius", "vx", "vy", "pinned", "user", "category", "mask
                "angle", "points", "box", "sensor", "loop", "integrator", "gravity", "wind", "substeps",
                "iterations", "tolerance", "solver", "dt_hint", "capacity", "max_particles", "cell_size",
                "broadphase", "shapes", "constraints", "springs", "color", "min_radius", "bullet", "events",
-               "max_rate", "x", "y", "pair_particles" }
+               "max_rate", "x", "y", "pair_particles", "spin", "sleep" }
 local ACTIONS = { "destroy", "step", "remove", "add", "gc" }
 
 local value -- forward

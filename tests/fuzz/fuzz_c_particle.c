@@ -110,11 +110,14 @@ GET_OUT(tt_particle_get_mass, PK, FZ_P, double, fz_finite(f, out, "a mass"))
 GET_OUT(tt_particle_get_pinned, PK, FZ_P, bool, (void)out)
 GET_OUT(tt_particle_get_asleep, PK, FZ_P, bool, (void)out)
 GET_OUT(tt_particle_get_radius, PK, FZ_P, double, fz_finite(f, out, "a radius"))
+GET_OUT(tt_particle_get_angle, PK, FZ_P, double, fz_finite(f, out, "an angle"))
+GET_OUT(tt_particle_get_spin, PK, FZ_P, double, fz_finite(f, out, "a spin"))
 GET_OUT(tt_particle_get_user, PK, FZ_P, uint64_t, (void)out)
 SET_ONE(tt_particle_set_velocity, PK, FZ_P, tt_vec2, fz_vec(f, -20, 20), fz_v(v))
 SET_ONE(tt_particle_set_mass, PK, FZ_P, double, mass(f), fz_d(v))
 SET_ONE(tt_particle_set_pinned, PK, FZ_P, bool, fz_chance(f, 50), v ? "true" : "false")
 SET_ONE(tt_particle_set_radius, PK, FZ_P, double, fz_real(f, 0, 1), fz_d(v))
+SET_ONE(tt_particle_set_spin, PK, FZ_P, double, fz_chance(f, 10) ? fz_nasty(f) : fz_real(f, -50, 50), fz_d(v))
 SET_ONE(tt_particle_set_user, PK, FZ_P, uint64_t, fz_rand(f), fz_u(v))
 SET_ONE(tt_particle_apply_force, PK, FZ_P, tt_vec2, fz_vec(f, -1000, 1000), fz_v(v))
 SET_ONE(tt_particle_apply_impulse, PK, FZ_P, tt_vec2, fz_vec(f, -100, 100), fz_v(v))
@@ -327,6 +330,9 @@ const fz_entry fz_particle_entries[] = {
     { "tt_particle_set_pinned", c_tt_particle_set_pinned, 2 },
     { "tt_particle_get_radius", c_tt_particle_get_radius, 1 },
     { "tt_particle_set_radius", c_tt_particle_set_radius, 2 },
+    { "tt_particle_get_angle", c_tt_particle_get_angle, 1 },
+    { "tt_particle_get_spin", c_tt_particle_get_spin, 1 },
+    { "tt_particle_set_spin", c_tt_particle_set_spin, 2 },
     { "tt_particle_get_filter", c_particle_get_filter, 1 },
     { "tt_particle_set_filter", c_particle_set_filter, 2 },
     { "tt_particle_get_user", c_tt_particle_get_user, 1 },

@@ -76,7 +76,7 @@ static tt_world_def world_def(fz *f)
 {
     tt_world_def d = tt_world_def_default();
     for (unsigned k = fz_below(f, 4); k > 0; k--) {
-        switch (fz_below(f, 12)) {
+        switch (fz_below(f, 13)) {
         case 0: d.gravity = fz_vec(f, -20, 20); break;
         case 1: d.integrator = (tt_integrator)fz_enum(f, TT_INTEGRATOR_COUNT); break;
         case 2: d.damping = fz_real(f, 0, 2); break;
@@ -92,6 +92,7 @@ static tt_world_def world_def(fz *f)
             d.fixed_point = q[fz_below(f, 4)];
             break;
         }
+        case 11: d.spin = fz_chance(f, 50); break;
         default: d.order = (tt_solver_order)fz_enum(f, 2); break;
         }
     }
@@ -106,10 +107,10 @@ static void c_world_create(fz *f)
     for (int i = 1; i < FZ_WORLDS && slot < 0; i++)
         if (!f->slots[i].w) slot = i;
     fz_log(f, "w%d = tt_world_create(%s) /* gravity %s, integrator %d, damping %s, wind %s, dt_hint %s, capacity %u, "
-              "max_particles %u, substeps %u, iterations %u, tolerance %s, order %d, fixed_point %s */",
+              "max_particles %u, substeps %u, iterations %u, tolerance %s, order %d, fixed_point %s, spin %d */",
            f->names, null_def ? "NULL" : "&def", fz_v(d.gravity), (int)d.integrator, fz_d(d.damping), fz_v(d.wind),
            fz_d(d.dt_hint), d.capacity, d.max_particles, d.substeps, d.iterations, fz_d(d.tolerance), (int)d.order,
-           fz_d(d.fixed_point));
+           fz_d(d.fixed_point), (int)d.spin);
     FZ_HIT(f, tt_world_create);
     tt_world *w = tt_world_create(null_def ? NULL : &d);
     fz_log_more(f, " -> %s", w ? "world" : "NULL");
