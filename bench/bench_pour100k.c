@@ -19,7 +19,7 @@ void bench_pour100k(const char *dir)
     bench_acc_head();
     FILE *csv = bench_csv(dir, "pour100k.csv", "substeps,iterations,mean_ms,median_ms,worst_ms," BENCH_ACC_CSV);
     ts_scene sc;
-    ts_scene_named(&sc, "pour100k", false);
+    if (!ts_scene_named(&sc, "pour100k", false)) return;
     for (size_t r = 0; r < sizeof rows / sizeof rows[0]; r++) {
         ts_tether t;
         const char *why = NULL;
@@ -30,6 +30,12 @@ void bench_pour100k(const char *dir)
         bench_acc a;
         bench_acc_init(&a, t.world, ACC_OVERLAP, NULL, 0);
         double *ms = malloc(sc.steps * sizeof *ms), mean = 0, worst = 0;
+        if (!ms) {
+            printf("pour100k: out of memory\n");
+            bench_acc_free(&a);
+            ts_tether_free(&t);
+            break;
+        }
         for (uint32_t s = 0; s < sc.steps; s++) {
             const double t0 = bench_now_ns();
             tt_world_step(t.world, sc.dt);

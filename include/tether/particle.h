@@ -46,7 +46,8 @@ TT_API tt_result tt_particle_set_velocity(tt_world *w, tt_particle p, tt_vec2 v)
 TT_API tt_result tt_particle_get_angle(const tt_world *w, tt_particle p, double *out);
 /// Angular velocity, rad/s, counter-clockwise (tt_world_def.spin; else TT_ESTATE).
 TT_API tt_result tt_particle_get_spin(const tt_world *w, tt_particle p, double *out);
-/// Sets the angular velocity, rad/s, |spin| ≤ TT_MAX_VALUE (tt_world_def.spin; else TT_ESTATE).
+/// Sets the angular velocity, rad/s, |spin| ≤ TT_MAX_VALUE (tt_world_def.spin; else TT_ESTATE). A pinned
+/// particle and a point (radius 0) do not turn: TT_ESTATE (pinning, or a radius set to 0, stops a spin).
 TT_API tt_result tt_particle_set_spin(tt_world *w, tt_particle p, double spin);
 TT_API tt_result tt_particle_get_mass(const tt_world *w, tt_particle p, double *out);
 /// kg, > 0. The mass is kept while pinned and comes back on unpin.

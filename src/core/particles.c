@@ -296,6 +296,7 @@ tt_result tt_particle_set_pinned(tt_world *w, tt_particle p, bool pinned)
     if (pinned) {
         w->flags[i] |= TT__PF_PINNED;
         w->inv_mass[i] = 0.0;
+        tt__spin_stop(w, i);
     } else {
         w->flags[i] &= (uint16_t)~TT__PF_PINNED;
         w->inv_mass[i] = 1.0 / w->mass[i];
@@ -324,6 +325,7 @@ tt_result tt_particle_set_radius(tt_world *w, tt_particle p, double radius)
         return tt__fail(w, TT_EINVAL, "tt_particle_set_radius: radius must be in [0, %g], got %g", TT_MAX_VALUE, radius);
     tt__sleep_touch(w, i);
     w->radius[i] = (float)radius;
+    if (w->radius[i] == 0.0f) tt__spin_stop(w, i);
     w->epoch++;
     return TT_OK;
 }

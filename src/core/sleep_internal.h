@@ -30,6 +30,7 @@ typedef struct tt__sleep_scratch {
         double *rest, *held, *ax, *ay;
         uint32_t *island;
     } undo;
+    const struct tt__spin *spin; /* the rest pass's: particles that turn (NULL: they do not), set as it begins */
 } tt__sleep_scratch;
 
 typedef struct tt__sleep {

@@ -16,6 +16,7 @@
  * its islands by the same holders. */
 #include "internal.h"
 #include "sleep_internal.h"
+#include "spin.h"
 #include "collide/collide_internal.h"
 #include "constraints/constraint_internal.h"
 
@@ -66,7 +67,10 @@ uint32_t tt__sleep_constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t
  *   shorter than sleep_time: it never rests long. With the defaults (1 cm,
  *   1 s) a 1 m pendulum swinging 2 cm or more, a 4 m one swinging 5 cm, a
  *   particle at the top of its throw or a ball rolling at 1 cm/s or more
- *   stay awake; a swing whose whole arc fits in the window is at rest. */
+ *   stay awake; a swing whose whole arc fits in the window is at rest.
+ * A particle that turns (tt_world_def.spin) with its rim faster than
+ * sleep_speed does not rest where it stands: asleep, its angle would stop
+ * while it still reported its spin. */
 static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *ready)
 {
     if (i >= w->ppool.count || s->seen[i] == s->tick) return; /* (made since the last step: none of its arrays) */
@@ -76,12 +80,14 @@ static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *rea
     const double dx = w->px[i] - s->ax[i], dy = w->py[i] - s->ay[i], d2 = dx * dx + dy * dy;
     const double lim = s->speed * s->time;
     const bool out = d2 > lim * lim;
+    const tt__spin *sp = s->scr.spin;
+    const bool turning = sp && i < sp->cap && fabs(sp->omega[i]) * w->radius[i] > s->speed;
     if (was + 1 != s->tick) { /* free since it was last held: its rest starts here */
         s->rest[i] = s->held[i] = 0.0;
     } else {
         s->held[i] += dt;
         const double slow = s->speed * s->held[i]; /* out at a mean speed under sleep_speed: its stretch lasted sleep_time or more */
-        if (!out || d2 <= slow * slow) {
+        if (!turning && (!out || d2 <= slow * slow)) {
             s->rest[i] += dt;
             *ready |= s->rest[i] >= s->time;
         } else {
@@ -163,6 +169,7 @@ static void holders_walk(tt_world *w, tt__sleep *s, const tt__cgroup *g, double 
 void tt__sleep_rest_held(tt_world *w, tt__sleep *s, double dt, bool *ready)
 {
     s->tick++;
+    s->scr.spin = tt__spin_peek(w);
     const tt__cgroup *g = tt__cgroup_peek(w);
     if (holders_valid(w, s, g)) {
         for (uint32_t k = 0; k < s->holders.n; k++) rest_new(w, s, s->holders.list[k], dt, ready);

@@ -173,6 +173,12 @@ bool tt__spin_enable(tt_world *w)
     return true;
 }
 
+void tt__spin_stop(tt_world *w, uint32_t i)
+{
+    tt__spin *s = tt__spin_peek(w);
+    if (s && i < s->cap) s->omega[i] = 0.0;
+}
+
 /* --- public calls ----------------------------------------------------------- */
 
 /* The spin state for particle p of w into *out, or the error. */
@@ -212,6 +218,11 @@ tt_result tt_particle_set_spin(tt_world *w, tt_particle p, double spin)
     if (r != TT_OK) return r;
     if (!tt__in_range(spin, -TT_MAX_VALUE, TT_MAX_VALUE))
         return tt__fail(w, TT_EINVAL, "tt_particle_set_spin: spin must be finite, |spin| <= %g rad/s, got %g", TT_MAX_VALUE, spin);
+    /* as set_velocity: a pinned particle never moves (turning, it would drive what touches it
+     * with energy no one counts); a point has no rim to turn */
+    if (w->flags[p.index] & TT__PF_PINNED) return tt__fail(w, TT_ESTATE, "tt_particle_set_spin: the particle is pinned");
+    if (spin != 0.0 && !(w->radius[p.index] > 0.0))
+        return tt__fail(w, TT_ESTATE, "tt_particle_set_spin: the particle is a point (radius 0): it does not turn");
     if (!grow(s, w->pcap)) return tt__fail(w, TT_ENOMEM, "tt_particle_set_spin: out of memory");
     tt__sleep_touch(w, p.index);
     s->omega[p.index] = spin;

@@ -126,10 +126,11 @@ TEST(spin_extremes_stay_finite)
         pd.radius = i % 4 == 0 ? 0.0 : i % 4 == 1 ? 1e-6 : 0.3;
         pd.position = (tt_vec2){-2 + (i % 8) * 0.5, 0.2 + (i / 8) * 0.4};
         ps[i] = tt_particle_create(w, &pd);
-        ENSURE_OK(tt_particle_set_spin(w, ps[i], i % 2 ? 1e12 : -1e12));
+        /* a point does not turn: refused, the others spin as fast as allowed */
+        ENSURE(tt_particle_set_spin(w, ps[i], i % 2 ? 1e12 : -1e12) == (pd.radius > 0 ? TT_OK : TT_ESTATE));
     }
-    ENSURE(tt_particle_set_spin(w, ps[0], 2e12) == TT_EINVAL);
-    ENSURE(tt_particle_set_spin(w, ps[0], NAN) == TT_EINVAL);
+    ENSURE(tt_particle_set_spin(w, ps[1], 2e12) == TT_EINVAL);
+    ENSURE(tt_particle_set_spin(w, ps[1], NAN) == TT_EINVAL);
     for (int s = 0; s < 120; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
     for (int i = 0; i < 40; i++) {
         tt_vec2 x, v;
@@ -199,7 +200,8 @@ TEST(spin_snapshot_round_trip)
 TEST(spin_reverse_turns_back)
 {
     tt_world *w = spin_world(1, 4);
-    const tt_particle_def pd = tt_particle_def_default();
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.5;
     tt_particle p = tt_particle_create(w, &pd);
     ENSURE_OK(tt_particle_set_spin(w, p, 2.5));
     for (int s = 0; s < 60; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
@@ -212,5 +214,61 @@ TEST(spin_reverse_turns_back)
     for (int s = 0; s < 60; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
     tt_particle_get_angle(w, p, &a);
     ENSURE_NEAR(a, 0.0, 1e-9);
+    tt_world_destroy(w);
+}
+
+/* A disc spinning in place on a frictionless floor stays awake while its
+ * rim moves faster than the sleep speed (asleep, its angle would stop
+ * while it still reported its spin); the same disc not spinning sleeps. */
+TEST(spin_a_spinning_disc_does_not_fall_asleep)
+{
+    for (int spinning = 0; spinning < 2; spinning++) {
+        tt_world_def wd = tt_world_def_default();
+        wd.spin = true; /* sleeping on: the default */
+        tt_world *w = tt_world_create(&wd);
+        tt_particle p = disc_on_slope(w, 0.0, 0.0);
+        ENSURE_OK(tt_particle_set_spin(w, p, spinning ? 10.0 : 0.0));
+        for (int s = 0; s < 240; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        bool asleep = false;
+        double a0, a1;
+        ENSURE_OK(tt_particle_get_asleep(w, p, &asleep));
+        ENSURE(asleep == !spinning);
+        ENSURE_OK(tt_particle_get_angle(w, p, &a0));
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE_OK(tt_particle_get_angle(w, p, &a1));
+        ENSURE(spinning ? fabs(remainder(a1 - a0 - 10.0 / 60, 2 * M_PI)) < 1e-9 : a1 == a0);
+        tt_world_destroy(w);
+    }
+}
+
+/* As set_velocity refuses a pinned particle, set_spin does, and a point
+ * (radius 0) has no rim to turn; both leave the world as it was. Pinning a
+ * turning particle or making it a point stops it. */
+TEST(spin_pinned_particles_and_points_do_not_turn)
+{
+    tt_world *w = spin_world(1, 8);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.2;
+    tt_particle a = tt_particle_create(w, &pd);
+    pd.pinned = true;
+    tt_particle pinned = tt_particle_create(w, &pd);
+    pd.pinned = false;
+    pd.radius = 0;
+    tt_particle point = tt_particle_create(w, &pd);
+    const uint64_t h0 = tt_world_hash(w);
+    ENSURE(tt_particle_set_spin(w, pinned, 3.0) == TT_ESTATE);
+    ENSURE(tt_particle_set_spin(w, point, 3.0) == TT_ESTATE);
+    ENSURE_OK(tt_particle_set_spin(w, point, 0.0));
+    ENSURE(tt_world_hash(w) == h0);
+    double om;
+    ENSURE_OK(tt_particle_set_spin(w, a, 3.0));
+    ENSURE_OK(tt_particle_set_pinned(w, a, true));
+    ENSURE_OK(tt_particle_get_spin(w, a, &om));
+    ENSURE(om == 0.0);
+    ENSURE_OK(tt_particle_set_pinned(w, a, false));
+    ENSURE_OK(tt_particle_set_spin(w, a, 3.0));
+    ENSURE_OK(tt_particle_set_radius(w, a, 0.0));
+    ENSURE_OK(tt_particle_get_spin(w, a, &om));
+    ENSURE(om == 0.0);
     tt_world_destroy(w);
 }
