@@ -430,9 +430,6 @@ uint32_t tt__sleep_count(const tt_world *w);
 /* Wakes particle i's island if it sleeps: every call that changes a particle
  * calls it first (after its checks), so a sleeper never misses a change. */
 void tt__sleep_touch(tt_world *w, uint32_t i);
-/* Particles that turn (spin.c): particle slot i stops turning (pinned, or made a point); nothing
- * in a world whose particles do not turn. */
-void tt__spin_stop(tt_world *w, uint32_t i);
 /* Wakes every island with a sleeper whose circle meets the box: for what
  * changes a region (terrain carved, an explosion, a shape placed). */
 void tt__sleep_wake_aabb(tt_world *w, double lox, double loy, double hix, double hiy);

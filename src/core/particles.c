@@ -1,5 +1,6 @@
 /* tether — particles: storage (struct of arrays), handles, reads and writes. */
 #include "internal.h"
+#include "spin.h"
 
 #include <stdlib.h>
 #include <string.h>

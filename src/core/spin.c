@@ -173,12 +173,6 @@ bool tt__spin_enable(tt_world *w)
     return true;
 }
 
-void tt__spin_stop(tt_world *w, uint32_t i)
-{
-    tt__spin *s = tt__spin_peek(w);
-    if (s && i < s->cap) s->omega[i] = 0.0;
-}
-
 /* --- public calls ----------------------------------------------------------- */
 
 /* The spin state for particle p of w into *out, or the error. */

@@ -21,6 +21,14 @@ typedef struct tt__spin {
 } tt__spin;
 
 static inline tt__spin *tt__spin_peek(const tt_world *w) { return (tt__spin *)tt__group_find_id(w, TT__SPIN_ID); }
+/* Particle slot i stops turning (pinned, or made a point); nothing in a
+ * world whose particles do not turn. Inline: particles.c calls it, and
+ * spin.c uses particles.c (no circle between the two). */
+static inline void tt__spin_stop(tt_world *w, uint32_t i)
+{
+    tt__spin *s = tt__spin_peek(w);
+    if (s && i < s->cap) s->omega[i] = 0.0;
+}
 /* Gives the world a spin group (false on no memory); nothing if it has one. */
 bool tt__spin_enable(tt_world *w);
 
