@@ -199,6 +199,12 @@ typedef struct ts_state {
 } ts_state;
 
 ts_tether_settings ts_tether_settings_default(void);
+/* The reference pour's n circles (ts_scene_pour(n, width)) without their
+ * box, lifted by lift, built at the default settings into t; *top is 5 m
+ * above the highest centre, *steps the pour's length. For the builders that give the pour a terrain
+ * or a chain instead (scene_bowl.c, scene_floor.c). */
+tt_result ts_tether_pour_circles(uint32_t n, double width, double lift, const char *name, ts_tether *t, double *top,
+                                 uint32_t *steps, const char **why);
 /* Builds s into a new world (t->world); TT_OK, or an error with the reason in *why. */
 tt_result ts_tether_build(const ts_scene *s, const ts_tether_settings *set, ts_tether *t, const char **why);
 void ts_tether_free(ts_tether *t);

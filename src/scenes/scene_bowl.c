@@ -38,28 +38,11 @@ static tt_mask *bowl_mask(double width, double top)
 tt_result ts_bowl_build(uint32_t n, double width, ts_bowl *b, const char **why)
 {
     memset(b, 0, sizeof *b);
-    ts_scene pour, s;
-    ts_scene_pour(&pour, n, width);
-    ts_scene_init(&s, "bowl");
-    s.gravity = pour.gravity;
-    s.dt = pour.dt;
-    s.steps = pour.steps;
     const double h = width / 2, R = 0.8 * width, lift = R - sqrt(R * R - h * h) + 0.5;
-    double top = 0;
-    tt_result r = TT_OK;
-    for (uint32_t i = 0; i < pour.body_count && r == TT_OK; i++) {
-        ts_body c = pour.bodies[i];
-        if (!c.dynamic) continue; /* the box: the bowl stands for it */
-        c.position.y += lift;
-        top = fmax(top, c.position.y + 5);
-        b->radius = c.radius;
-        if (ts_scene_add_body(&s, &c, why) < 0) r = TT_ENOMEM;
-    }
-    ts_scene_free(&pour);
-    ts_tether_settings set = ts_tether_settings_default();
-    if (r == TT_OK) r = ts_tether_build(&s, &set, &b->t, why);
-    ts_scene_free(&s);
+    double top;
+    tt_result r = ts_tether_pour_circles(n, width, lift, "bowl", &b->t, &top, &b->steps, why);
     if (r != TT_OK) return r;
+    if (b->t.circle_count) tt_particle_get_radius(b->t.world, b->t.circles[0], &b->radius);
     tt_mask *m = bowl_mask(width, top);
     tt_terrain_def td = tt_terrain_def_default();
     td.solid = m;
@@ -73,7 +56,6 @@ tt_result ts_bowl_build(uint32_t n, double width, ts_bowl *b, const char **why)
         ts_tether_free(&b->t);
         return TT_ENOMEM;
     }
-    b->steps = s.steps;
     return TT_OK;
 }
 

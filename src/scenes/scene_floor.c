@@ -44,25 +44,10 @@ static tt_result add_floor(tt_world *w, double width, double top, bool mask)
 
 tt_result ts_floor_build(uint32_t n, double width, bool mask, ts_tether *t, const char **why)
 {
-    memset(t, 0, sizeof *t);
-    ts_scene pour, s;
-    ts_scene_pour(&pour, n, width);
-    ts_scene_init(&s, mask ? "pour on a mask floor" : "pour on a chain floor");
-    s.gravity = pour.gravity;
-    s.dt = pour.dt;
-    s.steps = pour.steps;
-    double top = 0;
-    tt_result r = TT_OK;
-    for (uint32_t i = 0; i < pour.body_count && r == TT_OK; i++) {
-        const ts_body *c = &pour.bodies[i];
-        if (!c->dynamic) continue; /* the box: the U stands for it */
-        top = fmax(top, c->position.y + 5);
-        if (ts_scene_add_body(&s, c, why) < 0) r = TT_ENOMEM;
-    }
-    ts_scene_free(&pour);
-    ts_tether_settings set = ts_tether_settings_default();
-    if (r == TT_OK) r = ts_tether_build(&s, &set, t, why);
-    ts_scene_free(&s);
+    double top;
+    uint32_t steps;
+    tt_result r = ts_tether_pour_circles(n, width, 0, mask ? "pour on a mask floor" : "pour on a chain floor", t, &top, &steps,
+                                         why);
     if (r != TT_OK) return r;
     r = add_floor(t->world, width, top, mask);
     if (r != TT_OK) {
