@@ -380,7 +380,8 @@ function world:rotation(p) end
 ---@return number
 function world:spin(p) end
 
----Sets the angular velocity, rad/s in [-1e12, 1e12] (spin = true; else raises).
+---Sets the angular velocity, rad/s in [-1e12, 1e12] (spin = true; else raises). A pinned particle and a
+---point (radius 0) do not turn: raises for them; pinning or setting the radius to 0 stops a spin.
 ---@param p tether.particle
 ---@param omega number
 function world:set_spin(p, omega) end
