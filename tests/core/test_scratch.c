@@ -94,8 +94,9 @@ static void sleep_garbage(tt_world *w)
 
 /* The contacts group's scratch as garbage, its buffers kept, lengths their
  * capacities: the grid, the substep's start velocities and guard
- * positions, the bottom-up pass's lists, pairs and their runs, the near
- * cells, the batches, shape contacts, the step's records, the undo's
+ * positions, pre-stabilisation's start copy, the friction contacts of
+ * discs that turn, the bottom-up pass's lists, pairs and their runs, the near
+ * cells, the batches (their slop-less radii sums too), shape contacts, the step's records, the undo's
  * copies, and the flags begin and reserve set before they are read; the
  * terrains' update buffer. The counts (the last substep's contacts, which
  * the stats show between steps) are left. */
@@ -115,6 +116,9 @@ static void contacts_garbage(tt_world *w)
     fill(s->vy0, (size_t)s->vcap * sizeof(double));
     fill(s->gx0, (size_t)s->gcap * sizeof(double));
     fill(s->gy0, (size_t)s->gcap * sizeof(double));
+    fill(s->px0, (size_t)s->pcap * sizeof(double));
+    fill(s->py0, (size_t)s->pcap * sizeof(double));
+    fill(s->roll, (size_t)s->roll_cap * sizeof *s->roll);
     fill(s->lift, (size_t)s->lift_cap * sizeof *s->lift);
     fill(s->lift_start, (size_t)s->lift_cap * sizeof(uint32_t));
     fill(s->lift_order, (size_t)s->lift_cap * sizeof(uint32_t));
@@ -124,7 +128,7 @@ static void contacts_garbage(tt_world *w)
     tt__batches *B = &s->bat;
     fill(B->a, (size_t)B->cap * sizeof(uint32_t));
     fill(B->b, (size_t)B->cap * sizeof(uint32_t));
-    double *bd[] = {B->rs, B->lam, B->wa, B->wb};
+    double *bd[] = {B->rs, B->lam, B->wa, B->wb, B->pre};
     for (size_t k = 0; k < sizeof bd / sizeof bd[0]; k++) fill(bd[k], (size_t)B->cap * sizeof(double));
     fill(B->solo, B->cap / 4);
     fill(B->stamp, (size_t)B->stamp_cap * sizeof(uint32_t));
