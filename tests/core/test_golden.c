@@ -23,7 +23,10 @@
  * (contact_prestab.c, issue 21): its spawned piles come apart without speed.
  * The zoo and settle scenes moved again when the pair grid began to hold
  * only the awake particles and the sleepers within reach of one
- * (grid_awake.c): the same pairs, in another order. */
+ * (grid_awake.c): the same pairs, in another order. The roll scene, added
+ * with its pin, pins particles that turn (tt_world_def.spin): friction at
+ * the contact point (contact_roll.c), discs rolling down a slope into a
+ * pile (nothing asleep by step 300: the driver spins a disc every second). */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -40,6 +43,7 @@ static const struct {
     [SCENE_ZOO] = {0x0ab92a440ff6d222ull, 0xf8e0d6c1fc4c1bd8ull},
     [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0x1993a9d54ff44dedull},
     [SCENE_SETTLE] = {0x77584e6ef9e350bdull, 0x92d871d960e7fca6ull},
+    [SCENE_ROLL] = {0x19997d8c79a61486ull, 0xccf99cb21f168ce3ull},
 };
 
 TEST(golden_scenes_keep_their_positions_and_hashes)
