@@ -15,11 +15,12 @@
  * 300 steps (the pour still flows, the cloth flaps in the wind, the
  * integrators' spring swings): their positions stay, their hashes moved
  * (the hash covers the sleep section). The settle scene pins what
- * sleeping does to results: its two piles fall asleep (all 32 by step 201),
- * a ball wakes the left one's island at step 266, and at step 300 the right
- * pile (16) sleeps on while the left one settles again (all 33 asleep from
- * step 421, inside the cross-build's 600). The zoo moved when contacts began
- * to pre-stabilise overlaps deeper than a tenth of the radii sum
+ * sleeping does to results: its two piles fall asleep (all 32 after step
+ * 192, as this build counts), the ball dropped before step 241 wakes the left
+ * one's island in step 267, and at step 300 the right pile (16) sleeps on
+ * while the left one settles again (all 33 asleep after step 427, inside the
+ * cross-build's 600; an older build's 201, 266 and 421). The zoo moved
+ * when contacts began to pre-stabilise overlaps deeper than a tenth of the radii sum
  * (contact_prestab.c, issue 21): its spawned piles come apart without speed.
  * The zoo and settle scenes moved again when the pair grid began to hold
  * only the awake particles and the sleepers within reach of one
