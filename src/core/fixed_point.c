@@ -46,7 +46,11 @@ tt_result tt__fixed_check(const tt_world *w, tt_vec2 p, const char *fn)
 /* After the sweeps: constraints and contacts move particles by amounts off
  * the lattice; they are put back on it, and one pushed past the range is
  * stopped where the substep began (bx/by, on the lattice), as the guard
- * stops one past TT_DIVERGED. */
+ * stops one past TT_DIVERGED. Only x is snapped: x_old may leave the
+ * lattice (contacts' pre-stabilisation moves Verlet's start positions,
+ * contact_prestab.c) and that breaks nothing, since the next step rounds
+ * x − x_old onto the lattice (integrate.c) and tt_world_reverse, the one
+ * use of an exact x_old, refuses worlds with contacts and snaps x_old anyway. */
 void tt__fixed_after_solve(tt_world *w)
 {
     const double q = w->fixed_point, r = tt__fixed_range(w);

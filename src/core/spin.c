@@ -87,6 +87,17 @@ static void undo(tt_world *w, void *self)
     tt__copy(s->omega, s->undo_omega, (size_t)(s->cap < s->undo_cap ? s->cap : s->undo_cap) * sizeof *s->omega);
 }
 
+/* The undo copy is scratch (undo_mark writes it before undo reads it): freed
+ * between two steps, the next step's undo_reserve makes it again. */
+static void scratch_free(tt_world *w, void *self)
+{
+    (void)w;
+    tt__spin *s = self;
+    free(s->undo_omega);
+    s->undo_omega = NULL;
+    s->undo_cap = 0;
+}
+
 /* The section: its version, the slot count, then each slot's angle and
  * angular velocity (removed slots hold zeros). */
 static void save(const tt_world *w, const void *self, tt__sink *snk)
@@ -156,6 +167,7 @@ static const tt__group_ops spin_ops = {
     .save = save,
     .load = load,
     .memory = memory,
+    .scratch_free = scratch_free,
     .destroy = destroy,
 };
 

@@ -128,26 +128,19 @@ static int w_set_velocity(lua_State *L)
 }
 
 /* w:rotation(p), w:spin(p): rad and rad/s, counter-clockwise (worlds made with spin = true);
- * w:angle(a, b, c) is the angle constraint's */
-static int w_angle(lua_State *L)
+ * w:angle(a, b, c) is the angle constraint's. One number of particle p, read by get. */
+static int particle_number(lua_State *L, tt_result (*get)(const tt_world *w, tt_particle p, double *out))
 {
     tt_world *w = tl_check_world(L, 1);
     tt_particle p = tl_check_particle(L, w, 2);
-    double a;
-    tl_check_result(L, w, tt_particle_get_angle(w, p, &a));
-    lua_pushnumber(L, a);
+    double v;
+    tl_check_result(L, w, get(w, p, &v));
+    lua_pushnumber(L, v);
     return 1;
 }
 
-static int w_spin(lua_State *L)
-{
-    tt_world *w = tl_check_world(L, 1);
-    tt_particle p = tl_check_particle(L, w, 2);
-    double s;
-    tl_check_result(L, w, tt_particle_get_spin(w, p, &s));
-    lua_pushnumber(L, s);
-    return 1;
-}
+static int w_angle(lua_State *L) { return particle_number(L, tt_particle_get_angle); }
+static int w_spin(lua_State *L) { return particle_number(L, tt_particle_get_spin); }
 
 static int w_set_spin(lua_State *L)
 {

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const names[SCENE_COUNT] = {"pour", "cloth", "zoo", "integrators", "settle"};
+static const char *const names[SCENE_COUNT] = {"pour", "cloth", "zoo", "integrators", "settle", "roll"};
 
 const char *scene_name(scene_kind k) { return (unsigned)k < SCENE_COUNT ? names[k] : "?"; }
 
@@ -311,13 +311,56 @@ static void drive_settle(scene *sc, uint64_t s)
     tt_particle_create(sc->w, &pd);
 }
 
+/* Discs that turn (tt_world_def.spin): six roll down a slope onto the
+ * floor, into a pile of 24 against a wall; the driver spins two of them and
+ * kicks one (drive_roll). Pins friction at the contact point
+ * (collide/contact_roll.c) and the spin state. */
+static bool build_roll(scene *sc)
+{
+    tt_world *w = sc->w;
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = 0.5;
+    cs.friction_kinetic = 0.4;
+    if (tt_world_set_collision(w, &cs) != TT_OK) return false;
+    sc->s[0] = aabb(w, -10, -1, 10, 0);
+    aabb(w, 8, 0, 9, 4);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_SEGMENT;
+    sd.a = (tt_vec2){-9, 5};
+    sd.b = (tt_vec2){-2, 0};
+    sc->s[1] = tt_shape_create(w, &sd);
+    const double len = sqrt(74.0), nx = 5 / len, ny = 7 / len; /* the slope's upward normal */
+    tt_particle_def pd = tt_particle_def_default();
+    for (int i = 0; i < 30; i++) {
+        pd.radius = 0.25 + 0.1 * rnd();
+        if (i < 6) {
+            const double t = 0.08 + 0.13 * i;
+            pd.position = (tt_vec2){-9 + 7 * t + (pd.radius + 0.01) * nx, 5 - 5 * t + (pd.radius + 0.01) * ny};
+        } else {
+            const int k = i - 6;
+            pd.position = (tt_vec2){2.5 + (k % 6) * 0.72 + 0.05 * rnd(), 0.4 + (k / 6) * 0.72};
+        }
+        tt_particle p = tt_particle_create(w, &pd);
+        if (i % 4 == 0) sc->p[i / 4] = p;
+    }
+    return sc->s[1].gen && sc->p[7].gen;
+}
+
+/* Two discs given spin, one each way, every second; a kick into the pile at step 100. */
+static void drive_roll(scene *sc, uint64_t s)
+{
+    if (s % 60 == 0) tt_particle_set_spin(sc->w, sc->p[s % 120 ? 6 : 0], s % 120 ? -8.0 : 6.0);
+    if (s == 100) tt_particle_apply_impulse(sc->w, sc->p[7], (tt_vec2){-1.5, 2});
+}
+
 bool scene_build(scene *sc, scene_kind k)
 {
     memset(sc, 0, sizeof *sc);
     sc->kind = k;
     lcg_state = 2026 + (uint64_t)k;
     tt_world_def wd = tt_world_def_default();
-    if (k == SCENE_POUR || k == SCENE_SETTLE) wd.gravity = (tt_vec2){0, -10};
+    if (k == SCENE_POUR || k == SCENE_SETTLE || k == SCENE_ROLL) wd.gravity = (tt_vec2){0, -10};
+    wd.spin = k == SCENE_ROLL;
     sc->w = tt_world_create(&wd);
     if (!sc->w) return false;
     switch (k) {
@@ -326,6 +369,7 @@ bool scene_build(scene *sc, scene_kind k)
     case SCENE_ZOO: return build_zoo(sc);
     case SCENE_INTEGRATORS: return build_integrators(sc);
     case SCENE_SETTLE: return build_settle(sc);
+    case SCENE_ROLL: return build_roll(sc);
     default: return false;
     }
 }
@@ -368,6 +412,7 @@ void scene_step(scene *sc)
     case SCENE_ZOO: drive_zoo(sc, s); break;
     case SCENE_INTEGRATORS: drive_integrators(sc, s); break;
     case SCENE_SETTLE: drive_settle(sc, s); break;
+    case SCENE_ROLL: drive_roll(sc, s); break;
     default: break;
     }
     tt_world_step(sc->w, 1.0 / 60);

@@ -15,15 +15,19 @@
  * 300 steps (the pour still flows, the cloth flaps in the wind, the
  * integrators' spring swings): their positions stay, their hashes moved
  * (the hash covers the sleep section). The settle scene pins what
- * sleeping does to results: its two piles fall asleep (all 32 by step 201),
- * a ball wakes the left one's island at step 266, and at step 300 the right
- * pile (16) sleeps on while the left one settles again (all 33 asleep from
- * step 421, inside the cross-build's 600). The zoo moved when contacts began
- * to pre-stabilise overlaps deeper than a tenth of the radii sum
+ * sleeping does to results: its two piles fall asleep (all 32 after step
+ * 192, as this build counts), the ball dropped before step 241 wakes the left
+ * one's island in step 267, and at step 300 the right pile (16) sleeps on
+ * while the left one settles again (all 33 asleep after step 427, inside the
+ * cross-build's 600; an older build's 201, 266 and 421). The zoo moved
+ * when contacts began to pre-stabilise overlaps deeper than a tenth of the radii sum
  * (contact_prestab.c, issue 21): its spawned piles come apart without speed.
  * The zoo and settle scenes moved again when the pair grid began to hold
  * only the awake particles and the sleepers within reach of one
- * (grid_awake.c): the same pairs, in another order. */
+ * (grid_awake.c): the same pairs, in another order. The roll scene, added
+ * with its pin, pins particles that turn (tt_world_def.spin): friction at
+ * the contact point (contact_roll.c), discs rolling down a slope into a
+ * pile (nothing asleep by step 300: the driver spins a disc every second). */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -40,6 +44,7 @@ static const struct {
     [SCENE_ZOO] = {0x0ab92a440ff6d222ull, 0xf8e0d6c1fc4c1bd8ull},
     [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0x1993a9d54ff44dedull},
     [SCENE_SETTLE] = {0x77584e6ef9e350bdull, 0x92d871d960e7fca6ull},
+    [SCENE_ROLL] = {0x19997d8c79a61486ull, 0xccf99cb21f168ce3ull},
 };
 
 TEST(golden_scenes_keep_their_positions_and_hashes)

@@ -12,6 +12,7 @@
 #include "core/internal.h"
 #include "core/scenes.h"
 #include "core/sleep_internal.h"
+#include "core/spin.h"
 
 #include <string.h>
 
@@ -93,8 +94,9 @@ static void sleep_garbage(tt_world *w)
 
 /* The contacts group's scratch as garbage, its buffers kept, lengths their
  * capacities: the grid, the substep's start velocities and guard
- * positions, the bottom-up pass's lists, pairs and their runs, the near
- * cells, the batches, shape contacts, the step's records, the undo's
+ * positions, pre-stabilisation's start copy, the friction contacts of
+ * discs that turn, the bottom-up pass's lists, pairs and their runs, the near
+ * cells, the batches (their slop-less radii sums too), shape contacts, the step's records, the undo's
  * copies, and the flags begin and reserve set before they are read; the
  * terrains' update buffer. The counts (the last substep's contacts, which
  * the stats show between steps) are left. */
@@ -114,6 +116,9 @@ static void contacts_garbage(tt_world *w)
     fill(s->vy0, (size_t)s->vcap * sizeof(double));
     fill(s->gx0, (size_t)s->gcap * sizeof(double));
     fill(s->gy0, (size_t)s->gcap * sizeof(double));
+    fill(s->px0, (size_t)s->pcap * sizeof(double));
+    fill(s->py0, (size_t)s->pcap * sizeof(double));
+    fill(s->roll, (size_t)s->roll_cap * sizeof *s->roll);
     fill(s->lift, (size_t)s->lift_cap * sizeof *s->lift);
     fill(s->lift_start, (size_t)s->lift_cap * sizeof(uint32_t));
     fill(s->lift_order, (size_t)s->lift_cap * sizeof(uint32_t));
@@ -123,7 +128,7 @@ static void contacts_garbage(tt_world *w)
     tt__batches *B = &s->bat;
     fill(B->a, (size_t)B->cap * sizeof(uint32_t));
     fill(B->b, (size_t)B->cap * sizeof(uint32_t));
-    double *bd[] = {B->rs, B->lam, B->wa, B->wb};
+    double *bd[] = {B->rs, B->lam, B->wa, B->wb, B->pre};
     for (size_t k = 0; k < sizeof bd / sizeof bd[0]; k++) fill(bd[k], (size_t)B->cap * sizeof(double));
     fill(B->solo, B->cap / 4);
     fill(B->stamp, (size_t)B->stamp_cap * sizeof(uint32_t));
@@ -136,6 +141,14 @@ static void contacts_garbage(tt_world *w)
     fill(s->undo.sy0, (size_t)s->undo.cap * sizeof(double));
     s->guard = s->batched = s->bounded = s->undo.ends = true;
     if (c->terr) fill(c->terr->scr.buf, c->terr->scr.cap);
+}
+
+/* The spin group's scratch as garbage: the undo's copy of the angular
+ * velocities (undo_mark writes it before undo reads it). */
+static void spin_garbage(tt_world *w)
+{
+    tt__spin *sp = tt__spin_peek(w);
+    if (sp) fill(sp->undo_omega, (size_t)sp->undo_cap * sizeof(double));
 }
 
 static void world_free(tt_world *w) { tt__world_scratch_free(w); }
@@ -196,7 +209,37 @@ static void local_cluster(local *l)
     tt_world_set_collision(l->w, &cs);
 }
 
-static void (*const locals[])(local *l) = {local_terrain, local_cluster};
+/* Discs that turn (tt_world_def.spin): a row rolling down a slope onto
+ * the floor, into a pile given spin of its own. */
+static void local_roll(local *l)
+{
+    tt_world_def d = tt_world_def_default();
+    d.spin = true;
+    l->w = tt_world_create(&d);
+    l->t = (tt_terrain){0, 0};
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = cs.friction_kinetic = 0.5;
+    tt_world_set_collision(l->w, &cs);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    sd.a = (tt_vec2){-8, -1};
+    sd.b = (tt_vec2){8, 0};
+    tt_shape_create(l->w, &sd);
+    sd.type = TT_SHAPE_SEGMENT;
+    sd.a = (tt_vec2){-7, 4};
+    sd.b = (tt_vec2){-1, 0};
+    tt_shape_create(l->w, &sd);
+    tt_particle_def pd = tt_particle_def_default();
+    for (int i = 0; i < 30; i++) {
+        pd.radius = 0.2 + 0.02 * (i % 5);
+        pd.position = i < 6 ? (tt_vec2){-6.5 + 0.9 * i, 4.0 - 0.6 * i} : (tt_vec2){1.0 + 0.45 * (i % 6), 0.3 + 0.45 * (i / 6 - 1)};
+        tt_particle p = tt_particle_create(l->w, &pd);
+        if (i % 7 == 3) tt_particle_set_spin(l->w, p, i % 2 ? 6.0 : -6.0);
+    }
+}
+
+static void (*const locals[])(local *l) = {local_terrain, local_cluster, local_roll};
+static const char *const local_names[] = {"terrain", "cluster", "roll"};
 enum { LOCAL_COUNT = sizeof locals / sizeof locals[0], LOCAL_STEPS = 90 };
 
 static int twins_local(void (*lose)(tt_world *w), const char *how)
@@ -217,7 +260,7 @@ static int twins_local(void (*lose)(tt_world *w), const char *how)
             if (tt_world_hash(kept.w) != tt_world_hash(lost.w) ||
                 scene_positions_digest(kept.w) != scene_positions_digest(lost.w)) {
                 tt_test_fail(__FILE__, __LINE__, "world %s, scratch %s: differs after step %d",
-                             k ? "cluster" : "terrain", how, s + 1);
+                             local_names[k], how, s + 1);
                 bad++;
             }
         }
@@ -270,6 +313,20 @@ TEST(a_sleeping_group_whose_undo_copies_are_garbage_between_steps_steps_the_same
     ENSURE(twins(sleep_garbage, "of sleeping, garbage") == 0);
 }
 
+TEST(a_spin_group_whose_undo_copy_is_garbage_or_freed_between_steps_steps_the_same)
+{
+    ENSURE(twins(spin_garbage, "of spin, garbage") == 0);
+    /* world_free gives the copy back (the group's scratch_free hook) */
+    local l;
+    local_roll(&l);
+    tt_world_step(l.w, 1.0 / 60);
+    const tt__spin *sp = tt__spin_peek(l.w);
+    ENSURE(sp && sp->undo_cap > 0);
+    world_free(l.w);
+    ENSURE(sp->undo_omega == NULL && sp->undo_cap == 0);
+    tt_world_destroy(l.w);
+}
+
 TEST(a_constraint_group_whose_scratch_and_lambdas_are_garbage_between_steps_steps_the_same)
 {
     ENSURE(twins(constraints_garbage, "of the constraints, garbage") == 0);
@@ -279,10 +336,11 @@ TEST(a_constraint_group_whose_scratch_and_lambdas_are_garbage_between_steps_step
  * and onto them (pile), more contacts than any step made room for: the
  * step after wakes the row in its first substep (sleeping takes its undo
  * copies) and grows the contacts' arrays inside. */
-static tt_world *row(void)
+static tt_world *row(bool spin)
 {
     tt_world_def d = tt_world_def_default();
     d.sleep_time = 0.2;
+    d.spin = spin; /* the grains' friction turns them inside the step */
     tt_world *w = tt_world_create(&d);
     tt_collision_settings cs = tt_collision_settings_default();
     tt_world_set_collision(w, &cs);
@@ -316,12 +374,12 @@ static void pile(tt_world *w)
  * was, and retried, the world goes on as its twin that kept its scratch and
  * never ran out. Returns the failures; *inside: the steps that failed
  * inside (not in a reserve before it). */
-static int refused_after_loss(void (*lose)(tt_world *w), const char *how, int *inside)
+static int refused_after_loss(void (*lose)(tt_world *w), const char *how, bool spin, int *inside)
 {
     int bad = 0;
     bool refused = true;
     for (long n = 0; refused && !bad; n++) {
-        tt_world *kept = row(), *lost = row();
+        tt_world *kept = row(spin), *lost = row(spin);
         tt_stats st = {0};
         for (int s = 0; s < 600 && st.sleeping < 16; s++) {
             lose(lost);
@@ -360,7 +418,9 @@ static int refused_after_loss(void (*lose)(tt_world *w), const char *how, int *i
 TEST(a_step_out_of_memory_after_its_scratch_was_lost_is_put_back_as_it_began)
 {
     int inside = 0;
-    ENSURE(refused_after_loss(world_free, "freed", &inside) == 0);
-    ENSURE(refused_after_loss(sleep_garbage, "of sleeping, garbage", &inside) == 0);
+    ENSURE(refused_after_loss(world_free, "freed", false, &inside) == 0);
+    ENSURE(refused_after_loss(sleep_garbage, "of sleeping, garbage", false, &inside) == 0);
+    ENSURE(refused_after_loss(world_free, "freed, turning", true, &inside) == 0);
+    ENSURE(refused_after_loss(spin_garbage, "of spin, garbage", true, &inside) == 0);
     ENSURE(inside >= 2); /* the case: refused inside the step, after the waking */
 }

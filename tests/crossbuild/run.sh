@@ -1,6 +1,6 @@
 #!/bin/sh
 # tests/crossbuild/run.sh — cross-build determinism: the engine and
-# tests/crossbuild/scene_hashes.c (the four reference scenes of
+# tests/crossbuild/scene_hashes.c (the reference scenes of
 # tests/core/scenes.c, 600 steps each) built with gcc -O0 and with clang -O2
 # must print the same hashes as the engine `make` built (gcc -O2: its
 # build/libtether.a; with SANITIZE=1, whose engine is instrumented, the same
