@@ -156,11 +156,17 @@ static inline bool filter(const tt_world *w, const tt__terrain *T, uint32_t a)
     return (w->category[a] & T->def.mask) && (T->def.category & w->mask[a]);
 }
 
-bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
+bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n, bool grid_built)
 {
     const tt__terrains *ts = c->terr;
+    /* the grid's cells no terrain's surface reaches (terrain_tiles.c; the shapes are done with near) */
+    const tt__grid *g = &c->scr.grid;
+    const uint8_t *near = grid_built && tt__terrain_near_cells(ts, g, c->scr.near, c->scr.near_cap) ? c->scr.near : NULL;
+    const uint32_t *cell = g->cell; /* locals: the calls below could change any field */
+    const double *im = w->inv_mass;
     for (uint32_t i = 0; i < n; i++) {
-        if (w->inv_mass[i] == 0.0) continue;
+        if (im[i] == 0.0) continue;
+        if (near && !(cell[i] >> 31) && !near[cell[i]]) continue; /* inside the grid, in a far cell */
         const double x = w->px[i], y = w->py[i], r = w->radius[i], m = r * TT__CONTACT_MARGIN, reach = r + m;
         for (uint32_t k = 0; k < ts->pool.count; k++) {
             const tt__terrain *T = &ts->t[k];
