@@ -41,11 +41,13 @@ static double bilinear(const tt__terrain *T, double u, double v)
     return (s00 * (1.0 - a) + s10 * a) * (1.0 - b) + (s01 * (1.0 - a) + s11 * a) * b;
 }
 
-/* The same away from the border: every pixel it reads is inside. */
+/* The same away from the border: every pixel it reads is inside, and u,
+ * v ≥ 1, where truncation is ffloor's floor (the same double). */
 static inline double bilinear_in(const tt__terrain *T, double u, double v)
 {
-    const double fu = ffloor(u), fv = ffloor(v), a = u - fu, b = v - fv;
-    const float *p = T->sdf + (size_t)fv * (size_t)T->m->w + (size_t)fu, *q = p + T->m->w;
+    const int32_t iu = (int32_t)u, iv = (int32_t)v;
+    const double fu = (double)iu, fv = (double)iv, a = u - fu, b = v - fv;
+    const float *p = T->sdf + (size_t)iv * (size_t)T->m->w + (size_t)iu, *q = p + T->m->w;
     const double s00 = p[0], s10 = p[1], s01 = q[0], s11 = q[1];
     return (s00 * (1.0 - a) + s10 * a) * (1.0 - b) + (s01 * (1.0 - a) + s11 * a) * b;
 }
