@@ -22,22 +22,44 @@
 
 static inline int mini(int a, int b) { return a < b ? a : b; }
 
+typedef float f32v __attribute__((vector_size(16)));
+typedef int32_t i32v __attribute__((vector_size(16)));
+
+/* The least of the n floats at p (min is exact in any order). */
+static inline float least(const float *p, int n)
+{
+    float m = INFINITY;
+    int k = 0;
+    if (n == TT__TILE) { /* a whole tile row: four floats at a time */
+        f32v v;
+        memcpy(&v, p, sizeof v);
+        for (k = 4; k < TT__TILE; k += 4) {
+            f32v q;
+            memcpy(&q, p + k, sizeof q);
+            const i32v lt = q < v;
+            v = (f32v)(((i32v)q & lt) | ((i32v)v & ~lt));
+        }
+        for (int j = 0; j < 4; j++) m = v[j] < m ? v[j] : m;
+    }
+    for (; k < n; k++) m = p[k] < m ? p[k] : m;
+    return m;
+}
+
 void tt__terrain_tiles_update(tt__terrain *T, int x0, int y0, int x1, int y1)
 {
     const int w = T->m->w, h = T->m->h;
     const int tx0 = x0 >> TT__TILE_SHIFT, tx1 = x1 >> TT__TILE_SHIFT;
     const int ty0 = y0 >> TT__TILE_SHIFT, ty1 = y1 >> TT__TILE_SHIFT;
-    const int px0 = tx0 << TT__TILE_SHIFT, px1 = mini((tx1 + 1) << TT__TILE_SHIFT, w); /* whole tiles */
     for (int ty = ty0; ty <= ty1; ty++) {
         float *tile = T->tile + (size_t)ty * (size_t)T->tw;
         for (int tx = tx0; tx <= tx1; tx++) tile[tx] = INFINITY;
         const int ya = ty << TT__TILE_SHIFT, yb = mini(ya + TT__TILE, h);
         for (int y = ya; y < yb; y++) {
             const float *row = T->sdf + (size_t)y * (size_t)w;
-            for (int x = px0; x < px1; x += TT__TILE) {
-                float m = tile[x >> TT__TILE_SHIFT];
-                for (int k = x; k < mini(x + TT__TILE, px1); k++) m = row[k] < m ? row[k] : m;
-                tile[x >> TT__TILE_SHIFT] = m;
+            for (int tx = tx0; tx <= tx1; tx++) { /* whole tiles */
+                const int xa = tx << TT__TILE_SHIFT;
+                const float m = least(row + xa, mini(xa + TT__TILE, w) - xa);
+                tile[tx] = m < tile[tx] ? m : tile[tx];
             }
         }
     }
