@@ -241,7 +241,8 @@ typedef struct tt__collide_scratch {
     uint32_t npairs, paircap;
     uint32_t *runs;       /* the grid's pairs by row and band of columns: row y, band k from runs[y·TT__PARTS + k] */
     uint32_t runs_cap, nrows; /* nrows: rows in runs (0: none) */
-    uint8_t *near;        /* per particle-grid cell: a static primitive is within reach (this substep) */
+    uint8_t *near;        /* per particle-grid cell: a static primitive is within reach (this substep; then, the
+                           * shapes done, a terrain surface: terrain_tiles.c) */
     uint32_t near_cap;
     tt__batches bat;
     bool batched;         /* this substep's pairs are solved from bat */

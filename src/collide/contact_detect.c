@@ -113,7 +113,7 @@ bool tt__contacts_reserve(tt_world *w, void *self)
     if (pairs && c->set.broadphase == TT_BROADPHASE_GRID) {
         if (!tt__grid_reserve(&c->scr.grid, n)) return false;
         const uint32_t cells = tt__grid_max_cells(n);
-        if (c->nprim && cells > c->scr.near_cap) {
+        if ((c->nprim || c->terr) && cells > c->scr.near_cap) { /* the shapes' near cells, then the terrains' */
             uint8_t *p = realloc(c->scr.near, cells);
             if (!p) return false;
             c->scr.near = p;
@@ -281,7 +281,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
-    if (c->terr && !tt__terrain_detect(w, c, n)) tt__step_oom(w, "terrain contacts");
+    if (c->terr && !tt__terrain_detect(w, c, n, grid_built)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);
     if (c->scr.npairs) tt__contacts_prestab(w, c, n);
     c->quiet_last = c->scr.npairs == 0 && c->scr.nsc == 0;

@@ -22,12 +22,27 @@ void tt__terrain_place(tt__terrain *T)
     T->loy = T->def.origin.y - T->m->h * s;
 }
 
+bool tt__terrain_alloc(tt__terrain *T)
+{
+    const size_t w = (size_t)T->m->w, h = (size_t)T->m->h;
+    T->tw = (int)((w + TT__TILE - 1) >> TT__TILE_SHIFT);
+    T->th = (int)((h + TT__TILE - 1) >> TT__TILE_SHIFT);
+    T->sdf = malloc(w * h * sizeof *T->sdf);
+    T->tile = malloc((size_t)T->tw * (size_t)T->th * sizeof *T->tile);
+    if (T->sdf && T->tile) return true;
+    free(T->sdf);
+    free(T->tile);
+    T->sdf = T->tile = NULL;
+    return false;
+}
+
 void tt__terrain_free_one(tt__terrain *T)
 {
     tt_mask_destroy(T->m);
     free(T->sdf);
+    free(T->tile);
     T->m = NULL;
-    T->sdf = NULL;
+    T->sdf = T->tile = NULL;
     T->alive = false;
 }
 
@@ -48,7 +63,9 @@ size_t tt__terrains_bytes(const tt__terrains *ts)
     size_t b = sizeof *ts + tt__pool_bytes(&ts->pool) + (size_t)ts->cap * sizeof *ts->t + ts->scr.cap;
     for (uint32_t i = 0; i < ts->pool.count; i++) {
         const tt__terrain *T = &ts->t[i];
-        if (T->alive) b += tt_mask_footprint(T->m->w, T->m->h) + (size_t)T->m->w * (size_t)T->m->h * sizeof(float);
+        if (T->alive)
+            b += tt_mask_footprint(T->m->w, T->m->h) + (size_t)T->m->w * (size_t)T->m->h * sizeof(float) +
+                 (size_t)T->tw * (size_t)T->th * sizeof(float);
     }
     return b;
 }

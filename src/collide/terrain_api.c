@@ -40,10 +40,9 @@ static bool build(tt__terrains *ts, tt__terrain *T, const tt_terrain_def *def)
     memset(T, 0, sizeof *T);
     T->m = tt_mask_copy(def->solid);
     if (!T->m) return false;
-    T->sdf = malloc((size_t)T->m->w * (size_t)T->m->h * sizeof *T->sdf);
     T->def = *def;
     T->def.solid = NULL;
-    if (!T->sdf || !tt__terrain_update(ts, T, 0, 0, T->m->w - 1, T->m->h - 1)) {
+    if (!tt__terrain_alloc(T) || !tt__terrain_update(ts, T, 0, 0, T->m->w - 1, T->m->h - 1)) {
         tt__terrain_free_one(T);
         return false;
     }

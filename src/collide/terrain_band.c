@@ -440,5 +440,6 @@ bool tt__terrain_update(tt__terrains *ts, tt__terrain *T, int x0, int y0, int x1
         across(&g, s.raw, s.hs + (size_t)(y - g.E.y0) * (size_t)hs_width(&g.W));
     }
     down(T, &g, &s);
+    tt__terrain_tiles_update(T, g.W.x0, g.W.y0, g.W.x0 + g.W.w - 1, g.W.y0 + g.W.h - 1);
     return true;
 }

@@ -41,11 +41,13 @@ static double bilinear(const tt__terrain *T, double u, double v)
     return (s00 * (1.0 - a) + s10 * a) * (1.0 - b) + (s01 * (1.0 - a) + s11 * a) * b;
 }
 
-/* The same away from the border: every pixel it reads is inside. */
+/* The same away from the border: every pixel it reads is inside, and u,
+ * v ≥ 1, where truncation is ffloor's floor (the same double). */
 static inline double bilinear_in(const tt__terrain *T, double u, double v)
 {
-    const double fu = ffloor(u), fv = ffloor(v), a = u - fu, b = v - fv;
-    const float *p = T->sdf + (size_t)fv * (size_t)T->m->w + (size_t)fu, *q = p + T->m->w;
+    const int32_t iu = (int32_t)u, iv = (int32_t)v;
+    const double fu = (double)iu, fv = (double)iv, a = u - fu, b = v - fv;
+    const float *p = T->sdf + (size_t)iv * (size_t)T->m->w + (size_t)iu, *q = p + T->m->w;
     const double s00 = p[0], s10 = p[1], s01 = q[0], s11 = q[1];
     return (s00 * (1.0 - a) + s10 * a) * (1.0 - b) + (s01 * (1.0 - a) + s11 * a) * b;
 }
@@ -156,11 +158,17 @@ static inline bool filter(const tt_world *w, const tt__terrain *T, uint32_t a)
     return (w->category[a] & T->def.mask) && (T->def.category & w->mask[a]);
 }
 
-bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n)
+bool tt__terrain_detect(tt_world *w, tt__collide *c, uint32_t n, bool grid_built)
 {
     const tt__terrains *ts = c->terr;
+    /* the grid's cells no terrain's surface reaches (terrain_tiles.c; the shapes are done with near) */
+    const tt__grid *g = &c->scr.grid;
+    const uint8_t *near = grid_built && tt__terrain_near_cells(ts, g, c->scr.near, c->scr.near_cap) ? c->scr.near : NULL;
+    const uint32_t *cell = g->cell; /* locals: the calls below could change any field */
+    const double *im = w->inv_mass;
     for (uint32_t i = 0; i < n; i++) {
-        if (w->inv_mass[i] == 0.0) continue;
+        if (im[i] == 0.0) continue;
+        if (near && !(cell[i] >> 31) && !near[cell[i]]) continue; /* inside the grid, in a far cell */
         const double x = w->px[i], y = w->py[i], r = w->radius[i], m = r * TT__CONTACT_MARGIN, reach = r + m;
         for (uint32_t k = 0; k < ts->pool.count; k++) {
             const tt__terrain *T = &ts->t[k];

@@ -3,7 +3,7 @@
  * a terrain, so a world without terrains writes (and hashes) what it always
  * did, and a stream written before terrains existed still loads. Each live
  * terrain writes its settings and its pixels, row words as the mask holds
- * them; the distance band is derived and rebuilt on load. Then the terrain
+ * them; the distance band and its tile map are derived and rebuilt on load. Then the terrain
  * of each of the last step's contact records and events (the event record
  * the contacts section writes has no field for it, and other worlds'
  * streams stay as they were). */
@@ -90,8 +90,7 @@ static bool load_one(tt__terrains *ts, tt__terrain *T, tt__source *s)
         }
     T->m = m;
     T->def = d;
-    T->sdf = malloc((size_t)w * (size_t)h * sizeof *T->sdf);
-    if (!T->sdf || !tt__terrain_update(ts, T, 0, 0, (int)w - 1, (int)h - 1)) {
+    if (!tt__terrain_alloc(T) || !tt__terrain_update(ts, T, 0, 0, (int)w - 1, (int)h - 1)) {
         tt__terrain_free_one(T);
         return tt__src_fail(s, "out of memory");
     }
