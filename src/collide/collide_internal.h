@@ -333,6 +333,9 @@ tt__collide *tt__collide_get(tt_world *w, bool create, const char *fn);
 /* The velocity pass's last part: touched pairs bottom-up along gravity, the
  * upper particle's speed away cut to what the pair allows (contact_lift.c). */
 void tt__contacts_lift(tt_world *w, tt__collide *c, double thr);
+/* Then each particle in a touched pair slowed to the largest pre-sweep speed
+ * of itself and its touched partners (contact_cap.c). */
+void tt__contacts_cap(tt_world *w, tt__collide *c);
 
 /* Moves particle i by (dx, dy) after the sweeps, its velocity with it. */
 static inline void tt__contact_shift(tt_world *w, uint32_t i, double dx, double dy, double h)

@@ -460,6 +460,7 @@ void tt__contacts_end(tt_world *w, void *self, double h)
     for (uint32_t k = 0; k < c->scr.nsc; k++)
         if ((c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) && inv[c->scr.sc[k].a] != 0.0) shape_end(w, c, &c->scr.sc[k], h, thr, events, sp);
     if (c->set.particles) tt__contacts_lift(w, c, thr);
+    if (c->set.particles) tt__contacts_cap(w, c);
     if (sp) tt__roll_solve(w, c, sp, h);
     /* kept only where the substep detects: then reserve made the arrays, whatever earlier steps did
      * (one whose shapes are gone since still has them; a world loaded from its stream has not) */

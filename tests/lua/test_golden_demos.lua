@@ -8,7 +8,10 @@
 -- every hash (the hash covers the sleep section) and no position: nothing
 -- falls asleep within 120 steps. Pre-stabilisation of overlaps deeper than
 -- a tenth of the radii sum (issue 21) moved galton, soft_bodies and worms,
--- whose particles spawn into or fall deep into one another.
+-- whose particles spawn into or fall deep into one another. The speed cap
+-- after the velocity pass (issue 21, contact_cap.c: no particle leaves its
+-- pair contacts faster than the fastest of them came in) moved hourglass,
+-- ragdoll and soft_bodies, whose particles pile and press on one another.
 package.path = "tests/lua/?.lua;" .. package.path
 local T = require "harness"
 local tether = require "tether"
@@ -18,11 +21,11 @@ local golden = {
   cloth = { "bf95991b563e9272", "17b1be29ba168053" },
   fountain = { "6f5670ad6bc772f6", "181d7a5bfefe0b93" },
   galton = { "f87c0e38649ae15d", "d3927e3c96a7c4a5" },
-  hourglass = { "c09cda5bf493f092", "5e5ce95d193b2365" },
+  hourglass = { "654a2585bdea45e0", "880a4ac94be63252" },
   integrators = { "72823523ba511575", "907fa03faf3a4ea8,6aefcf4387fb943d,3a77a03f8416e11a,03f8de91ff143e0a,940845eed665b8bd" },
-  ragdoll = { "218a40738c049b9c", "48bea21ee9774eb6" },
+  ragdoll = { "1f6eff9f9b774ef4", "e5eeb3ca4727c7b1" },
   rope_bridge = { "73fa3817e5c476a7", "708d26468e5d1e8a" },
-  soft_bodies = { "8c76eff4ea000bf1", "7aacfdd2034136bc" },
+  soft_bodies = { "ec279600d165358c", "37d67ba771d7e1d4" },
   spring_net = { "2a61a51d9d763317", "ccf0073c874ba751" },
   terrain = { "06cc662cfae0adc4", "e1de2dd209df9241" },
   worms = { "a7fcec207a6ecc1b", "192963f28d766563" },
