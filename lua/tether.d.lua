@@ -763,6 +763,7 @@ function world:composite_count() end
 ---@field friction_static? number
 ---@field friction_kinetic? number
 ---@field restitution_threshold? number m/s
+---@field stacking? number mass scaling by height for piles, ≥ 0 (0 = off; 2 for deep piles)
 ---@field events? ("begin"|"persist"|"end")[]
 
 ---@class tether.ray_hit

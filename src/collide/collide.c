@@ -24,6 +24,7 @@ tt_result tt_world_set_collision(tt_world *w, const tt_collision_settings *s)
     if (!tt__in_range(s->friction_kinetic, 0.0, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: friction_kinetic must be in [0, %g], got %g", fn, TT_MAX_VALUE, s->friction_kinetic);
     if (!tt__in_range(s->restitution_threshold, -TT_MAX_VALUE, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: restitution_threshold must be finite (< 0 = auto)", fn);
     if (s->events & ~7u) return tt__fail(w, TT_EINVAL, "%s: events must be a set of TT_EVENT_BEGIN|PERSIST|END, got 0x%x", fn, s->events);
+    if (!tt__in_range(s->stacking, 0.0, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: stacking must be in [0, %g], got %g", fn, TT_MAX_VALUE, s->stacking);
     tt__collide *c = tt__collide_get(w, true, fn);
     if (!c) return TT_ENOMEM;
     c->set = *s;

@@ -116,6 +116,8 @@ typedef struct tt__batches {
     double *rs, *lam;     /* radii sum; normal correction accumulated this substep, m */
     double *pre;          /* radii sum less the pre-stabilisation slop (TT__PRESTAB_SLOP) */
     double *wa, *wb;      /* inverse masses of a and b (0: padding), beside the entry the sweeps read them with */
+    double *sa, *sb;      /* stacking's weights of a and b (tt__batches_stack) */
+    const double *ka, *kb; /* the weights the sweeps use: wa, wb, or sa, sb with stacking */
     uint32_t n, cap;      /* entries (a multiple of 4), room */
     uint8_t *solo;        /* per batch: its lanes share a particle, so they go one by one */
     uint32_t *stamp;      /* planner: per particle slot, the last batch (+ mark) naming it */
@@ -138,6 +140,10 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
 /* Batches [t0, t1) of a Gauss-Seidel sweep on positions L (in vector
  * lanes on the solver's rows, st = 4); returns the deepest overlap seen. */
 double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1);
+/* Stacking (tt_collision_settings.stacking = k): the weights ka, kb the sweeps and the velocity
+ * pass use, the lower particle of each entry 1 + k·u times heavier, u its height under the upper
+ * one over the radii sum (px, py the positions, g the gravity); k = 0: wa, wb as they are. */
+void tt__batches_stack(tt__batches *B, const double *px, const double *py, tt_vec2 g, double k);
 /* The batches' sweep runs in vector lanes when the solver packs rows. */
 bool tt__batches_want_rows(const tt__batches *B);
 /* What the velocity pass of a batch reads besides the world. */

@@ -33,8 +33,8 @@ static bool reserve(tt__batches *B, uint32_t n)
     if (n <= B->cap) return true;
     uint32_t cap = B->cap ? B->cap : 1024;
     while (cap < n) cap = cap > UINT32_MAX / 2 ? n : cap * 2;
-    /* one block: rs, lam, wa, wb, pre (doubles), then a and b, then solo */
-    double *p = malloc((size_t)cap * (5 * sizeof(double) + 2 * sizeof(uint32_t)) + cap / 4);
+    /* one block: rs, lam, wa, wb, pre, sa, sb (doubles), then a and b, then solo */
+    double *p = malloc((size_t)cap * (7 * sizeof(double) + 2 * sizeof(uint32_t)) + cap / 4);
     if (!p) return false;
     free(B->rs);
     B->rs = p;
@@ -42,7 +42,9 @@ static bool reserve(tt__batches *B, uint32_t n)
     B->wa = p + 2 * (size_t)cap;
     B->wb = p + 3 * (size_t)cap;
     B->pre = p + 4 * (size_t)cap;
-    B->a = (uint32_t *)(p + 5 * (size_t)cap);
+    B->sa = p + 5 * (size_t)cap;
+    B->sb = p + 6 * (size_t)cap;
+    B->a = (uint32_t *)(p + 7 * (size_t)cap);
     B->b = B->a + cap;
     B->solo = (uint8_t *)(B->b + cap);
     B->cap = cap;
@@ -131,7 +133,49 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
     }
     B->mark += nb;
     B->n = 4 * nb;
+    B->ka = B->wa;
+    B->kb = B->wb;
     return true;
+}
+
+/* Stacking (tt_collision_settings.stacking): mass scaling by height
+ * (Müller, Heidelberger, Hennix and Ratcliff 2007, "Position based
+ * dynamics", on stacking; Macklin, Müller, Chentanez and Kim 2014,
+ * "Unified particle physics for real-time applications", section 5.2).
+ * Gauss-Seidel sweeps split each pair's push by inverse mass, so in a pile
+ * the weight of every layer above is pushed down as much as up, and a few
+ * sweeps leave a deep pile sunk into itself (the reference pour at 1 × 8:
+ * 17 % of a radius at rest). Here the lower particle of each entry weighs
+ * 1 + k·u times its mass, u the height of the upper over the lower along
+ * −g as a share of the radii sum (0 side by side, 1 one on top of the
+ * other), for the sweeps and the pair's velocity pass alike (the same
+ * weights in both, else the pass hands the upper's push back as speed).
+ * The weights are this entry's, from the positions after
+ * pre-stabilisation, fixed for the substep; scalar code and the lanes read
+ * the same ka, kb, so the bits are the same. Not momentum-conserving between
+ * the two (the lower one is heavier for this pair only), as in the papers. */
+void tt__batches_stack(tt__batches *B, const double *px, const double *py, tt_vec2 g, double k)
+{
+    B->ka = B->wa;
+    B->kb = B->wb;
+    const double gl = sqrt(g.x * g.x + g.y * g.y);
+    if (!(k > 0.0) || !(gl > 0.0) || B->n == 0) return; /* off, or no up */
+    const double ux = -g.x / gl, uy = -g.y / gl;
+    for (uint32_t e = 0; e < B->n; e++) {
+        double sa = B->wa[e], sb = B->wb[e];
+        const uint32_t a = B->a[e], b = B->b[e];
+        if (a < B->np && B->rs[e] > 0.0) {
+            const double u = ((px[b] - px[a]) * ux + (py[b] - py[a]) * uy) / B->rs[e]; /* b's height over a's */
+            const double v = u < 0.0 ? (u < -1.0 ? 1.0 : -u) : (u > 1.0 ? 1.0 : u);
+            const double s = 1.0 / (1.0 + k * v);
+            if (u > 0.0) sa *= s;
+            else sb *= s;
+        }
+        B->sa[e] = sa;
+        B->sb[e] = sb;
+    }
+    B->ka = B->sa;
+    B->kb = B->sb;
 }
 
 void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny)
@@ -147,7 +191,7 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
 {
     for (uint32_t k = k0; k < k1; k++) {
         const size_t a = B->a[k] * st, b = B->b[k] * st;
-        const double ia = B->wa[k], ib = B->wb[k], ws = ia + ib, rs = B->rs[k];
+        const double ia = B->ka[k], ib = B->kb[k], ws = ia + ib, rs = B->rs[k];
         if (ws == 0.0) continue; /* padding too */
         double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
         if (!tt__pair_push(B->a[k], B->b[k], rs, ws, &dx, &dy, &pen, &t)) continue;
@@ -177,7 +221,7 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
     const __m256d d02 = _mm256_sub_pd(pa02, pb02), d13 = _mm256_sub_pd(pa13, pb13); /* dx0 dy0 dx2 dy2 */
     const __m256d q02 = _mm256_mul_pd(d02, d02), q13 = _mm256_mul_pd(d13, d13);
     const __m256d d2 = _mm256_add_pd(_mm256_unpacklo_pd(q02, q13), _mm256_unpackhi_pd(q02, q13)); /* lanes 0 1 2 3 */
-    const __m256d wa = _mm256_loadu_pd(B->wa + k), wb = _mm256_loadu_pd(B->wb + k);
+    const __m256d wa = _mm256_loadu_pd(B->ka + k), wb = _mm256_loadu_pd(B->kb + k);
     const __m256d ws = _mm256_add_pd(wa, wb), rs = _mm256_loadu_pd(B->rs + k);
     const __m256d act = _mm256_and_pd(_mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(d2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ));
     /* no early exit when no lane is in contact: in a pile that branch is a coin toss, and a
@@ -267,7 +311,7 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const uint32_t *A = B->a + k, *Bb = B->b + k;
     const __m256d pa02 = tt__xy_load2(xy, A[0], A[2]), pa13 = tt__xy_load2(xy, A[1], A[3]);
     const __m256d pb02 = tt__xy_load2(xy, Bb[0], Bb[2]), pb13 = tt__xy_load2(xy, Bb[1], Bb[3]);
-    const __m256d ia = _mm256_loadu_pd(B->wa + k), ib = _mm256_loadu_pd(B->wb + k), ws = _mm256_add_pd(ia, ib);
+    const __m256d ia = _mm256_loadu_pd(B->ka + k), ib = _mm256_loadu_pd(B->kb + k), ws = _mm256_add_pd(ia, ib);
     const __m256d act = _mm256_and_pd(live, _mm256_cmp_pd(ws, zero, _CMP_NEQ_UQ));
     const int m = _mm256_movemask_pd(act);
     if (!m) return true;
@@ -419,6 +463,6 @@ void tt__batches_free(tt__batches *B)
 
 size_t tt__batches_bytes(const tt__batches *B)
 {
-    return (size_t)B->cap * (5 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
+    return (size_t)B->cap * (7 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
            ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double);
 }

@@ -284,6 +284,8 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->terr && !tt__terrain_detect(w, c, n, grid_built)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);
     if (c->scr.npairs) tt__contacts_prestab(w, c, n);
+    /* stacking weighs the sweeps' and the velocity pass's pairs, not pre-stabilisation's (contact_batch.c) */
+    if (c->scr.batched) tt__batches_stack(&c->scr.bat, w->px, w->py, w->gravity, c->set.stacking);
     c->quiet_last = c->scr.npairs == 0 && c->scr.nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->scr.npairs > c->pair_peak) c->pair_peak = c->scr.npairs;

@@ -274,11 +274,10 @@ static inline __attribute__((always_inline)) void respond(double vx, double vy, 
 
 /* Velocity pass of a pair that touched this substep; the normal (b to a)
  * from where the sweeps left the pair. */
-static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b, double lam, double h, double thr,
-                            bool events, tt__spin *sp)
+static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b, double ia, double ib, double lam, double h,
+                            double thr, bool events, tt__spin *sp)
 {
-    const double *inv = w->inv_mass;
-    double ia = inv[a], ib = inv[b], ws = ia + ib;
+    double ws = ia + ib;
     if (ws == 0.0) return;
     const double iws = 1.0 / ws, wa = ia * iws, wb = ib * iws;
     double nx = w->px[a] - w->px[b], ny = w->py[a] - w->py[b], d2 = nx * nx + ny * ny;
@@ -314,7 +313,7 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
         tt__roll_add(c, &(tt__roll_contact){a, b, nx, ny, 0.0, 0.0, wa, wb, mus, muk, fmax(dvn, lam / h), 0.0});
     if (events)
         tt__record_contact(w, c, tt__pair_key(a, b), a < b ? a : b, a < b ? b : a, UINT32_MAX, false, a < b ? nx : -nx,
-                           a < b ? ny : -ny, dvn / ws);
+                           a < b ? ny : -ny, dvn / (w->inv_mass[a] + w->inv_mass[b]));
 }
 
 typedef struct pair_ctx {
@@ -328,7 +327,8 @@ typedef struct pair_ctx {
 static void pair_one(void *ctx, uint32_t k)
 {
     pair_ctx *p = ctx;
-    pair_end(p->w, p->c, p->c->scr.bat.a[k], p->c->scr.bat.b[k], p->c->scr.bat.lam[k], p->h, p->thr, false, p->sp);
+    const tt__batches *B = &p->c->scr.bat;
+    pair_end(p->w, p->c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], p->h, p->thr, false, p->sp);
 }
 
 /* A bounce off a still surface, placed in time. The velocity pass alone
@@ -452,10 +452,13 @@ void tt__contacts_end(tt_world *w, void *self, double h)
         pair_ctx pc = {w, c, h, thr, sp};
         if (!(w->integrator == TT_VERLET && !c->mat && !events && !sp && tt__batches_respond(w, B, &in, pair_one, &pc)))
             for (uint32_t k = 0; k < B->n; k++)
-                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], B->lam[k], h, thr, events, sp);
+                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp);
     } else {
         for (uint32_t k = 0; k < c->scr.npairs; k++)
-            if (c->scr.pairs[k].lambda > 0.0f) pair_end(w, c, c->scr.pairs[k].a, c->scr.pairs[k].b, c->scr.pairs[k].lambda, h, thr, events, sp);
+            if (c->scr.pairs[k].lambda > 0.0f) {
+                const uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
+                pair_end(w, c, a, b, inv[a], inv[b], c->scr.pairs[k].lambda, h, thr, events, sp);
+            }
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)
         if ((c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) && inv[c->scr.sc[k].a] != 0.0) shape_end(w, c, &c->scr.sc[k], h, thr, events, sp);

@@ -52,7 +52,7 @@ static bool idle(const tt_world *w, const void *self)
     return !s->particles && s->broadphase == d.broadphase && s->cell_size == d.cell_size &&
            s->restitution == d.restitution && s->friction_static == d.friction_static &&
            s->friction_kinetic == d.friction_kinetic && s->restitution_threshold == d.restitution_threshold &&
-           s->events == d.events && c->spool.count == 0 && c->excl.used == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
+           s->events == d.events && s->stacking == d.stacking && c->spool.count == 0 && c->excl.used == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
            c->nevents == 0 && !c->terr;
 }
 
@@ -277,6 +277,10 @@ void tt__contacts_save(const tt_world *w, const void *self, tt__sink *s)
     tt__put_u32(s, c->nevents);
     for (uint32_t k = 0; k < c->nevents; k++) put_event(s, &c->events[k]);
     if (c->terr) tt__terrains_save(c, s); /* last, only when there are terrains: other worlds' streams are unchanged */
+    if (set->stacking != 0.0) { /* after them, only when on: likewise */
+        tt__put_u32(s, TT__ID('S', 'T', 'A', 'K'));
+        tt__put_f64(s, set->stacking);
+    }
 }
 
 /* A record (record: its kind is not set yet, 0) or a published event. */
@@ -444,6 +448,27 @@ static bool no_terrain_records(const tt__collide *c, tt__source *s)
     return true;
 }
 
+/* What may follow the records, each only when there is one: the terrains,
+ * then the stacking setting (a stream of a world without either is the
+ * same as before they existed). */
+static bool load_tail(tt_world *w, tt__collide *c, tt__source *s)
+{
+    bool terrains = false;
+    if (s->at < s->len && s->len - s->at >= 4) {
+        const size_t at = s->at;
+        const bool terr = tt__get_u32(s) == TT__ID('T', 'E', 'R', 'R');
+        s->at = at;
+        if (terr && !(terrains = tt__terrains_load(w, c, s))) return false;
+    }
+    if (!terrains && !no_terrain_records(c, s)) return false;
+    if (s->at < s->len) {
+        if (tt__get_u32(s) != TT__ID('S', 'T', 'A', 'K')) return tt__src_fail(s, "collisions: unknown section");
+        c->set.stacking = tt__get_num(s, 0.0, TT_MAX_VALUE, "stacking");
+        if (!s->failed && c->set.stacking == 0.0) return tt__src_fail(s, "stacking 0 written out");
+    }
+    return !s->failed && s->at == s->len;
+}
+
 void *tt__contacts_load(tt_world *w, tt__source *s)
 {
     tt__collide *c = calloc(1, sizeof *c);
@@ -463,8 +488,7 @@ void *tt__contacts_load(tt_world *w, tt__source *s)
     if (!s->failed && ((unsigned)set->broadphase > TT_BROADPHASE_BRUTE || set->events > 7 ||
                        (set->restitution_threshold < 0 && set->restitution_threshold != -1.0)))
         tt__src_fail(s, "collision settings");
-    if (!s->failed && load_shapes(w, c, s) && load_particle_data(w, c, s) && load_records(w, c, s) &&
-        (s->at == s->len ? no_terrain_records(c, s) : tt__terrains_load(w, c, s)))
+    if (!s->failed && load_shapes(w, c, s) && load_particle_data(w, c, s) && load_records(w, c, s) && load_tail(w, c, s))
         return c;
     tt__src_fail(s, "collisions");
     tt__contacts_destroy(w, c);

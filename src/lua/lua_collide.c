@@ -266,6 +266,7 @@ static const tl_opt collision_opts[] = {
     TL_OPT_NUM(tt_collision_settings, "cell_size", cell_size, &TL_R_NONNEG),
     TL_SURFACE_OPTS(tt_collision_settings, ),
     TL_OPT_NUM(tt_collision_settings, "restitution_threshold", restitution_threshold, &TL_R_NONNEG),
+    TL_OPT_NUM(tt_collision_settings, "stacking", stacking, &TL_R_NONNEG),
     TL_OPT_BYHAND("events"),
     TL_OPT_END,
 };
@@ -309,7 +310,7 @@ static int w_collision(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     tt_collision_settings s;
     tl_check_result(L, w, tt_world_get_collision(w, &s));
-    lua_createtable(L, 0, 9);
+    lua_createtable(L, 0, 10);
     lua_pushboolean(L, s.particles); lua_setfield(L, -2, "particles");
     lua_pushstring(L, broadphases[s.broadphase == TT_BROADPHASE_BRUTE]); lua_setfield(L, -2, "broadphase");
     lua_pushnumber(L, s.cell_size); lua_setfield(L, -2, "cell_size");
@@ -317,6 +318,7 @@ static int w_collision(lua_State *L)
     lua_pushnumber(L, s.friction_static); lua_setfield(L, -2, "friction_static");
     lua_pushnumber(L, s.friction_kinetic); lua_setfield(L, -2, "friction_kinetic");
     lua_pushnumber(L, s.restitution_threshold); lua_setfield(L, -2, "restitution_threshold");
+    lua_pushnumber(L, s.stacking); lua_setfield(L, -2, "stacking");
     lua_createtable(L, 3, 0);
     int k = 0;
     for (int j = 0; j < 3; j++)

@@ -51,6 +51,17 @@ T.test("every shape kind is made, typed and bounded", function()
   T.checkerror("invalid broadphase 'tree'", w.set_collision, w, { broadphase = "tree" })
 end)
 
+T.test("stacking is a collision setting, off by default", function()
+  local w = tether.world()
+  w:set_collision()
+  T.eq(w:collision().stacking, 0, "off")
+  w:set_collision { stacking = 2 }
+  T.eq(w:collision().stacking, 2, "set")
+  w:set_collision { restitution = 0.1 }
+  T.eq(w:collision().stacking, 2, "kept when unset")
+  T.checkerror("set_collision: bad option 'stacking' (number in [0, 1e+12] expected, got -1)", w.set_collision, w, { stacking = -1 })
+end)
+
 T.test("a dropped ball rebounds to e^2 of its height", function()
   local w = tether.world { substeps = 8 }
   w:aabb(-10, -1, 10, 0, { restitution = 0.8 })
