@@ -39,8 +39,8 @@ typedef struct tt__sleep {
     uint32_t asleep;
     uint32_t cap;
     double *rest;         /* per slot: seconds at rest (awake particles) */
-    double *held;         /* per slot: seconds since its anchor was set (awake particles) */
-    double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
+    double *held;         /* per slot: seconds since its anchor was set or dragged (awake particles) */
+    double *ax, *ay;      /* per slot: its anchor, its position smoothed over about sleep_time (awake particles) */
     uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
     uint32_t *ring;       /* per slot: the next sleeper of its island, round to the first (sleepers only) */
     uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
