@@ -57,8 +57,8 @@ static void wake_one(tt_world *w, tt__sleep *s, uint32_t i)
     if (w->scr.undo.on && !s->scr.undo.taken) tt__sleep_undo_take(w, s);
     s->island[i] = 0;
     s->rest[i] = s->held[i] = 0.0;
-    s->ax[i] = w->px[i];
-    s->ay[i] = w->py[i];
+    s->ax[i] = s->mx[i] = w->px[i];
+    s->ay[i] = s->my[i] = w->py[i];
     w->flags[i] &= (uint16_t)~TT__PF_ASLEEP;
     w->inv_mass[i] = 1.0 / w->mass[i];
     s->asleep--;
@@ -241,6 +241,8 @@ static void fall_asleep(tt_world *w, tt__sleep *s, uint32_t i, uint32_t island)
 {
     s->island[i] = island;
     s->rest[i] = s->held[i] = 0.0;
+    s->mx[i] = w->px[i]; /* where it sleeps: what a stream of a layout without it loads */
+    s->my[i] = w->py[i];
     w->flags[i] |= TT__PF_ASLEEP;
     w->inv_mass[i] = 0.0;
     s->grid.built = false;
@@ -318,8 +320,8 @@ static size_t memory(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__sleep *s = self;
-    return sizeof *s + (size_t)s->cap * (5 * sizeof(double) + sizeof(uint64_t) + 3 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint64_t) +
-           (size_t)s->scr.undo.cap * (4 * sizeof(double) + sizeof(uint32_t)) +
+    return sizeof *s + (size_t)s->cap * (7 * sizeof(double) + sizeof(uint64_t) + 3 * sizeof(uint32_t)) + (size_t)s->wake_cap * sizeof(uint64_t) +
+           (size_t)s->scr.undo.cap * (6 * sizeof(double) + sizeof(uint32_t)) +
            ((size_t)s->grid.cap_cells + s->grid.cap) * sizeof(uint32_t);
 }
 

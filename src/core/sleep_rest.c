@@ -48,65 +48,70 @@ uint32_t tt__sleep_constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t
     return 0;
 }
 
-/* The rest test. Each particle's anchor follows it, smoothed: every step
- * it moves dt/sleep_time of the way to the particle (an exponential mean
- * over about sleep_time); the particle rests while it stays within a window
- * of L = sleep_speed·sleep_time of that anchor, and when it leaves, the
- * anchor is dragged after it to the window's edge and its rest starts
- * again. Measured (README "Sleeping"), this tells the kinds of slow motion
- * apart:
- * - a particle drifting at a steady u trails its anchor by u·sleep_time: it
- *   rests when u is under sleep_speed, so creep (a deep pile compacting,
- *   0.2 mm/s after 50 s) rests, and a ball rolling at 1 cm/s or more does
- *   not;
+/* The rest test, on the particle's position smoothed over a few steps
+ * (each step it moves TT__SLEEP_SMOOTH of the way to the particle). A
+ * particle rests while that stays within a window of
+ * L = sleep_speed·sleep_time of its anchor (where its present stretch
+ * began); when it leaves, the anchor moves there, and the stretch it ends
+ * keeps its rest if its mean speed over it was under sleep_speed (so it
+ * lasted sleep_time or more; one long step that jumps far does not), else
+ * its rest starts again. Measured (README "Sleeping"), this tells the kinds
+ * of slow motion apart:
  * - a rattle (a loose particle in the cavity of a settled pile, 0.1–0.5
- *   m/s in a cage of 1 cm) and a jitter (a jammed particle that the sweeps
- *   push one way and back the next step, up to 1.9 cm, 10–14 of the
- *   reference pour's 10 000 for ever since the speed cap) keep the anchor
- *   near their middle: they rest while they stay within L of it;
- * - a swing leaves the window around its smoothed centre unless its
- *   amplitude is under about L: a 1 m pendulum swinging 2 cm, a 4 m one
- *   swinging 5 cm, a particle at the top of its throw, a ball rolling from
- *   rest down a 1° slope never stay in it for sleep_time.
- * An anchor set where a stretch began (the test before this one) let a
- * jitter over 1 cm leave it every step: the reference pour never slept.
+ *   m/s) stays inside a cage of 1 cm for ever: it rests, where a test on
+ *   the last step's speed keeps the pile awake for ever;
+ * - a jitter (a jammed particle of a settled pile that the sweeps push up
+ *   to 1.9 cm one way and back the next step, for ever: 10–14 of the
+ *   reference pour's 10 000 since the speed cap) left the window every
+ *   step, and the pile never slept; smoothed, it moves a seventh as far;
+ * - creep (the deep pile compacting, 0.2 mm/s after 50 s) leaves any window
+ *   in the end, but slowly: its stretches are long and keep their rest,
+ *   where restarting the rest on each exit kept a few of 10 000 particles
+ *   resting less than sleep_time at any moment, and the pile awake;
+ * - a swing dwells near a turning point within a window L for only about
+ *   2·sqrt(2L/a) (a its acceleration there), then leaves it in a stretch
+ *   shorter than sleep_time: it never rests long. With the defaults (1 cm,
+ *   1 s) a 1 m pendulum swinging 2 cm or more, a 4 m one swinging 5 cm, a
+ *   particle at the top of its throw or a ball rolling at 1 cm/s or more
+ *   stay awake; a swing whose whole arc fits in the window is at rest.
+ * Smoothing over a few steps, not over sleep_time: an anchor that only
+ * followed the particle smoothed over sleep_time trailed a slide from rest
+ * at 1.5 sleep_speed by less than L for 1.6 s, and it slept
+ * (tests/core/test_sleep.c).
  * A particle that turns (tt_world_def.spin) with its rim faster than
  * sleep_speed does not rest where it stands: asleep, its angle would stop
- * while it still reported its spin. held counts the time since the anchor
- * was last dragged or set. */
+ * while it still reported its spin. */
 static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *ready)
 {
     if (i >= w->ppool.count || s->seen[i] == s->tick) return; /* (made since the last step: none of its arrays) */
     const uint64_t was = s->seen[i];
     s->seen[i] = s->tick;
     if (w->inv_mass[i] == 0.0) return; /* asleep, pinned or removed */
-    const double x = w->px[i], y = w->py[i];
     if (was + 1 != s->tick) { /* free since it was last held: its rest starts here */
         s->rest[i] = s->held[i] = 0.0;
-        s->ax[i] = x;
-        s->ay[i] = y;
+        s->ax[i] = s->mx[i] = w->px[i];
+        s->ay[i] = s->my[i] = w->py[i];
         return;
     }
-    const double lim = s->speed * s->time, f = dt < s->time ? dt / s->time : 1.0;
-    const double ex = s->ax[i] + f * (x - s->ax[i]), ey = s->ay[i] + f * (y - s->ay[i]);
-    const double dx = x - ex, dy = y - ey, d2 = dx * dx + dy * dy;
+    const double mx = s->mx[i] += TT__SLEEP_SMOOTH * (w->px[i] - s->mx[i]);
+    const double my = s->my[i] += TT__SLEEP_SMOOTH * (w->py[i] - s->my[i]);
+    const double dx = mx - s->ax[i], dy = my - s->ay[i], d2 = dx * dx + dy * dy;
+    const double lim = s->speed * s->time;
+    const bool out = d2 > lim * lim;
     const tt__spin *sp = s->scr.spin;
     const bool turning = sp && i < sp->cap && fabs(sp->omega[i]) * w->radius[i] > s->speed;
     s->held[i] += dt;
-    if (d2 > lim * lim) { /* left the window: the anchor dragged to its edge */
-        const double k = lim / sqrt(d2);
-        s->ax[i] = x - dx * k;
-        s->ay[i] = y - dy * k;
-        s->rest[i] = s->held[i] = 0.0;
-        return;
-    }
-    s->ax[i] = ex;
-    s->ay[i] = ey;
-    if (turning) {
-        s->rest[i] = 0.0;
-    } else {
+    const double slow = s->speed * s->held[i]; /* out at a mean speed under sleep_speed: its stretch lasted sleep_time or more */
+    if (!turning && (!out || d2 <= slow * slow)) {
         s->rest[i] += dt;
         *ready |= s->rest[i] >= s->time;
+    } else {
+        s->rest[i] = 0.0;
+    }
+    if (out) {
+        s->held[i] = 0.0;
+        s->ax[i] = mx;
+        s->ay[i] = my;
     }
 }
 

@@ -38,6 +38,12 @@ bool tt__sleep_grow(tt__sleep *s, uint32_t n)
     double *y = realloc(s->ay, (size_t)cap * sizeof *y);
     if (!y) return false;
     s->ay = y;
+    double *sx = realloc(s->mx, (size_t)cap * sizeof *sx);
+    if (!sx) return false;
+    s->mx = sx;
+    double *sy = realloc(s->my, (size_t)cap * sizeof *sy);
+    if (!sy) return false;
+    s->my = sy;
     uint32_t *hl = realloc(s->holders.list, (size_t)cap * sizeof *hl);
     if (!hl) return false;
     s->holders.list = hl;
@@ -48,7 +54,7 @@ bool tt__sleep_grow(tt__sleep *s, uint32_t n)
         s->wake_cap = cap;
     }
     for (uint32_t i = s->cap; i < cap; i++) {
-        s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = 0.0;
+        s->rest[i] = s->held[i] = s->ax[i] = s->ay[i] = s->mx[i] = s->my[i] = 0.0;
         s->island[i] = s->ring[i] = 0;
         s->seen[i] = 0;
     }
@@ -61,7 +67,7 @@ void tt__sleep_destroy(tt_world *w, void *self)
     (void)w;
     tt__sleep *s = self;
     if (!s) return;
-    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->island); free(s->ring); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
+    free(s->rest); free(s->held); free(s->seen); free(s->ax); free(s->ay); free(s->mx); free(s->my); free(s->island); free(s->ring); free(s->parent); free(s->minrest); free(s->wake); free(s->holders.list);
     free(s->grid.start); free(s->grid.idx);
     tt__sleep_scratch_free(w, s);
     free(s);

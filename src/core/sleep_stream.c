@@ -1,22 +1,24 @@
 /* tether — sleeping's section of the snapshot ('SLEP'): the settings, and
  * per live particle its time at rest, the time since its anchor, the
- * anchor, its island and whether something held it in the last step, so a
- * restored world falls asleep and wakes exactly as the original would.
+ * anchor, its island, whether something held it in the last step and its
+ * smoothed position, so a restored world falls asleep and wakes exactly as
+ * the original would.
  *
  * The section has no version of its own, and the builds before the present
  * layout wrote fewer fields a particle (28 bytes: rest, anchor, island; then
- * 36: the time since the anchor after rest). The payload's length tells the
- * three apart (its 20-byte head, then the same record for every live
- * particle), so the streams those builds saved still load. Their missing
- * fields get what the rest test would have held: the anchor of the old rest
- * test was where the rest began, so the time since it is the time at rest;
- * and a particle that was resting was held in the step it was saved after. */
+ * 36: the time since the anchor after rest; then 40: the held flag last).
+ * The payload's length tells the four apart (its 20-byte head, then the
+ * same record for every live particle), so the streams those builds saved
+ * still load. Their missing fields get what the rest test would have held:
+ * the anchor of the old rest test was where the rest began, so the time
+ * since it is the time at rest; a particle that was resting was held in the
+ * step it was saved after; its smoothed position is where it is. */
 #include "stream.h"
 #include "sleep_internal.h"
 
 #include <stdlib.h>
 
-enum { HEAD = 8 + 8 + 4, REC_OLD = 8 + 8 + 8 + 4, REC_HELD = REC_OLD + 8, REC_NOW = REC_HELD + 4 };
+enum { HEAD = 8 + 8 + 4, REC_OLD = 8 + 8 + 8 + 4, REC_HELD = REC_OLD + 8, REC_FLAG = REC_HELD + 4, REC_NOW = REC_FLAG + 16 };
 
 void tt__sleep_save(const tt_world *w, const void *self, tt__sink *snk)
 {
@@ -32,6 +34,8 @@ void tt__sleep_save(const tt_world *w, const void *self, tt__sink *snk)
         tt__put_f64(snk, i < s->cap ? s->ay[i] : 0.0);
         tt__put_u32(snk, i < s->cap ? s->island[i] : 0);
         tt__put_u32(snk, i < s->cap && s->seen[i] == s->tick); /* held in the last step */
+        tt__put_f64(snk, i < s->cap ? s->mx[i] : w->px[i]);
+        tt__put_f64(snk, i < s->cap ? s->my[i] : w->py[i]);
     }
 }
 
@@ -43,8 +47,8 @@ static size_t record_size(const tt_world *w, const tt__source *src)
     for (uint32_t i = 0; i < w->ppool.count; i++) alive += (w->flags[i] & TT__PF_ALIVE) != 0;
     if (alive == 0 || src->len - src->at < HEAD) return REC_NOW;
     const size_t body = src->len - src->at - HEAD;
-    static const size_t sizes[] = {REC_NOW, REC_HELD, REC_OLD};
-    for (int k = 0; k < 3; k++)
+    static const size_t sizes[] = {REC_NOW, REC_FLAG, REC_HELD, REC_OLD};
+    for (int k = 0; k < 4; k++)
         if (body == (size_t)alive * sizes[k]) return sizes[k];
     return REC_NOW;
 }
@@ -57,7 +61,9 @@ static bool load_one(tt_world *w, tt__sleep *s, tt__source *src, uint32_t i, siz
     s->ax[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
     s->ay[i] = tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the anchor");
     s->island[i] = tt__get_u32(src);
-    const uint32_t held = rec == REC_NOW ? tt__get_u32(src) : s->rest[i] > 0.0;
+    const uint32_t held = rec >= REC_FLAG ? tt__get_u32(src) : s->rest[i] > 0.0;
+    s->mx[i] = rec == REC_NOW ? tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the smoothed position") : w->px[i];
+    s->my[i] = rec == REC_NOW ? tt__get_num(src, -TT_DIVERGED, TT_DIVERGED, "the smoothed position") : w->py[i];
     if (held > 1) return tt__src_fail(src, "sleep: particle %u held flag %u", i, held);
     s->seen[i] = held ? 2 : 0;
     const bool asleep = (w->flags[i] & TT__PF_ASLEEP) != 0;

@@ -11,8 +11,8 @@ bool tt__sleep_undo_reserve(tt_world *w, void *self)
     (void)w;
     tt__sleep *s = self;
     if (s->scr.undo.cap >= s->cap) return true;
-    double **d[] = {&s->scr.undo.rest, &s->scr.undo.held, &s->scr.undo.ax, &s->scr.undo.ay};
-    for (int k = 0; k < 4; k++) {
+    double **d[] = {&s->scr.undo.rest, &s->scr.undo.held, &s->scr.undo.ax, &s->scr.undo.ay, &s->scr.undo.mx, &s->scr.undo.my};
+    for (int k = 0; k < 6; k++) {
         double *p = realloc(*d[k], (size_t)s->cap * sizeof *p);
         if (!p) return false;
         *d[k] = p;
@@ -40,6 +40,8 @@ void tt__sleep_undo_take(tt_world *w, tt__sleep *s)
     tt__copy(s->scr.undo.held, s->held, n * sizeof *s->held);
     tt__copy(s->scr.undo.ax, s->ax, n * sizeof *s->ax);
     tt__copy(s->scr.undo.ay, s->ay, n * sizeof *s->ay);
+    tt__copy(s->scr.undo.mx, s->mx, n * sizeof *s->mx);
+    tt__copy(s->scr.undo.my, s->my, n * sizeof *s->my);
     tt__copy(s->scr.undo.island, s->island, n * sizeof *s->island);
     s->scr.undo.taken = true;
 }
@@ -56,6 +58,8 @@ void tt__sleep_undo(tt_world *w, void *self)
     tt__copy(s->held, s->scr.undo.held, n * sizeof *s->held);
     tt__copy(s->ax, s->scr.undo.ax, n * sizeof *s->ax);
     tt__copy(s->ay, s->scr.undo.ay, n * sizeof *s->ay);
+    tt__copy(s->mx, s->scr.undo.mx, n * sizeof *s->mx);
+    tt__copy(s->my, s->scr.undo.my, n * sizeof *s->my);
     tt__copy(s->island, s->scr.undo.island, n * sizeof *s->island);
     s->scr.undo.taken = false;
 }
@@ -65,6 +69,6 @@ void tt__sleep_scratch_free(tt_world *w, void *self)
 {
     (void)w;
     tt__sleep *s = self;
-    free(s->scr.undo.rest); free(s->scr.undo.held); free(s->scr.undo.ax); free(s->scr.undo.ay); free(s->scr.undo.island);
+    free(s->scr.undo.rest); free(s->scr.undo.held); free(s->scr.undo.ax); free(s->scr.undo.ay); free(s->scr.undo.mx); free(s->scr.undo.my); free(s->scr.undo.island);
     s->scr = (tt__sleep_scratch){0};
 }

@@ -57,7 +57,7 @@ tt_world_def tt_world_def_default(void)
     d.tolerance = 1e-6;
     d.order = TT_GAUSS_SEIDEL;
     d.sleep = true;
-    d.sleep_speed = 0.01; /* Box2D's linear sleep tolerance; a 1 cm rest window with sleep_time (sleep.c rest_one) */
+    d.sleep_speed = 0.01; /* Box2D's linear sleep tolerance; a 1 cm rest window with sleep_time (sleep_rest.c rest_one) */
     d.sleep_time = 1.0;
     return d;
 }

@@ -16,12 +16,12 @@
  * integrators' spring swings): their positions stay, their hashes moved
  * (the hash covers the sleep section). The settle scene pins what
  * sleeping does to results: its two piles fall asleep (all 32 after step
- * 175, as this build counts), the ball dropped before step 241 wakes the left
+ * 173, as this build counts), the ball dropped before step 241 wakes the left
  * one's island in step 267, and at step 300 the right pile (16) sleeps on
- * while the left one settles again (all 33 asleep after step 479, inside the
- * cross-build's 600; with the rest test's anchor set where a stretch began
- * 167, 267 and 481, before the speed cap 192, 267 and 427, an older build's
- * 201, 266 and 421). The zoo moved
+ * while the left one settles again (all 33 asleep after step 471, inside the
+ * cross-build's 600; with the rest test on the unsmoothed position 167, 267
+ * and 481, before the speed cap 192, 267 and 427, an older build's 201, 266
+ * and 421). The zoo moved
  * when contacts began to pre-stabilise overlaps deeper than a tenth of the radii sum
  * (contact_prestab.c, issue 21): its spawned piles come apart without speed.
  * The zoo and settle scenes moved again when the pair grid began to hold
@@ -32,9 +32,9 @@
  * pile (nothing asleep by step 300: the driver spins a disc every second).
  * The settle and roll scenes moved when no particle could leave its pair
  * contacts faster than the fastest of them came in (contact_cap.c). Every
- * hash moved, and the zoo and settle positions, when the rest test's anchor
- * became the particle's smoothed position (sleep_rest.c): the anchors are
- * in the sleep section. */
+ * hash moved, and the zoo and settle positions, when the rest test began to
+ * read the particle's position smoothed over a few steps (sleep_rest.c):
+ * the smoothed positions are in the sleep section. */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -46,12 +46,12 @@ static const struct {
     uint64_t positions;
     uint64_t hash;
 } golden[SCENE_COUNT] = {
-    [SCENE_POUR] = {0xbeaeacd0b50001afull, 0xb6f40f80c6594b46ull},
-    [SCENE_CLOTH] = {0xb5c92190124ff72cull, 0xd3cc4aea84a60819ull},
-    [SCENE_ZOO] = {0xb7e61bc079ab285full, 0x7bb546719a2728bcull},
-    [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0x2ccf6fb3b3b871f2ull},
-    [SCENE_SETTLE] = {0x47d0a9ceab32a000ull, 0x94b69b5b443ca3a5ull},
-    [SCENE_ROLL] = {0x7305931a3218983full, 0x979090e36ca747daull},
+    [SCENE_POUR] = {0xbeaeacd0b50001afull, 0xe7b2f4bca2b7c6d9ull},
+    [SCENE_CLOTH] = {0xb5c92190124ff72cull, 0xc5bb71d03afbdef7ull},
+    [SCENE_ZOO] = {0x5a2d4ed804f59641ull, 0x12d7efade08f2393ull},
+    [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0xad7e88ab8523019full},
+    [SCENE_SETTLE] = {0x6130b11f32fad7efull, 0x7dad36ae636c2d3aull},
+    [SCENE_ROLL] = {0x7305931a3218983full, 0xe1f604779a002266ull},
 };
 
 TEST(golden_scenes_keep_their_positions_and_hashes)

@@ -426,6 +426,49 @@ TEST(sleep_a_particle_at_the_top_of_its_throw_falls_back)
     tt_world_destroy(w);
 }
 
+/* A particle on a floor that the script moves each step: side to side by
+ * `jitter` m (one way, then back), or along the floor at `speed` m/s from
+ * rest. Returns the first step after which it sleeps, or -1 within `steps`
+ * (-2: a call failed). */
+static int scripted(double jitter, double speed, int steps)
+{
+    tt_world *w = sleepy(9.81);
+    tt_collision_settings cs = tt_collision_settings_default();
+    tt_shape_def g = tt_shape_def_default();
+    g.type = TT_SHAPE_AABB;
+    g.a = (tt_vec2){-50.0, -1.0}, g.b = (tt_vec2){50.0, 0.0};
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.5;
+    pd.position = (tt_vec2){0.0, 0.5};
+    tt_particle p = tt_particle_create(w, &pd);
+    int slept = tt_world_set_collision(w, &cs) == TT_OK && tt_shape_is_valid(w, tt_shape_create(w, &g)) ? -1 : -2;
+    for (int s = 0; s < steps && slept == -1; s++) {
+        tt_vec2 q;
+        if (tt_particle_get_position(w, p, &q) != TT_OK) slept = -2;
+        q.x = jitter > 0.0 ? (s % 2 ? jitter : 0.0) : speed * (s + 1) / 60.0;
+        if (tt_particle_set_position(w, p, q, TT_MOVE_RESET_VELOCITY) != TT_OK || tt_world_step(w, 1.0 / 60.0) != TT_OK) slept = -2;
+        else if (sleeping(w)) slept = s;
+    }
+    tt_world_destroy(w);
+    return slept; /* -2: a call failed */
+}
+
+/* A jammed particle of a settled pile that the sweeps push one way and
+ * back the next step, for ever (the reference pour: 10-14 of 10 000, up to
+ * 1.9 cm a step, since the speed cap) is at rest: a rest window set where
+ * a stretch began was left every step, and the pile never slept. A steady
+ * slide from rest at 1.5 times sleep_speed is not at rest: an anchor that
+ * only followed the particle smoothed over sleep_time trailed it by less
+ * than the window for 1.6 s, and it slept. */
+TEST(sleep_a_jitter_rests_and_a_slow_slide_does_not)
+{
+    const int jitter = scripted(0.018, 0.0, 300);
+    ENSURE(jitter >= 60 && jitter < 120); /* rested a second, from its first steps */
+    ENSURE(scripted(0.0, 0.015, 600) == -1);
+    ENSURE(scripted(0.0, 0.011, 600) == -1);
+    ENSURE(scripted(0.0, 0.009, 600) >= 0); /* under sleep_speed: a creep, at rest */
+}
+
 /* Particles made after the last step lie past the sleep arrays: waking a
  * box, or turning sleeping off, before the next step must not read there
  * (found reading the code; ASan in the SANITIZE=1 build is the check). */

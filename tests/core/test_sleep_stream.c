@@ -75,10 +75,12 @@ TEST(sleep_stream_of_the_build_before_the_held_fields_loads)
     free(b);
 }
 
-/* The layout between (36 bytes a particle: the time since the anchor, no
- * held flag), made from today's stream of a world whose particles all
- * sleep (their held flags are 0): it loads as the same world. */
-TEST(sleep_stream_without_the_held_flag_loads)
+/* Today's stream of a world whose particles all sleep (their held flags
+ * are 0, their smoothed positions where they sleep) rewritten with each
+ * particle's record cut to its first `keep` of 56 bytes: a layout between
+ * (36: the time since the anchor, no held flag; 40: the held flag, no
+ * smoothed position) loads as the same world. */
+static void cut_records(size_t keep)
 {
     size_t n = 0;
     unsigned char *b = read_file(OLD_STREAM, &n);
@@ -102,17 +104,17 @@ TEST(sleep_stream_without_the_held_flag_loads)
     ENSURE(at + 16 <= m);
     uint64_t len;
     memcpy(&len, c + at + 8, 8);
-    ENSURE(len == 20 + 6 * 40);
+    ENSURE(len == 20 + 6 * 56);
     unsigned char *rec = c + at + 16 + 20, *out = rec;
-    for (int k = 0; k < 6; k++, rec += 40, out += 36) {
+    for (int k = 0; k < 6; k++, rec += 56, out += keep) {
         uint32_t held;
         memcpy(&held, rec + 36, 4);
         ENSURE(held == 0);
-        memmove(out, rec, 36);
+        memmove(out, rec, keep);
     }
     memmove(out, rec, (size_t)(c + m - rec));
-    m -= 6 * 4;
-    len -= 6 * 4;
+    m -= 6 * (56 - keep);
+    len -= 6 * (56 - keep);
     memcpy(c + at + 8, &len, 8);
     uint64_t body = m - 32, sum = tt__hash_bytes(c + 32, m - 32);
     memcpy(c + 16, &body, 8);
@@ -124,3 +126,6 @@ TEST(sleep_stream_without_the_held_flag_loads)
     tt_world_destroy(w);
     free(b);
 }
+
+TEST(sleep_stream_without_the_held_flag_loads) { cut_records(36); }
+TEST(sleep_stream_without_the_smoothed_position_loads) { cut_records(40); }
