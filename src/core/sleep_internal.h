@@ -5,16 +5,18 @@
 
 #include "internal.h"
 
-/* The rest test's smoothing (sleep_rest.c): each step the smoothed position
- * moves this share of the way to the particle, so a jitter that goes one
- * way and back the next step moves it a seventh as far (f/(2 − f)), while a
+/* The rest test's smoothing (sleep_rest.c): each step of dt the smoothed
+ * position moves dt/TT__SLEEP_SMOOTH_TIME of the way to the particle (all
+ * of it in steps that long or longer), a quarter at 60 Hz, so a jitter
+ * that goes one way and back the next step moves it a seventh as far
+ * (f/(2 − f)), while a
  * swing, slow beside a step, is left nearly as it is (computed on its path
  * over 20 s: a 4 m pendulum swinging 5 cm stays in the window at most 0.98 s
  * at a time, smoothed or not; 1 m and 10 m ones within 0.05 s of that
  * too). The reference pour, sleeping on, as built and jittered by 0.05 m
  * (seeds 1-5): asleep within 35-55 s on all six at 0.25, on three of six by
  * 60 s at 0.5. */
-#define TT__SLEEP_SMOOTH 0.25
+#define TT__SLEEP_SMOOTH_TIME (1.0 / 15.0) /* s: a motion of a few steps at 60 Hz, not a few steps of any length */
 
 /* Where the sleepers lie (sleep_grid.c): built at the first query after
  * one fell asleep; a counting sort of the sleepers' slots by cell. */

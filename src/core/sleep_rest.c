@@ -49,7 +49,9 @@ uint32_t tt__sleep_constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t
 }
 
 /* The rest test, on the particle's position smoothed over a few steps
- * (each step it moves TT__SLEEP_SMOOTH of the way to the particle). A
+ * (each step of dt it moves dt/TT__SLEEP_SMOOTH_TIME of the way to the
+ * particle, all of it in a step that long: an oscillator stepped at
+ * ω·dt = 2.8, six steps a period, is a motion, not a jitter). A
  * particle rests while that stays within a window of
  * L = sleep_speed·sleep_time of its anchor (where its present stretch
  * began); when it leaves, the anchor moves there, and the stretch it ends
@@ -93,8 +95,9 @@ static void rest_one(tt_world *w, tt__sleep *s, uint32_t i, double dt, bool *rea
         s->ay[i] = s->my[i] = w->py[i];
         return;
     }
-    const double mx = s->mx[i] += TT__SLEEP_SMOOTH * (w->px[i] - s->mx[i]);
-    const double my = s->my[i] += TT__SLEEP_SMOOTH * (w->py[i] - s->my[i]);
+    const double f = dt < TT__SLEEP_SMOOTH_TIME ? dt / TT__SLEEP_SMOOTH_TIME : 1.0;
+    const double mx = s->mx[i] += f * (w->px[i] - s->mx[i]);
+    const double my = s->my[i] += f * (w->py[i] - s->my[i]);
     const double dx = mx - s->ax[i], dy = my - s->ay[i], d2 = dx * dx + dy * dy;
     const double lim = s->speed * s->time;
     const bool out = d2 > lim * lim;

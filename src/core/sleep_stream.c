@@ -34,8 +34,8 @@ void tt__sleep_save(const tt_world *w, const void *self, tt__sink *snk)
         tt__put_f64(snk, i < s->cap ? s->ay[i] : 0.0);
         tt__put_u32(snk, i < s->cap ? s->island[i] : 0);
         tt__put_u32(snk, i < s->cap && s->seen[i] == s->tick); /* held in the last step */
-        tt__put_f64(snk, i < s->cap ? s->mx[i] : w->px[i]);
-        tt__put_f64(snk, i < s->cap ? s->my[i] : w->py[i]);
+        tt__put_f64(snk, i < s->cap ? s->mx[i] : 0.0); /* as the arrays grown for it will hold */
+        tt__put_f64(snk, i < s->cap ? s->my[i] : 0.0);
     }
 }
 

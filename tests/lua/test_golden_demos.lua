@@ -29,7 +29,7 @@ local golden = {
   ragdoll = { "1f6eff9f9b774ef4", "bc8e871ea995947e" },
   rope_bridge = { "73fa3817e5c476a7", "3defb6dcebf4f0d1" },
   soft_bodies = { "ec279600d165358c", "7bb2f58f82342a50" },
-  spring_net = { "2a61a51d9d763317", "ff2172efe160e7aa" },
+  spring_net = { "2a61a51d9d763317", "0463e3ebdfefda22" },
   terrain = { "06cc662cfae0adc4", "f64d2ac4c14dd04c" },
   worms = { "a7fcec207a6ecc1b", "328b1cf988991979" },
 }
