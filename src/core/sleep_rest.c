@@ -63,9 +63,10 @@ uint32_t tt__sleep_constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t
  *   m/s) stays inside a cage of 1 cm for ever: it rests, where a test on
  *   the last step's speed keeps the pile awake for ever;
  * - a jitter (a jammed particle of a settled pile that the sweeps push up
- *   to 1.9 cm one way and back the next step, for ever: 10–14 of the
- *   reference pour's 10 000 since the speed cap) left the window every
- *   step, and the pile never slept; smoothed, it moves a seventh as far;
+ *   to 2 cm one way and back the next step, for ever: 7–31 of the
+ *   reference pour's 10 000 from 25 to 60 s since the speed cap, on the
+ *   starts measured) left the window every step, and the pile never slept;
+ *   smoothed, it moves a seventh as far;
  * - creep (the deep pile compacting, 0.2 mm/s after 50 s) leaves any window
  *   in the end, but slowly: its stretches are long and keep their rest,
  *   where restarting the rest on each exit kept a few of 10 000 particles
@@ -78,7 +79,7 @@ uint32_t tt__sleep_constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t
  *   stay awake; a swing whose whole arc fits in the window is at rest.
  * Smoothing over a few steps, not over sleep_time: an anchor that only
  * followed the particle smoothed over sleep_time trailed a slide from rest
- * at 1.5 sleep_speed by less than L for 1.6 s, and it slept
+ * at 1.5 sleep_speed by less than L for 1.1 s (τ·ln 3), and it slept
  * (tests/core/test_sleep.c).
  * A particle that turns (tt_world_def.spin) with its rim faster than
  * sleep_speed does not rest where it stands: asleep, its angle would stop

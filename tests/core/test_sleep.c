@@ -454,12 +454,12 @@ static int scripted(double jitter, double speed, int steps)
 }
 
 /* A jammed particle of a settled pile that the sweeps push one way and
- * back the next step, for ever (the reference pour: 10-14 of 10 000, up to
- * 1.9 cm a step, since the speed cap) is at rest: a rest window set where
+ * back the next step, for ever (the reference pour: 7-31 of 10 000, up to
+ * 2 cm a step, since the speed cap) is at rest: a rest window set where
  * a stretch began was left every step, and the pile never slept. A steady
  * slide from rest at 1.5 times sleep_speed is not at rest: an anchor that
  * only followed the particle smoothed over sleep_time trailed it by less
- * than the window for 1.6 s, and it slept. */
+ * than the window for 1.1 s, and it slept. */
 TEST(sleep_a_jitter_rests_and_a_slow_slide_does_not)
 {
     const int jitter = scripted(0.018, 0.0, 300);
