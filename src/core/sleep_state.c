@@ -11,9 +11,12 @@ bool tt__sleep_grow(tt__sleep *s, uint32_t n)
     if (n <= s->cap) return true;
     uint32_t cap = s->cap ? s->cap : 64;
     while (cap < n) cap *= 2;
-    double *r = realloc(s->rest, (size_t)cap * sizeof *r);
-    if (!r) return false;
-    s->rest = r;
+    double **d[] = {&s->rest, &s->held, &s->ax, &s->ay, &s->mx, &s->my, &s->minrest};
+    for (size_t k = 0; k < sizeof d / sizeof d[0]; k++) {
+        double *q = realloc(*d[k], (size_t)cap * sizeof *q);
+        if (!q) return false;
+        *d[k] = q;
+    }
     uint32_t *is = realloc(s->island, (size_t)cap * sizeof *is);
     if (!is) return false;
     s->island = is;
@@ -26,24 +29,6 @@ bool tt__sleep_grow(tt__sleep *s, uint32_t n)
     uint32_t *p = realloc(s->parent, (size_t)cap * sizeof *p);
     if (!p) return false;
     s->parent = p;
-    double *m = realloc(s->minrest, (size_t)cap * sizeof *m);
-    if (!m) return false;
-    s->minrest = m;
-    double *hd = realloc(s->held, (size_t)cap * sizeof *hd);
-    if (!hd) return false;
-    s->held = hd;
-    double *x = realloc(s->ax, (size_t)cap * sizeof *x);
-    if (!x) return false;
-    s->ax = x;
-    double *y = realloc(s->ay, (size_t)cap * sizeof *y);
-    if (!y) return false;
-    s->ay = y;
-    double *sx = realloc(s->mx, (size_t)cap * sizeof *sx);
-    if (!sx) return false;
-    s->mx = sx;
-    double *sy = realloc(s->my, (size_t)cap * sizeof *sy);
-    if (!sy) return false;
-    s->my = sy;
     uint32_t *hl = realloc(s->holders.list, (size_t)cap * sizeof *hl);
     if (!hl) return false;
     s->holders.list = hl;
