@@ -6,16 +6,15 @@
 #include "internal.h"
 
 /* The rest test's smoothing (sleep_rest.c): each step of dt the smoothed
- * position moves dt/TT__SLEEP_SMOOTH_TIME of the way to the particle (all
- * of it in steps that long or longer), a quarter at 60 Hz, so a jitter
+ * position moves f = dt/TT__SLEEP_SMOOTH_TIME of the way to the particle
+ * (all of it in steps that long or longer), a quarter at 60 Hz, so a jitter
  * that goes one way and back the next step moves it a seventh as far
- * (f/(2 − f)), while a
- * swing, slow beside a step, is left nearly as it is (computed on its path
- * over 20 s: a 4 m pendulum swinging 5 cm stays in the window at most 0.98 s
- * at a time, smoothed or not; 1 m and 10 m ones within 0.05 s of that
- * too). The reference pour, sleeping on, as built and jittered by 0.05 m
- * (seeds 1-5): asleep within 35-55 s on all six at 0.25, on three of six by
- * 60 s at 0.5. */
+ * (f/(2 − f)), while a swing, slow beside a step, is left nearly as it is
+ * (computed on its path over 20 s: a 4 m pendulum swinging 5 cm stays in
+ * the window at most 0.98 s at a time, smoothed or not; 1 m and 10 m ones
+ * within 0.05 s of that too). The reference pour, sleeping on, as built and
+ * jittered by 0.05 m (seeds 1-5): asleep within 35-55 s on all six at a
+ * quarter a step, on three of six by 60 s at a half. */
 #define TT__SLEEP_SMOOTH_TIME (1.0 / 15.0) /* s: a motion of a few steps at 60 Hz, not a few steps of any length */
 
 /* Where the sleepers lie (sleep_grid.c): built at the first query after
@@ -54,7 +53,7 @@ typedef struct tt__sleep {
     double *rest;         /* per slot: seconds at rest (awake particles) */
     double *held;         /* per slot: seconds since its anchor was set (awake particles) */
     double *ax, *ay;      /* per slot: its anchor, where its present stretch began (awake particles) */
-    double *mx, *my;      /* per slot: its position smoothed over a few steps, what the rest test reads (awake particles) */
+    double *mx, *my;      /* per slot: its position smoothed over TT__SLEEP_SMOOTH_TIME, what the rest test reads (awake particles) */
     uint32_t *island;     /* per slot: 0 awake, else the island it sleeps in */
     uint32_t *ring;       /* per slot: the next sleeper of its island, round to the first (sleepers only) */
     uint64_t *seen;       /* per slot: the last step (tick) something held it: a contact, spring or constraint */
