@@ -53,7 +53,7 @@ local tether = {}
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
 ---@field sleep? boolean particles at rest fall asleep by islands and cost nothing until woken; default true
----@field sleep_speed? number a particle rests while its position, smoothed over a few steps, stays within sleep_speed·sleep_time of where it was (or leaves slower than this), m/s, in [0, 1e12]; default 0.01
+---@field sleep_speed? number a particle rests while its position, smoothed over 1/15 s, stays within sleep_speed·sleep_time of where it was (or leaves slower than this), m/s, in [0, 1e12]; default 0.01
 ---@field sleep_time? number an island sleeps once all of it rested this long, s, in [0, 1e12]; default 1
 ---@field spin? boolean particles turn: each a solid disc with an angle and an angular velocity, contact friction acting at the contact point (README "Particles that turn"); default false
 ---@field fixed_point? boolean|number positions on a fixed-point lattice, so `w:reverse()` runs back bit for bit: true for the quantum 2^-32 m (range ±2^19 m), or the quantum itself, a power of two 2^-k, k = 1..60 (range ±2^51 quanta); positions given are rounded onto it, one outside the range raises; needs integrator "verlet"; default false

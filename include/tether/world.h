@@ -33,7 +33,7 @@ typedef struct tt_world_def {
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
     tt_solver_order order;    ///< default TT_GAUSS_SEIDEL
     bool sleep;               ///< particles at rest fall asleep by islands and cost nothing until woken; default true
-    double sleep_speed;       ///< a particle rests while its position, smoothed over a few steps, stays within sleep_speed·sleep_time of where it was, or leaves it slower than this, m/s; default 0.01; 0…TT_MAX_VALUE
+    double sleep_speed;       ///< a particle rests while its position, smoothed over 1/15 s, stays within sleep_speed·sleep_time of where it was, or leaves it slower than this, m/s; default 0.01; 0…TT_MAX_VALUE
     double sleep_time;        ///< an island sleeps once all of it rested this long, s; default 1; 0…TT_MAX_VALUE
     double fixed_point;       ///< 0 (default): positions are plain doubles. Else the quantum q, m, a power of two 2^-k
                               ///< (k = 1…60; TT_FIXED_POINT_QUANTUM = 2^-32 is a good choice): every position is kept
