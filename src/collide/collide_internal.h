@@ -126,6 +126,8 @@ typedef struct tt__batches {
     uint32_t xy_cap, np;  /* np: the particle count the plan was made for; the sweeps' padding row */
     double *q, *v0;       /* the velocity pass's xy rows: x_old, y_old; pre-solve vx, vy */
     uint32_t q_cap, v0_cap;
+    double *me;           /* the velocity pass with particle materials: per entry e, μs, μk (3 arrays of cap) */
+    uint32_t me_cap;
     uint8_t simd;         /* tt__simd_mode */
 } tt__batches;
 
@@ -151,9 +153,10 @@ typedef struct tt__respond_in {
     const double *vx0, *vy0; /* pre-solve velocities */
     double e, mus, muk, thr; /* the world's materials; restitution threshold */
     double h;                /* substep */
+    const struct tt__collide *mat; /* particles have their own materials (tt__mat): the pair's, entry by entry; else NULL */
 } tt__respond_in;
 /* The velocity pass of the batches' pairs in vector lanes, as
- * contact_response.c's pair_end does it lane by lane for Verlet and world materials; one(ctx,
+ * contact_response.c's pair_end does it lane by lane for Verlet; one(ctx,
  * entry) takes the batches the lanes cannot (solo, two particles on one
  * centre) through pair_end. False, touching nothing, when there are no
  * vector lanes here: then the caller runs pair_end on every pair. */

@@ -274,21 +274,47 @@ TT_AVX512 static double run_avx512(tt__batches *B, double *pk, uint32_t t0, uint
  * change the normal velocity change (Δvn). A lane sticks (tangential
  * velocity within μs·Δvn: st gets it, to undo as a slide) or slides (dv
  * loses μk·Δvn of it). */
-TT_AVX2 TT_INLINE void friction4(const tt__respond_in *in, __m256d r02, __m256d r13, __m256d n02, __m256d n13, __m256d vn,
+TT_AVX2 TT_INLINE void friction4(__m256d mus, __m256d muk, __m256d r02, __m256d r13, __m256d n02, __m256d n13, __m256d vn,
                                  __m256d change, __m256d act, __m256d *dv02, __m256d *dv13, __m256d *st02, __m256d *st13)
 {
     const __m256d one = _mm256_set1_pd(1.0);
     const __m256d t02 = _mm256_sub_pd(r02, _mm256_mul_pd(LO(vn), n02)), t13 = _mm256_sub_pd(r13, _mm256_mul_pd(HI(vn), n13));
     const __m256d t2 = LANES(_mm256_mul_pd(t02, t02), _mm256_mul_pd(t13, t13));
-    const __m256d lim = _mm256_mul_pd(_mm256_set1_pd(in->mus), change);
+    const __m256d lim = _mm256_mul_pd(mus, change);
     const __m256d stick = _mm256_cmp_pd(t2, _mm256_mul_pd(lim, lim), _CMP_LE_OQ);
-    const __m256d tl = _mm256_sqrt_pd(t2), mc = _mm256_mul_pd(_mm256_set1_pd(in->muk), change);
+    const __m256d tl = _mm256_sqrt_pd(t2), mc = _mm256_mul_pd(muk, change);
     const __m256d slides = _mm256_andnot_pd(stick, act);
     const __m256d f = _mm256_div_pd(_mm256_blendv_pd(tl, mc, _mm256_cmp_pd(mc, tl, _CMP_LT_OQ)), _mm256_blendv_pd(one, tl, slides));
     *dv02 = _mm256_blendv_pd(_mm256_sub_pd(*dv02, _mm256_mul_pd(t02, LO(f))), *dv02, LO(stick));
     *dv13 = _mm256_blendv_pd(_mm256_sub_pd(*dv13, _mm256_mul_pd(t13, HI(f))), *dv13, HI(stick));
     *st02 = _mm256_and_pd(t02, LO(stick));
     *st13 = _mm256_and_pd(t13, HI(stick));
+}
+
+/* friction4 with the world's materials or, with particle materials, each
+ * entry's. Lanes with no friction at all skip it, as respond returns
+ * before it (its arithmetic with μ = 0 could turn a −0 velocity change
+ * into +0). */
+TT_AVX2 TT_INLINE void friction_lanes(const tt__batches *B, uint32_t k, const tt__respond_in *in, __m256d r02, __m256d r13,
+                                      __m256d n02, __m256d n13, __m256d vn, __m256d change, __m256d act, __m256d *dv02,
+                                      __m256d *dv13, __m256d *st02, __m256d *st13)
+{
+    if (!in->mat) {
+        if (!(in->mus == 0.0 && in->muk == 0.0))
+            friction4(_mm256_set1_pd(in->mus), _mm256_set1_pd(in->muk), r02, r13, n02, n13, vn, change, act, dv02, dv13, st02, st13);
+        return;
+    }
+    const __m256d zero = _mm256_setzero_pd();
+    const __m256d mus = _mm256_loadu_pd(B->me + B->cap + k), muk = _mm256_loadu_pd(B->me + 2 * (size_t)B->cap + k);
+    const __m256d rough = _mm256_andnot_pd(_mm256_and_pd(_mm256_cmp_pd(mus, zero, _CMP_EQ_OQ), _mm256_cmp_pd(muk, zero, _CMP_EQ_OQ)), act);
+    const int rm = _mm256_movemask_pd(rough);
+    if (!rm) return;
+    __m256d f02 = *dv02, f13 = *dv13;
+    friction4(mus, muk, r02, r13, n02, n13, vn, change, act, &f02, &f13, st02, st13);
+    *dv02 = _mm256_blendv_pd(*dv02, f02, LO(rough));
+    *dv13 = _mm256_blendv_pd(*dv13, f13, HI(rough));
+    *st02 = _mm256_and_pd(*st02, LO(rough));
+    *st13 = _mm256_and_pd(*st13, HI(rough));
 }
 
 /* pair_end's Verlet arithmetic (contact_response.c, with respond), lane by lane in
@@ -323,6 +349,7 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d qb02 = tt__xy_load2(q, Bb[0], Bb[2]), qb13 = tt__xy_load2(q, Bb[1], Bb[3]);
     const __m256d va02 = tt__xy_load2(v0, A[0], A[2]), va13 = tt__xy_load2(v0, A[1], A[3]);
     const __m256d vb02 = tt__xy_load2(v0, Bb[0], Bb[2]), vb13 = tt__xy_load2(v0, Bb[1], Bb[3]);
+    const __m256d e = in->mat ? _mm256_loadu_pd(B->me + k) : _mm256_set1_pd(in->e); /* the world's, or the entries' */
     const __m256d one = _mm256_set1_pd(1.0), dt = _mm256_set1_pd(dtp), idt = _mm256_set1_pd(1.0 / dtp);
     /* lanes out of play divide by 1 (no exception the scalar code would not raise) */
     const __m256d iws = _mm256_div_pd(one, _mm256_blendv_pd(one, ws, act)), wa = _mm256_mul_pd(ia, iws), wb = _mm256_mul_pd(ib, iws);
@@ -337,13 +364,13 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     const __m256d up = _mm256_and_pd(vn, _mm256_cmp_pd(vn, zero, _CMP_GT_OQ));
     const __m256d up0 = _mm256_and_pd(vn0, _mm256_cmp_pd(vn0, zero, _CMP_GT_OQ));
     __m256d target = _mm256_blendv_pd(up, up0, _mm256_cmp_pd(up, up0, _CMP_GT_OQ));
-    target = _mm256_blendv_pd(target, _mm256_mul_pd(_mm256_set1_pd(-in->e), vn0),
+    target = _mm256_blendv_pd(target, _mm256_mul_pd(_mm256_xor_pd(e, sign), vn0),
                               _mm256_cmp_pd(vn0, _mm256_set1_pd(-in->thr), _CMP_LT_OQ));
     __m256d change = _mm256_sub_pd(target, vn0);
     change = _mm256_blendv_pd(change, zero, _mm256_cmp_pd(change, zero, _CMP_LT_OQ));
     const __m256d tv = _mm256_sub_pd(target, vn);
     __m256d dv02 = _mm256_mul_pd(LO(tv), n02), dv13 = _mm256_mul_pd(HI(tv), n13), st02 = zero, st13 = zero;
-    if (!(in->mus == 0.0 && in->muk == 0.0)) friction4(in, r02, r13, n02, n13, vn, change, act, &dv02, &dv13, &st02, &st13);
+    friction_lanes(B, k, in, r02, r13, n02, n13, vn, change, act, &dv02, &dv13, &st02, &st13);
     /* a lane slid (its stick velocity is not zero): x moves back; both components of a lane agree */
     const __m256d z02 = _mm256_cmp_pd(st02, zero, _CMP_NEQ_UQ), z13 = _mm256_cmp_pd(st13, zero, _CMP_NEQ_UQ);
     const __m256d m02 = LO(act), m13 = HI(act);
@@ -414,13 +441,34 @@ TT_AVX512 static void respond_avx512(tt_world *w, tt__batches *B, const tt__resp
 }
 #endif
 
+/* Each live entry's materials as pair_end takes them (the larger
+ * restitution, the geometric means of the frictions), into B->me. */
+static bool entry_materials(tt__batches *B, const tt__collide *c)
+{
+    if (!tt__grow((void **)&B->me, &B->me_cap, B->cap, 3 * sizeof *B->me)) return false;
+    double *E = B->me, *S = B->me + B->cap, *K = B->me + 2 * (size_t)B->cap;
+    for (uint32_t k = 0; k < B->n; k++) {
+        const uint32_t a = B->a[k], b = B->b[k];
+        if (!(B->lam[k] > 0.0) || a >= B->np) {
+            E[k] = S[k] = K[k] = 0.0;
+            continue;
+        }
+        const double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0);
+        E[k] = ea > eb ? ea : eb;
+        S[k] = sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1));
+        K[k] = sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2));
+    }
+    return true;
+}
+
 bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t), void *ctx)
 {
 #ifdef TT_SIMD_X86
     const uint8_t kind = tt__simd_kind(B->simd);
     const uint32_t np = B->np;
     if (kind == TT__SIMD_SCALAR || !tt__xy_reserve(&B->xy, &B->xy_cap, np + 1) ||
-        !tt__xy_reserve(&B->q, &B->q_cap, np + 1) || !tt__xy_reserve(&B->v0, &B->v0_cap, np + 1))
+        !tt__xy_reserve(&B->q, &B->q_cap, np + 1) || !tt__xy_reserve(&B->v0, &B->v0_cap, np + 1) ||
+        (in->mat && !entry_materials(B, in->mat)))
         return false;
     tt__xy_pack(B->xy, w->px, w->py, np);
     tt__xy_pack(B->q, w->qx, w->qy, np);
@@ -458,11 +506,12 @@ void tt__batches_free(tt__batches *B)
     free(B->xy);
     free(B->q);
     free(B->v0);
+    free(B->me);
     memset(B, 0, sizeof *B);
 }
 
 size_t tt__batches_bytes(const tt__batches *B)
 {
     return (size_t)B->cap * (7 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
-           ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double);
+           ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double) + (size_t)B->me_cap * 3 * sizeof(double);
 }

@@ -447,10 +447,11 @@ void tt__contacts_end(tt_world *w, void *self, double h)
     }
     if (c->scr.batched) {
         tt__batches *B = &c->scr.bat;
-        /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, world materials) */
-        const tt__respond_in in = {c->scr.vx0, c->scr.vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h};
+        /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, no events, no spin) */
+        const tt__respond_in in = {c->scr.vx0, c->scr.vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h,
+                                   c->mat ? c : NULL};
         pair_ctx pc = {w, c, h, thr, sp};
-        if (!(w->integrator == TT_VERLET && !c->mat && !events && !sp && tt__batches_respond(w, B, &in, pair_one, &pc)))
+        if (!(w->integrator == TT_VERLET && !events && !sp && tt__batches_respond(w, B, &in, pair_one, &pc)))
             for (uint32_t k = 0; k < B->n; k++)
                 if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp);
     } else {

@@ -37,8 +37,10 @@ tt_result tt_world_reverse(tt_world *w)
     for (uint32_t i = 0; i < n; i++) {
         if (!(w->flags[i] & TT__PF_ALIVE)) continue;
         double x = w->px[i], y = w->py[i];
-        /* x_old is on a fixed-point lattice after every step; an impulse
-         * since moved it off, and positions never leave it */
+        /* in the worlds accepted here (no contacts, so no
+         * pre-stabilisation, which moves x_old) x_old is on the fixed-point
+         * lattice after every step, but an impulse since may have moved it
+         * off; positions never leave it, so the swap snaps */
         w->px[i] = q != 0.0 ? tt__fixed_snap(q, w->qx[i]) : w->qx[i];
         w->py[i] = q != 0.0 ? tt__fixed_snap(q, w->qy[i]) : w->qy[i];
         w->qx[i] = x;

@@ -150,15 +150,7 @@ static int w_set_spin(lua_State *L)
     return 0;
 }
 
-static int w_mass(lua_State *L)
-{
-    tt_world *w = tl_check_world(L, 1);
-    tt_particle p = tl_check_particle(L, w, 2);
-    double m;
-    tl_check_result(L, w, tt_particle_get_mass(w, p, &m));
-    lua_pushnumber(L, m);
-    return 1;
-}
+static int w_mass(lua_State *L) { return particle_number(L, tt_particle_get_mass); }
 
 static int w_set_mass(lua_State *L)
 {
@@ -198,15 +190,7 @@ static int w_set_pinned(lua_State *L)
     return 0;
 }
 
-static int w_radius(lua_State *L)
-{
-    tt_world *w = tl_check_world(L, 1);
-    tt_particle p = tl_check_particle(L, w, 2);
-    double r;
-    tl_check_result(L, w, tt_particle_get_radius(w, p, &r));
-    lua_pushnumber(L, r);
-    return 1;
-}
+static int w_radius(lua_State *L) { return particle_number(L, tt_particle_get_radius); }
 
 static int w_set_radius(lua_State *L)
 {

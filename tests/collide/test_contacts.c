@@ -529,7 +529,7 @@ TEST(collision_api_refuses_bad_input)
  * while it settles. Returns the
  * world hash folded with every step's largest error; *pairs: pair contacts
  * in the last substep. */
-static uint64_t batch_scene(tt__simd_mode mode, uint32_t *pairs)
+static uint64_t batch_scene(tt__simd_mode mode, bool materials, uint32_t *pairs)
 {
     tt_world_def wd = tt_world_def_default();
     wd.iterations = 6;
@@ -570,6 +570,9 @@ static uint64_t batch_scene(tt__simd_mode mode, uint32_t *pairs)
         pd.pinned = i < 30; /* the bottom row */
         pd.mass = 1.0 + (i % 3);
         ps[i] = tt_particle_create(w, &pd);
+        /* materials: each its own, some frictionless, some left at the world's */
+        if (materials && i % 5 != 4)
+            tt_particle_set_material(w, ps[i], (i % 7) * 0.15, i % 5 == 0 ? 0.0 : 0.1 * (i % 9), i % 5 == 0 ? 0.0 : 0.05 * (i % 9));
     }
     pd.pinned = false;
     pd.mass = 1.0;
@@ -608,17 +611,20 @@ TEST(batched_pair_contacts_in_vector_lanes_are_bit_identical_to_the_scalar_code)
     uint32_t pairs, pm;
     const int traps = FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW;
     feclearexcept(FE_ALL_EXCEPT);
-    const uint64_t ref = batch_scene(TT__SIMD_SCALAR, &pairs);
-    const int raised = fetestexcept(traps);
-    ENSURE(ref != 0);
-    ENSURE(pairs > 1000); /* a pile, not a cloud */
-    const tt__simd_mode modes[] = {TT__SIMD_AUTO, TT__SIMD_AVX2, TT__SIMD_AVX512};
-    for (int m = 0; m < 3; m++) {
+    for (int mat = 0; mat < 2; mat++) { /* the world's materials, then each particle its own */
         feclearexcept(FE_ALL_EXCEPT);
-        const uint64_t hm = batch_scene(modes[m], &pm);
-        if (hm == 0) continue; /* not in this build or on this processor */
-        ENSURE(hm == ref);
-        ENSURE(fetestexcept(traps) == raised);
+        const uint64_t ref = batch_scene(TT__SIMD_SCALAR, mat, &pairs);
+        const int raised = fetestexcept(traps);
+        ENSURE(ref != 0);
+        ENSURE(pairs > 1000); /* a pile, not a cloud */
+        const tt__simd_mode modes[] = {TT__SIMD_AUTO, TT__SIMD_AVX2, TT__SIMD_AVX512};
+        for (int m = 0; m < 3; m++) {
+            feclearexcept(FE_ALL_EXCEPT);
+            const uint64_t hm = batch_scene(modes[m], mat, &pm);
+            if (hm == 0) continue; /* not in this build or on this processor */
+            ENSURE(hm == ref);
+            ENSURE(fetestexcept(traps) == raised);
+        }
     }
 }
 
