@@ -526,7 +526,8 @@ TEST(collision_api_refuses_bad_input)
  * 0.6, a pinned row (pairs of two pinned particles are left out, a pinned
  * and a free one are solved), a pinned particle at x = −0, pairs on one
  * centre (the batch goes to the scalar code), particles removed and added
- * while it settles. Returns the
+ * while it settles; with materials, most particles have their own (some
+ * frictionless: lanes that skip friction beside lanes that do). Returns the
  * world hash folded with every step's largest error; *pairs: pair contacts
  * in the last substep. */
 static uint64_t batch_scene(tt__simd_mode mode, bool materials, uint32_t *pairs)
