@@ -48,8 +48,8 @@ uint32_t tt__sleep_constraint_parts(const tt__cgroup *g, uint32_t slot, uint32_t
     return 0;
 }
 
-/* The rest test, on the particle's position smoothed over a few steps
- * (each step of dt it moves dt/TT__SLEEP_SMOOTH_TIME of the way to the
+/* The rest test, on the particle's position smoothed over
+ * TT__SLEEP_SMOOTH_TIME (each step of dt it moves dt/TT__SLEEP_SMOOTH_TIME of the way to the
  * particle, all of it in a step that long: an oscillator stepped at
  * ω·dt = 2.8, six steps a period, is a motion, not a jitter). A
  * particle rests while that stays within a window of
