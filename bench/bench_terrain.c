@@ -3,9 +3,11 @@
  * reference pour onto a mask floor against the same floor as a chain shape,
  * the two worlds stepped in turn (A B A B) so the machine's load falls on both, and
  * the reference pour (10 000 circles, 20 s) onto a mask bowl with its rest
- * figures (src/scenes/scene_bowl.c, shared with the tests). */
+ * figures (src/scenes/scene_bowl.c, shared with the tests), beside the same
+ * bowl in Box2D. */
 #include "bench.h"
 
+#include "box2d/box2d_scene.h"
 #include "scenes/scene.h"
 #include "tether.h"
 
@@ -88,7 +90,34 @@ static void pour(FILE *csv)
     fprintf(csv, "per contact,%.3f,%.3f,%.4f,0\n", per[0], per[1], per[1] / per[0]);
 }
 
-/* The reference pour onto a mask bowl: 10 000 circles, 20 s. */
+/* The same bowl in Box2D 2.4.1 as 400 edges (8/3 iterations, sleeping and
+ * continuous off), with circles that do not turn, as tether's particles
+ * (k = 0), and circles that do (k = 1); NULL where it cannot be built. */
+static tb_world *box2d_bowl(int k)
+{
+    ts_scene sc;
+    const char *why = NULL;
+    tb_world *w = NULL;
+    tb_world_def d = tb_world_def_default();
+    d.sleep = d.continuous = false;
+    if (ts_scene_bowl(&sc, 10000, 100, 400, k == 0, &why)) w = tb_scene_build(&sc, &d, &why);
+    if (!w) printf("  bowl in Box2D: %s\n", why ? why : "failed");
+    ts_scene_free(&sc);
+    return w;
+}
+
+static void box2d_figures(const tb_world *w, uint32_t n, double *ke, ts_pile *pile)
+{
+    double *xy = malloc(2 * (size_t)n * sizeof *xy);
+    /* the circles are the scene's first n bodies, before the edges */
+    const bool ok = xy && tb_positions(w, 0, (int)n, xy);
+    ts_pile_measure(ok ? xy : NULL, ok ? n : 0, 0.5, pile);
+    *ke = tb_world_kinetic_energy(w) / tb_world_mass(w);
+    free(xy);
+}
+
+/* The reference pour onto a mask bowl: 10 000 circles, 20 s; tether and the
+ * two Box2D bowls take turns 30 steps at a time, each step timed. */
 static void bowl(FILE *csv)
 {
     ts_bowl b;
@@ -97,9 +126,21 @@ static void bowl(FILE *csv)
         printf("  bowl: %s\n", why ? why : "failed");
         return;
     }
-    const double a = bench_now_ns();
-    for (uint32_t s = 0; s < b.steps; s++) tt_world_step(b.t.world, 1.0 / 60);
-    const double ms = (bench_now_ns() - a) * 1e-6 / b.steps;
+    tb_world *b2[2] = {box2d_bowl(0), box2d_bowl(1)};
+    double ns[3] = {0, 0, 0};
+    for (uint32_t s = 0; s < b.steps; s += 30) {
+        const uint32_t m = b.steps - s < 30 ? b.steps - s : 30;
+        double a = bench_now_ns();
+        for (uint32_t j = 0; j < m; j++) tt_world_step(b.t.world, 1.0 / 60);
+        ns[0] += bench_now_ns() - a;
+        for (int k = 0; k < 2; k++) {
+            if (!b2[k]) continue;
+            a = bench_now_ns();
+            for (uint32_t j = 0; j < m; j++) tb_world_step(b2[k], 1.0 / 60);
+            ns[1 + k] += bench_now_ns() - a;
+        }
+    }
+    const double ms = ns[0] * 1e-6 / b.steps;
     ts_bowl_figures f;
     ts_bowl_measure(&b, &f);
     printf("  reference pour (10 000 circles, 20 s) onto a mask bowl 100 m wide: %.2f ms/step; KE %.2e J/kg"
@@ -107,6 +148,19 @@ static void bowl(FILE *csv)
            " (target <= 10 %%), circle overlap max %.1f %% mean %.2f %%\n",
            ms, f.kinetic, f.inside, 100 * f.penetration, 100 * f.max_overlap, 100 * f.mean_overlap);
     fprintf(csv, "bowl,%.4f,%.3e,%.5f,%.5f\n", ms, f.kinetic, f.penetration, f.max_overlap);
+    static const char *const what[2] = {"circles that do not turn (as tether's)", "circles that turn"};
+    for (int k = 0; k < 2; k++) {
+        if (!b2[k]) continue;
+        double ke;
+        ts_pile pile;
+        box2d_figures(b2[k], b.t.circle_count, &ke, &pile);
+        printf("  the same in Box2D 2.4.1 (400 edges, 8/3, sleeping and continuous off), %s: %.2f ms/step"
+               " (tether %.1fx as fast); KE %.2e J/kg, circle overlap max %.1f %% mean %.2f %%\n",
+               what[k], ns[1 + k] * 1e-6 / b.steps, ns[1 + k] / ns[0], ke, 100 * pile.max_overlap, 100 * pile.mean_overlap);
+        fprintf(csv, "bowl box2d %s,%.4f,%.3e,0,%.5f\n", k ? "turning" : "fixed", ns[1 + k] * 1e-6 / b.steps, ke,
+                pile.max_overlap);
+        tb_world_destroy(b2[k]);
+    }
     ts_bowl_free(&b);
 }
 

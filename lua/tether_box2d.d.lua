@@ -49,6 +49,7 @@
 ---@field density? number kg/m² (dynamic bodies; default 1)
 ---@field friction? number default 0.3; Box2D combines two as √(fa·fb)
 ---@field restitution? number 0…1, default 0; Box2D takes the larger of two
+---@field fixed_rotation? boolean never turns, as tether's particles (default false)
 
 ---A joint of a scene table.
 ---@class tether_box2d.joint

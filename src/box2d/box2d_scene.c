@@ -31,6 +31,7 @@ static void to_def(const ts_body *b, tb_body_def *d)
     d->density = b->density;
     d->friction = b->friction;
     d->restitution = b->restitution;
+    d->fixed_rotation = b->fixed_rotation;
 }
 
 tb_world *tb_scene_build(const ts_scene *s, const tb_world_def *def, const char **why)

@@ -119,6 +119,7 @@ static const tl_opt body_opts[] = {
     TL_OPT_NUM(tb_body_def, "density", density, &FINITE),
     TL_OPT_NUM(tb_body_def, "friction", friction, &FINITE),
     TL_OPT_NUM(tb_body_def, "restitution", restitution, &FINITE),
+    TL_OPT_FLAG(tb_body_def, "fixed_rotation", fixed_rotation),
     TL_OPT_END,
 };
 

@@ -58,6 +58,10 @@ static void push_body(lua_State *L, const ts_body *b)
     if (b->dynamic) set_num(L, "density", b->density);
     set_num(L, "friction", b->friction);
     set_num(L, "restitution", b->restitution);
+    if (b->fixed_rotation) {
+        lua_pushboolean(L, 1);
+        lua_setfield(L, -2, "fixed_rotation");
+    }
 }
 
 /* tether_box2d.scene(name [, quick]) */

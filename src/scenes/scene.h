@@ -43,6 +43,7 @@ typedef struct ts_body {
     double density;                     /* kg/m² (mass = density × area) */
     double friction;                    /* Coulomb μ; both engines take √(μa·μb) for a pair */
     double restitution;                 /* 0 … 1; both engines take the larger of a pair */
+    bool fixed_rotation;                /* never turns: Box2D's fixedRotation (tether's particles turn only with spin) */
 } ts_body;
 
 typedef struct ts_joint {
@@ -95,6 +96,12 @@ bool ts_scene_named(ts_scene *s, const char *name, bool quick);
  * g = 10, dt = 1/60, friction 0.3 on circles and walls, restitution 0, 20 s.
  * (10 000, 100) is the reference pour, (100 000, 316) the 100 k pour. */
 void ts_scene_pour(ts_scene *s, uint32_t n, double width);
+/* The reference pour's n circles alone (its box left out for the caller's
+ * container: scene_bowl.c, scene_floor.c), lifted by lift m, into s
+ * (initialised here) named name; *top is 5 m above the highest centre.
+ * False on no memory (s then empty), the reason in *why. */
+bool ts_scene_pour_lifted(ts_scene *s, uint32_t n, double width, double lift, const char *name, double *top,
+                          const char **why);
 /* A 1 × 1 box of friction mu resting on a static slope of `degrees`. */
 void ts_scene_slope(ts_scene *s, double degrees, double mu);
 
@@ -232,6 +239,11 @@ typedef struct ts_bowl_figures {
  * friction 0.3, g = 10, dt = 1/60), lifted clear of the rim, above a mask
  * bowl as wide as its box; TT_OK, or an error with the reason in *why. */
 tt_result ts_bowl_build(uint32_t n, double width, ts_bowl *b, const char **why);
+/* The same pour and bowl as a scene for Box2D: the circles at ts_bowl_build's
+ * positions (fixed_rotation as given) and the bowl as static edges, `edges`
+ * along the arc (1 … 100 000) and one up each wall, friction 0.3; false on
+ * bad input or no memory, the reason in *why. */
+bool ts_scene_bowl(ts_scene *s, uint32_t n, double width, uint32_t edges, bool fixed_rotation, const char **why);
 void ts_bowl_free(ts_bowl *b);
 void ts_bowl_measure(const ts_bowl *b, ts_bowl_figures *out);
 

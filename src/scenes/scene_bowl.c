@@ -35,10 +35,17 @@ static tt_mask *bowl_mask(double width, double top)
     return m;
 }
 
+/* The arc's height at the walls (the rim); the circles start half a radius above it. */
+static double rim(double width)
+{
+    const double h = width / 2, R = 0.8 * width;
+    return R - sqrt(R * R - h * h);
+}
+
 tt_result ts_bowl_build(uint32_t n, double width, ts_bowl *b, const char **why)
 {
     memset(b, 0, sizeof *b);
-    const double h = width / 2, R = 0.8 * width, lift = R - sqrt(R * R - h * h) + 0.5;
+    const double h = width / 2, lift = rim(width) + 0.5;
     double top;
     tt_result r = ts_tether_pour_circles(n, width, lift, "bowl", &b->t, &top, &b->steps, why);
     if (r != TT_OK) return r;
@@ -57,6 +64,36 @@ tt_result ts_bowl_build(uint32_t n, double width, ts_bowl *b, const char **why)
         return TT_ENOMEM;
     }
     return TT_OK;
+}
+
+static bool edge(ts_scene *s, double ax, double ay, double bx, double by, const char **why)
+{
+    ts_body e = ts_body_default();
+    e.shape = TS_EDGE;
+    e.a = (tt_vec2){ax, ay};
+    e.b = (tt_vec2){bx, by};
+    return ts_scene_add_body(s, &e, why) >= 0;
+}
+
+bool ts_scene_bowl(ts_scene *s, uint32_t n, double width, uint32_t edges, bool fixed_rotation, const char **why)
+{
+    if (edges < 1 || edges > 100000 || !(width >= 3.3 && width <= 1e6)) {
+        if (why) *why = "ts_scene_bowl: edges must be in [1, 100000] and width in [3.3, 1e6]";
+        ts_scene_init(s, "bowl");
+        return false;
+    }
+    const double h = width / 2, R = 0.8 * width, y0 = rim(width), half = asin(h / R);
+    double top;
+    if (!ts_scene_pour_lifted(s, n, width, y0 + 0.5, "bowl", &top, why)) return false;
+    for (uint32_t i = 0; i < s->body_count; i++) s->bodies[i].fixed_rotation = fixed_rotation;
+    bool ok = edge(s, -h, top, -h, y0, why) && edge(s, h, y0, h, top, why);
+    for (uint32_t i = 0; i < edges && ok; i++) {
+        /* the arc's points from −half to +half by index, so both ends are exact */
+        const double t0 = half * (2.0 * i / edges - 1), t1 = half * (2.0 * (i + 1) / edges - 1);
+        ok = edge(s, R * sin(t0), R - R * cos(t0), R * sin(t1), R - R * cos(t1), why);
+    }
+    if (!ok) ts_scene_free(s);
+    return ok;
 }
 
 void ts_bowl_free(ts_bowl *b)

@@ -40,6 +40,29 @@ void ts_scene_pour(ts_scene *s, uint32_t n, double width)
     }
 }
 
+bool ts_scene_pour_lifted(ts_scene *s, uint32_t n, double width, double lift, const char *name, double *top,
+                          const char **why)
+{
+    ts_scene pour;
+    ts_scene_pour(&pour, n, width);
+    ts_scene_init(s, name);
+    s->gravity = pour.gravity;
+    s->dt = pour.dt;
+    s->steps = pour.steps;
+    *top = 0;
+    bool ok = true;
+    for (uint32_t i = 0; i < pour.body_count && ok; i++) {
+        ts_body c = pour.bodies[i];
+        if (!c.dynamic) continue; /* the box: the caller's container stands for it */
+        c.position.y += lift;
+        *top = fmax(*top, c.position.y + 5);
+        ok = ts_scene_add_body(s, &c, why) >= 0;
+    }
+    ts_scene_free(&pour);
+    if (!ok) ts_scene_free(s);
+    return ok;
+}
+
 void ts_scene_slope(ts_scene *s, double degrees, double mu)
 {
     ts_scene_init(s, "slope");

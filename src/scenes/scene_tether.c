@@ -317,24 +317,11 @@ tt_result ts_tether_pour_circles(uint32_t n, double width, double lift, const ch
                                  uint32_t *steps, const char **why)
 {
     memset(t, 0, sizeof *t);
-    ts_scene pour, s;
-    ts_scene_pour(&pour, n, width);
-    ts_scene_init(&s, name);
-    s.gravity = pour.gravity;
-    s.dt = pour.dt;
-    s.steps = *steps = pour.steps;
-    *top = 0;
-    tt_result r = TT_OK;
-    for (uint32_t i = 0; i < pour.body_count && r == TT_OK; i++) {
-        ts_body c = pour.bodies[i];
-        if (!c.dynamic) continue; /* the box: the caller's terrain or chain stands for it */
-        c.position.y += lift;
-        *top = fmax(*top, c.position.y + 5);
-        if (ts_scene_add_body(&s, &c, why) < 0) r = TT_ENOMEM;
-    }
-    ts_scene_free(&pour);
+    ts_scene s;
+    if (!ts_scene_pour_lifted(&s, n, width, lift, name, top, why)) return TT_ENOMEM;
+    *steps = s.steps;
     ts_tether_settings set = ts_tether_settings_default();
-    if (r == TT_OK) r = ts_tether_build(&s, &set, t, why);
+    tt_result r = ts_tether_build(&s, &set, t, why);
     ts_scene_free(&s);
     return r;
 }

@@ -6,6 +6,7 @@
 
 #include "box2d/box2d_scene.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -281,4 +282,39 @@ TEST(box2d_pile_friction_at_rest)
     ENSURE(bl.contacts < b.contacts && bl.height > b.height);             /* more so when the discs cannot turn */
     /* tether: far less (4.86 / 17.27 m and 5.29 / 16.54 m since the speed cap of contact_cap.c) */
     ENSURE(fabs(t0.contacts - t.contacts) <= 0.6 && t.contacts >= b.contacts + 1);
+}
+
+/* A scene's fixed_rotation reaches Box2D. A disc on a 15° slope with
+ * μ = 0.3 (> tan 15°): one that may turn rolls, a = (2/3)·g·sin 15°
+ * (a solid disc rolling without slipping, which needs μ ≥ tan 15° / 3);
+ * one that may not (as tether's particles) stays where it was put. */
+TEST(box2d_scene_fixed_rotation_keeps_a_disc_from_rolling)
+{
+    const double a = 15 * M_PI / 180, t = 1.0;
+    for (int fixed = 0; fixed < 2; fixed++) {
+        ts_scene s;
+        ts_scene_init(&s, "roll");
+        ts_body slope = ts_box(false, (tt_vec2){0.5 * sin(a), -0.5 * cos(a)}, 20, 0.5, a);
+        ENSURE(ts_scene_add_body(&s, &slope, NULL) == 0);
+        ts_body disc = ts_circle(true, (tt_vec2){-0.5 * sin(a), 0.5 * cos(a)}, 0.5);
+        disc.fixed_rotation = fixed;
+        ENSURE(ts_scene_add_body(&s, &disc, NULL) == 1);
+        tb_world_def d = tb_world_def_default();
+        d.sleep = false;
+        tb_world *w = tb_scene_build(&s, &d, NULL);
+        ENSURE(w != NULL);
+        for (int k = 0; k < 60; k++) ENSURE(tb_world_step(w, 1.0 / 60));
+        tb_body_state st;
+        ENSURE(tb_body_state_get(w, 1, &st));
+        /* distance travelled down the slope */
+        const double down = -((st.position[0] + 0.5 * sin(a)) * cos(a) + (st.position[1] - 0.5 * cos(a)) * sin(a));
+        if (fixed) {
+            ENSURE(fabs(down) < 1e-3 && st.spin == 0);
+        } else {
+            ENSURE_NEAR(down, 0.5 * (2.0 / 3.0) * 10 * sin(a) * t * t, 0.02 * 0.863);
+            ENSURE(st.spin > 0); /* rolling to the left turns it anticlockwise */
+        }
+        tb_world_destroy(w);
+        ts_scene_free(&s);
+    }
 }

@@ -47,6 +47,25 @@ T.test("every named scene is a table both engines can build", function()
   T.eq(#b2.scene("pour").bodies, 10003, "the reference pour: 10 000 circles, floor, two walls")
 end)
 
+T.test("a body with fixed_rotation does not turn where one without it rolls", function()
+  local spins = {}
+  for _, fixed in ipairs{false, true} do
+    local w = b2.world{ gravity = {0, -10}, sleep = false }
+    -- a 15 degree slope, mu 0.3 > tan 15: the free disc rolls, the fixed one holds
+    local a = math.rad(15)
+    w:body{ shape = "box", x = 0.5 * math.sin(a), y = -0.5 * math.cos(a), hx = 20, hy = 0.5, angle = a }
+    local d = w:body{ shape = "circle", dynamic = true, x = -0.5 * math.sin(a), y = 0.5 * math.cos(a), fixed_rotation = fixed }
+    for _ = 1, 60 do w:step(1 / 60) end
+    local x, y, _, _, _, spin = w:state(d)
+    -- along the slope, downhill (the disc also settles Box2D's 5 mm slop into it, along the normal)
+    local down = -((x + 0.5 * math.sin(a)) * math.cos(a) + (y - 0.5 * math.cos(a)) * math.sin(a))
+    spins[#spins + 1] = spin
+    if fixed then T.ok(math.abs(down) < 1e-3, "the fixed disc stays: " .. down) else T.ok(down > 0.8, "the free disc rolls: " .. down) end
+  end
+  T.ok(spins[1] > 1 and spins[2] == 0, "spin: " .. spins[1] .. ", " .. spins[2])
+  T.checkerror_plain("bad option 'fixed_rotation'", function() b2.world{}:body{ shape = "circle", fixed_rotation = 1 } end)
+end)
+
 T.test("errors name the function and the argument", function()
   -- option tables read as every tether binding reads them (tl_opt, src/lua/lua_options.c)
   T.checkerror("tether_box2d.world: unknown option 'slep' (expected one of: 'gravity', 'velocity_iterations', 'position_iterations', 'sleep', 'continuous')", b2.world, { slep = true })

@@ -257,3 +257,39 @@ TEST(scenes_floor_as_chain_and_as_mask_holds_the_pour_alike)
         ts_tether_free(&t);
     }
 }
+
+/* The bowl as a scene for Box2D is the tether bowl: the same circles bit for
+ * bit, and edges that lie on the mask's surface (within a pixel, 0.1 m). */
+TEST(scenes_bowl_as_edges_is_the_mask_bowl)
+{
+    ts_bowl b;
+    ts_scene s;
+    const char *why = NULL;
+    ENSURE_OK(ts_bowl_build(200, 20, &b, &why));
+    ENSURE(ts_scene_bowl(&s, 200, 20, 64, true, &why));
+    uint32_t circles = 0, edges = 0;
+    for (uint32_t i = 0; i < s.body_count; i++) {
+        const ts_body *c = &s.bodies[i];
+        if (c->shape == TS_CIRCLE) {
+            tt_vec2 x;
+            ENSURE(i == circles && c->dynamic && c->fixed_rotation && c->radius == 0.5);
+            ENSURE_OK(tt_particle_get_position(b.t.world, b.t.circles[circles++], &x));
+            ENSURE(x.x == c->position.x && x.y == c->position.y);
+            continue;
+        }
+        ENSURE(c->shape == TS_EDGE && !c->dynamic);
+        edges++;
+        /* near both ends and halfway (a wall's top end is the mask's top row, where the terrain ends) */
+        for (int k = 0; k < 3; k++) {
+            const double f = k == 0 ? 0.02 : k == 1 ? 0.5 : 0.98;
+            const tt_vec2 at = {c->a.x + f * (c->b.x - c->a.x), c->a.y + f * (c->b.y - c->a.y)};
+            double d = 1;
+            ENSURE_OK(tt_terrain_distance(b.t.world, b.terrain, at, &d, NULL));
+            ENSURE(fabs(d) <= 0.1);
+        }
+    }
+    ENSURE(circles == 200 && edges == 64 + 2);
+    ts_scene_free(&s);
+    ts_bowl_free(&b);
+    ENSURE(!ts_scene_bowl(&s, 10, 20, 0, false, &why) && strstr(why, "edges") && s.body_count == 0);
+}
