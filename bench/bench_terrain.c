@@ -106,6 +106,26 @@ static tb_world *box2d_bowl(int k)
     return w;
 }
 
+/* Every circle's place and speed at the end, for bench/bowl.gp: engine 0
+ * tether, 1 and 2 the Box2D bowls. */
+static void circles_csv(FILE *f, int engine, const ts_bowl *b, const tb_world *w)
+{
+    for (uint32_t i = 0; f && i < b->t.circle_count; i++) {
+        double x, y, vx, vy;
+        if (engine == 0) {
+            tt_vec2 p, v;
+            tt_particle_get_position(b->t.world, b->t.circles[i], &p);
+            tt_particle_get_velocity(b->t.world, b->t.circles[i], &v);
+            x = p.x, y = p.y, vx = v.x, vy = v.y;
+        } else {
+            tb_body_state st;
+            if (!tb_body_state_get(w, (int)i, &st)) continue;
+            x = st.position[0], y = st.position[1], vx = st.velocity[0], vy = st.velocity[1];
+        }
+        fprintf(f, "%d,%.4f,%.4f,%.3e\n", engine, x, y, sqrt(vx * vx + vy * vy));
+    }
+}
+
 static void box2d_figures(const tb_world *w, uint32_t n, double *ke, ts_pile *pile)
 {
     double *xy = malloc(2 * (size_t)n * sizeof *xy);
@@ -118,7 +138,7 @@ static void box2d_figures(const tb_world *w, uint32_t n, double *ke, ts_pile *pi
 
 /* The reference pour onto a mask bowl: 10 000 circles, 20 s; tether and the
  * two Box2D bowls take turns 30 steps at a time, each step timed. */
-static void bowl(FILE *csv)
+static void bowl(FILE *csv, const char *dir)
 {
     ts_bowl b;
     const char *why = NULL;
@@ -148,6 +168,8 @@ static void bowl(FILE *csv)
            " (target <= 10 %%), circle overlap max %.1f %% mean %.2f %%\n",
            ms, f.kinetic, f.inside, 100 * f.penetration, 100 * f.max_overlap, 100 * f.mean_overlap);
     fprintf(csv, "bowl,%.4f,%.3e,%.5f,%.5f\n", ms, f.kinetic, f.penetration, f.max_overlap);
+    FILE *cc = bench_csv(dir, "bowl.csv", "engine,x,y,speed");
+    circles_csv(cc, 0, &b, NULL);
     static const char *const what[2] = {"circles that do not turn (as tether's)", "circles that turn"};
     for (int k = 0; k < 2; k++) {
         if (!b2[k]) continue;
@@ -159,8 +181,10 @@ static void bowl(FILE *csv)
                what[k], ns[1 + k] * 1e-6 / b.steps, ns[1 + k] / ns[0], ke, 100 * pile.max_overlap, 100 * pile.mean_overlap);
         fprintf(csv, "bowl box2d %s,%.4f,%.3e,0,%.5f\n", k ? "turning" : "fixed", ns[1 + k] * 1e-6 / b.steps, ke,
                 pile.max_overlap);
+        circles_csv(cc, 1 + k, &b, b2[k]);
         tb_world_destroy(b2[k]);
     }
+    if (cc) fclose(cc);
     ts_bowl_free(&b);
 }
 
@@ -170,6 +194,6 @@ void bench_terrain(const char *dir)
     FILE *csv = bench_csv(dir, "terrain.csv", "what,a,b,c,d");
     carve(csv);
     pour(csv);
-    bowl(csv);
+    bowl(csv, dir);
     fclose(csv);
 }
