@@ -110,7 +110,7 @@ static tb_world *box2d_bowl(int k)
  * tether, 1 and 2 the Box2D bowls. */
 static void circles_csv(FILE *f, int engine, const ts_bowl *b, const tb_world *w)
 {
-    for (uint32_t i = 0; f && i < b->t.circle_count; i++) {
+    for (uint32_t i = 0; i < b->t.circle_count; i++) {
         double x, y, vx, vy;
         if (engine == 0) {
             tt_vec2 p, v;
@@ -184,7 +184,7 @@ static void bowl(FILE *csv, const char *dir)
         circles_csv(cc, 1 + k, &b, b2[k]);
         tb_world_destroy(b2[k]);
     }
-    if (cc) fclose(cc);
+    fclose(cc);
     ts_bowl_free(&b);
 }
 

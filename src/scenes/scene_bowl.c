@@ -12,11 +12,14 @@
 
 #define PIXEL 0.1 /* m */
 
+/* The arc's radius: the floor is a circle of it through (0, 0), centre above. */
+static double arc_radius(double width) { return 0.8 * width; }
+
 /* The bowl's pixels: solid below the arc and beyond the walls, from y = −2
  * to top; the mask's pixel (0, 0) at (−width/2 − 2, top). */
 static tt_mask *bowl_mask(double width, double top)
 {
-    const double h = width / 2, R = 0.8 * width;
+    const double h = width / 2, R = arc_radius(width);
     const int mw = (int)ceil((width + 4) / PIXEL), mh = (int)ceil((top + 2) / PIXEL);
     tt_mask *m = tt_mask_create(mw, mh, false);
     if (!m) return NULL;
@@ -38,7 +41,7 @@ static tt_mask *bowl_mask(double width, double top)
 /* The arc's height at the walls (the rim); the circles start half a radius above it. */
 static double rim(double width)
 {
-    const double h = width / 2, R = 0.8 * width;
+    const double h = width / 2, R = arc_radius(width);
     return R - sqrt(R * R - h * h);
 }
 
@@ -82,7 +85,7 @@ bool ts_scene_bowl(ts_scene *s, uint32_t n, double width, uint32_t edges, bool f
         ts_scene_init(s, "bowl");
         return false;
     }
-    const double h = width / 2, R = 0.8 * width, y0 = rim(width), half = asin(h / R);
+    const double h = width / 2, R = arc_radius(width), y0 = rim(width), half = asin(h / R);
     double top;
     if (!ts_scene_pour_lifted(s, n, width, y0 + 0.5, "bowl", &top, why)) return false;
     for (uint32_t i = 0; i < s->body_count; i++) s->bodies[i].fixed_rotation = fixed_rotation;
