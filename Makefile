@@ -251,7 +251,7 @@ $(BENCH): $(BENCH_SRC) $(RENDER_A) $(B2_A) $(SCENES_A) $(LIB_A) | deps
 
 -include $(wildcard $(BUILD)/obj/*/*.d $(BUILD)/obj/luajit_box2d/*.d $(BUILD)/obj/tests/*/*.d $(BUILD)/obj/tests/*.d)
 
-# `make crosscheck [QUICK=1]`: the seven scenes in tether and in Box2D 2.4.1,
+# `make crosscheck [QUICK=1]`: the eight scenes in tether and in Box2D 2.4.1,
 # one table on the terminal, CSV and Markdown in $(BUILD)/crosscheck/.
 crosscheck: all
 	$(RUNNER) crosscheck $(if $(QUICK),--quick) --out $(BUILD)/crosscheck

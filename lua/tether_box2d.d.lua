@@ -136,7 +136,7 @@ local tether_box2d = {}
 function tether_box2d.world(options) end
 
 ---A named scene as a plain table: fall, pendulum, bounce, slope, spin,
----pyramid, pour, pour100k; `quick` gives the small size the tests use.
+---pyramid, discs, pour, pour100k; `quick` gives the small size the tests use.
 ---@param name string
 ---@param quick? boolean
 ---@return tether_box2d.scene

@@ -43,7 +43,7 @@ typedef struct cc_report {
     int ncosts;
     bool quick;
     int runs;            /* timed runs of each small scene */
-    ts_tether_settings small; /* tether's setting for the six small scenes; default 1 × 8, lattice 4 */
+    ts_tether_settings small; /* tether's setting for the seven small scenes; default 1 × 8, lattice 4 */
 } cc_report;
 
 double cc_now_ms(void);
@@ -68,6 +68,7 @@ bool cc_bounce(cc_report *r, const char **why);
 bool cc_slope(cc_report *r, const char **why);
 bool cc_spin(cc_report *r, const char **why);
 bool cc_pyramid(cc_report *r, const char **why);
+bool cc_discs(cc_report *r, const char **why);
 bool cc_pour(cc_report *r, const char **why);
 
 /* Both engines built from one scene, stepped in turns with each step timed. */

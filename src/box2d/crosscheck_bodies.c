@@ -1,6 +1,6 @@
-/* tether — the cross-check's scenes of boxes in contact or spinning:
- * bounce, slope, spin and the pyramid (see crosscheck_scenes.c for the
- * settings both engines run at). */
+/* tether — the cross-check's scenes of bodies in contact or spinning:
+ * bounce, slope, spin, the pyramid of boxes and the pyramid of discs (see
+ * crosscheck_scenes.c for the settings both engines run at). */
 #include "box2d_scene.h"
 
 #include <math.h>
@@ -179,6 +179,50 @@ bool cc_pyramid(cc_report *r, const char **why)
         snprintf(m, sizeof m, "top box height change at %.0f s", s.steps * s.dt);
         cc_put(r, "pyramid", m, "m", 0, c.rise[0], c.rise[1]);
         cc_put(r, "pyramid", "largest box rotation, any step", "deg", 0, c.turn[0], c.turn[1]);
+    }
+    ts_scene_free(&s);
+    return good;
+}
+
+/* --- 7. the pyramid of discs ------------------------------------------------ */
+
+typedef struct {
+    double spread[2], sink[2];
+} discs_ctx;
+
+/* At the end: how much farther apart the bottom row's two end discs are
+ * (the pyramid wedging its base apart), and how far the top disc sank. */
+static void discs_probe(const cc_pair *p, int step, void *ctx)
+{
+    discs_ctx *c = ctx;
+    if (step != (int)p->scene.steps) return;
+    const ts_body *b = p->scene.bodies;
+    const uint32_t top = p->scene.body_count - 1;
+    uint32_t right = 1; /* the bottom row: bodies 1 … right, at the start's lowest height */
+    while (right + 1 <= top && b[right + 1].position.y == b[1].position.y) right++;
+    ts_state l[2], r[2], t[2];
+    both(p, 1, l);
+    both(p, right, r);
+    both(p, top, t);
+    for (int e = 0; e < 2; e++) {
+        c->spread[e] = (r[e].position.x - l[e].position.x) - (b[right].position.x - b[1].position.x);
+        c->sink[e] = b[top].position.y - t[e].position.y;
+    }
+}
+
+bool cc_discs(cc_report *r, const char **why)
+{
+    ts_scene s;
+    ts_scene_named(&s, "discs", r->quick);
+    discs_ctx c;
+    memset(&c, 0, sizeof c);
+    const bool good = cc_run_small(r, &s, true, discs_probe, &c, why);
+    if (good) {
+        char m[48];
+        snprintf(m, sizeof m, "base spread at %.0f s", s.steps * s.dt);
+        cc_put(r, "discs", m, "m", 0, c.spread[0], c.spread[1]);
+        snprintf(m, sizeof m, "top disc sunk at %.0f s", s.steps * s.dt);
+        cc_put(r, "discs", m, "m", 0, c.sink[0], c.sink[1]);
     }
     ts_scene_free(&s);
     return good;

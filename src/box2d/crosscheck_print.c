@@ -15,7 +15,7 @@ static const struct {
     const char *name;
     cc_scene_fn fn;
 } scenes[] = {{"fall", cc_fall},   {"pendulum", cc_pendulum}, {"bounce", cc_bounce}, {"slope", cc_slope},
-              {"spin", cc_spin},   {"pyramid", cc_pyramid},   {"pour", cc_pour}};
+              {"spin", cc_spin},   {"pyramid", cc_pyramid},   {"discs", cc_discs},       {"pour", cc_pour}};
 
 bool cc_run(cc_report *r, const char *scene, const char **why)
 {
@@ -26,7 +26,7 @@ bool cc_run(cc_report *r, const char *scene, const char **why)
         found = true;
         if (!scenes[i].fn(r, why)) return false;
     }
-    if (!found) *why = "unknown scene (fall, pendulum, bounce, slope, spin, pyramid, pour, all)";
+    if (!found) *why = "unknown scene (fall, pendulum, bounce, slope, spin, pyramid, discs, pour, all)";
     return found;
 }
 
@@ -146,7 +146,7 @@ void cc_print(const cc_report *r, FILE *out, const char *dir, const char *load_b
 static int usage(FILE *f, int status)
 {
     fprintf(f, "usage: tether crosscheck [--quick] [--runs N] [--tether SxI] [--lattice N] [--out DIR] [SCENE]\n"
-               "Runs SCENE (fall, pendulum, bounce, slope, spin, pyramid, pour; default all) in tether and in\n"
+               "Runs SCENE (fall, pendulum, bounce, slope, spin, pyramid, discs, pour; default all) in tether and in\n"
                "Box2D 2.4.1 and prints the comparison; --out DIR also writes crosscheck.csv and crosscheck.md.\n"
                "--quick: the 1 000-circle pour and 2 timed runs (for tests); --runs N: timed runs of each small scene (1..50, default 5);\n"
                "--tether SxI: tether's substeps x iterations in the small scenes (default 1x8); --lattice N: particles along a box's\n"

@@ -1,4 +1,4 @@
-/* tether — the six small scenes of the cross-check: each run in both
+/* tether — the seven small scenes of the cross-check: each run in both
  * engines, measured step by step against the analytic answer where there
  * is one, and timed over several runs. Box2D: 8 velocity / 3 position
  * iterations, sleeping off, continuous physics on; tether: r->small

@@ -71,7 +71,7 @@ int tl_b2_scene(lua_State *L)
     const bool quick = lua_toboolean(L, 2);
     ts_scene s;
     if (!ts_scene_named(&s, name, quick))
-        return luaL_error(L, "tether_box2d.scene: bad argument #1 (unknown scene '%s': fall, pendulum, bounce, slope, spin, pyramid, pour, pour100k)", name);
+        return luaL_error(L, "tether_box2d.scene: bad argument #1 (unknown scene '%s': fall, pendulum, bounce, slope, spin, pyramid, discs, pour, pour100k)", name);
     lua_createtable(L, 0, 6);
     lua_pushstring(L, s.name);
     lua_setfield(L, -2, "name");

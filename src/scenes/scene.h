@@ -85,7 +85,7 @@ double ts_body_inertia(const ts_body *b);
 /* --- the project's named scenes (scene_library.c) -------------------------- */
 
 /* The names, NULL-terminated: fall, pendulum, bounce, slope, spin, pyramid,
- * pour, pour100k; "quick" variants are smaller or shorter (for tests). */
+ * discs, pour, pour100k; "quick" variants are smaller or shorter (for tests). */
 extern const char *const ts_scene_names[];
 /* Builds the named scene into s (initialised here); false on an unknown name. */
 bool ts_scene_named(ts_scene *s, const char *name, bool quick);

@@ -1,4 +1,4 @@
-/* tether — the project's named scenes: the seven rigid-body cases the Box2D
+/* tether — the project's named scenes: the eight rigid-body cases the Box2D
  * cross-check compares, and the reference pours every comparison of piles
  * uses (issue 12). Each is data only; the engines build it their own way. */
 #include "scene.h"
@@ -6,7 +6,7 @@
 #include <math.h>
 #include <string.h>
 
-const char *const ts_scene_names[] = {"fall", "pendulum", "bounce", "slope", "spin", "pyramid", "pour", "pour100k", NULL};
+const char *const ts_scene_names[] = {"fall", "pendulum", "bounce", "slope", "spin", "pyramid", "discs", "pour", "pour100k", NULL};
 
 static void add(ts_scene *s, const ts_body *b) { (void)ts_scene_add_body(s, b, NULL); }
 
@@ -136,6 +136,25 @@ static void pyramid(ts_scene *s, int rows)
         }
 }
 
+/* 7. the pyramid in discs that do not turn, tether's particles: radius 0.5,
+ * friction 0.3 (the pours'), the bottom row 1.02 apart, each row resting in
+ * the one below: 10 s. Without friction between the discs the bottom row is
+ * wedged apart and the pyramid falls; Box2D's stands. */
+static void discs(ts_scene *s, int rows)
+{
+    ts_scene_init(s, "discs");
+    s->steps = 600;
+    ground(s, 20, 0.3, 0);
+    const double gap = 1.02, up = sqrt(1.0 - 0.25 * gap * gap);
+    for (int r = 0; r < rows; r++)
+        for (int i = 0; i < rows - r; i++) {
+            ts_body b = ts_circle(true, (tt_vec2){(i - (rows - r - 1) / 2.0) * gap, 0.5 + r * up}, 0.5);
+            b.friction = 0.3;
+            b.fixed_rotation = true;
+            add(s, &b);
+        }
+}
+
 bool ts_scene_named(ts_scene *s, const char *name, bool quick)
 {
     if (!name) return false;
@@ -145,6 +164,7 @@ bool ts_scene_named(ts_scene *s, const char *name, bool quick)
     else if (!strcmp(name, "slope")) ts_scene_slope(s, 20, 0.5);
     else if (!strcmp(name, "spin")) spin(s);
     else if (!strcmp(name, "pyramid")) pyramid(s, 10);
+    else if (!strcmp(name, "discs")) discs(s, 10);
     /* quick pour: 1 000 circles in a box √10 times narrower, the rule that makes the 100 k box 316 wide */
     else if (!strcmp(name, "pour")) quick ? ts_scene_pour(s, 1000, 31.6) : ts_scene_pour(s, 10000, 100);
     else if (!strcmp(name, "pour100k")) ts_scene_pour(s, 100000, 316);

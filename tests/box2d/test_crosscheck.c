@@ -139,6 +139,26 @@ TEST(box2d_crosscheck_pyramid_stands)
     free(r);
 }
 
+/* Scene 7: ten rows of discs that do not turn, friction 0.3, on a floor.
+ * The known answer is Box2D's: the pyramid stands (base spread and top sink
+ * under 5 cm in 10 s). Tether's particles take friction from each other
+ * only in the velocity pass, bounded by the contact's normal speed change,
+ * which at rest is about nothing (docs/collisions.md): the base is wedged
+ * apart, 8.4 m at 1 × 8. That is the gap issues 19 and 21 leave open, printed
+ * here, not asserted; this test pins the scene's answer. */
+TEST(box2d_crosscheck_disc_pyramid_stands_in_box2d)
+{
+    cc_report *r = quick("discs", 1, 8, 4);
+    ENSURE(r != NULL);
+    const cc_row *spread = row(r, "base spread", NULL), *sink = row(r, "top disc sunk", NULL);
+    ENSURE(spread && sink);
+    printf("    discs, 10 s: base spread Box2D %.3f m, tether %.3f m; top sunk %.3f m, %.3f m\n", spread->box2d, spread->tether,
+           sink->box2d, sink->tether);
+    ENSURE(fabs(spread->box2d) < 0.05 && fabs(sink->box2d) < 0.05);
+    ENSURE(isfinite(spread->tether) && isfinite(sink->tether));
+    free(r);
+}
+
 /* The measured gaps of scenes 3 to 5 at tether's default 1 × 8, 4 × 4
  * lattices (README "Box2D cross-check" explains each). */
 TEST(box2d_crosscheck_bounce_slope_spin_gaps)

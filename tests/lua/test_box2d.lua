@@ -39,7 +39,7 @@ T.test("bodies and joints by hand: a pendulum on a revolute joint keeps its leng
 end)
 
 T.test("every named scene is a table both engines can build", function()
-  for _, name in ipairs{ "fall", "pendulum", "bounce", "slope", "spin", "pyramid", "pour" } do
+  for _, name in ipairs{ "fall", "pendulum", "bounce", "slope", "spin", "pyramid", "discs", "pour" } do
     local s = b2.scene(name, true)
     local w = b2.build(s)
     T.eq(w:count(), #s.bodies, name)
