@@ -764,6 +764,7 @@ function world:composite_count() end
 ---@field friction_kinetic? number
 ---@field restitution_threshold? number m/s
 ---@field stacking? number mass scaling by height for piles, ≥ 0 (0 = off; 2 for deep piles)
+---@field anchored_friction? boolean particle pairs' static friction held across substeps: piles and stacks of circles stand (default false)
 ---@field events? ("begin"|"persist"|"end")[]
 
 ---@class tether.ray_hit

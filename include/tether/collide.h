@@ -87,6 +87,12 @@ typedef struct tt_collision_settings {
                                    ///< particle weighs 1 + stacking·u times its mass, u (0…1) how far the pair's normal
                                    ///< points along −gravity (Gauss-Seidel with iterations ≥ 2 only); 2 holds the
                                    ///< 10 000-circle pour under 1 % overlap at 1 × 8 (docs/collisions.md); default 0 = off
+    bool anchored_friction;        ///< static friction between particles held from substep to substep: a pair that does
+                                   ///< not slip keeps the relative position it stuck at, so piles and stacks of circles
+                                   ///< stand (a 10-row pyramid, a pour in a bowl); slow pairs only (under the restitution
+                                   ///< threshold), Verlet or symplectic Euler, Gauss-Seidel, particles that do not turn.
+                                   ///< Pairs are solved one by one (no vector lanes): about 3× the cost of a pile's
+                                   ///< contacts. A pile landing can gain energy (docs/collisions.md). Default false
 } tt_collision_settings;
 
 /// One contact event, delivered after the step (see tt_world_get_contact_events).

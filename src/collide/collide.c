@@ -31,6 +31,7 @@ tt_result tt_world_set_collision(tt_world *w, const tt_collision_settings *s)
     c->clear_ok = false; /* contact_skip.c: the cell and reach may have changed */
     c->set.restitution_threshold = s->restitution_threshold < 0.0 ? -1.0 : s->restitution_threshold;
     if (!s->events) c->nprev = 0;
+    if (!s->anchored_friction) tt__anchors_clear(&c->anc);
     return TT_OK;
 }
 

@@ -199,7 +199,7 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
     if (!ok) tt__step_oom(w, "contact pairs");
     /* batches pay for their planning from the second sweep on */
     c->scr.batched = false;
-    if (w->order == TT_GAUSS_SEIDEL && w->iterations > 1) {
+    if (w->order == TT_GAUSS_SEIDEL && w->iterations > 1 && !tt__anchors_on(w, c)) { /* anchored friction: one by one */
         c->scr.batched = tt__batches_plan(&c->scr.bat, c->scr.pairs, c->scr.npairs, c->scr.runs, c->scr.nrows, w->inv_mass, n);
         if (!c->scr.batched) tt__step_oom(w, "contact batches");
     }
@@ -254,6 +254,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     c->scr.nsc = 0;
     c->cells_used = 0;
     c->scr.batched = false;
+    c->scr.anc_on = false; /* until this substep's detection: a substep that returns before has no pairs */
     c->scr.guard = false; /* until this substep's start positions are copied */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     tt__shapes_place_moved(w, c);
@@ -280,6 +281,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (start_first) substep_start(w, c, h, n);
     if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
+    if (c->set.anchored_friction) tt__anchors_begin(w, c, n, h);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n, grid_built)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);

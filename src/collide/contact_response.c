@@ -140,12 +140,41 @@ bool tt__contacts_rows(const tt_world *w, const void *self)
     return w->order == TT_GAUSS_SEIDEL && w->iterations > 1 && c->set.particles && tt__batches_want_rows(&c->scr.bat);
 }
 
-/* Pairs [k0, k1) one by one, unbatched (Jacobi, or a single sweep);
- * pre-stabilisation's sweeps too (scale: its slop). */
+/* Whether pair k's friction is anchored this substep (contact_anchor.c):
+ * the setting applies and the pair was slower than the bound before the
+ * sweeps (faster ones keep the velocity pass's friction). */
+static inline bool anchored_pair(const tt__collide *c, uint32_t k)
+{
+    const uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
+    const double vx = c->scr.vx0[a] - c->scr.vx0[b], vy = c->scr.vy0[a] - c->scr.vy0[b];
+    return c->scr.anc_on && !(vx * vx + vy * vy > c->scr.anc_thr * c->scr.anc_thr);
+}
+
+/* Anchored friction of pair k: its slide from its anchor undone as far as
+ * its friction so far stays within μs·λ, each side by its share of the
+ * inverse masses. */
+static void anchored_rub(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k, double ia, double ib)
+{
+    const tt__pair *p = &c->scr.pairs[k];
+    const uint32_t a = p->a, b = p->b;
+    if (!(p->lambda > 0.0f) || !anchored_pair(c, k)) return;
+    const size_t st = L->st;
+    const double ex = L->x[a * st] - L->x[b * st], ey = L->y[a * st] - L->y[b * st], d = sqrt(ex * ex + ey * ey);
+    if (!(d > 0.0)) return;
+    const double tx = -ey / d, ty = ex / d, ws = ia + ib;
+    const double f = rub((ex - c->scr.arx[k]) * tx + (ey - c->scr.ary[k]) * ty, p->lambda, tt__pair_mus(c, a, b), &c->scr.alt[k]);
+    if (f == 0.0) return;
+    tt__correct(w, a, tx * f * ia / ws, ty * f * ia / ws);
+    tt__correct(w, b, -tx * f * ib / ws, -ty * f * ib / ws);
+}
+
+/* Pairs [k0, k1) one by one, unbatched (Jacobi, a single sweep, anchored
+ * friction); pre-stabilisation's sweeps too (scale: its slop). */
 double tt__pairs_sweep(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k0, uint32_t k1, double scale)
 {
     const double *inv = w->inv_mass, *X = L->x, *Y = L->y;
     const size_t st = L->st;
+    const bool anchored = c->scr.anc_on && scale == 1.0, push = c->scr.pass != TT__PASS_FRICTION;
     double err = 0.0;
     for (uint32_t k = k0; k < k1; k++) {
         tt__pair *p = &c->scr.pairs[k];
@@ -153,11 +182,13 @@ double tt__pairs_sweep(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k
         const double ia = inv[a], ib = inv[b], ws = ia + ib;
         if (ws == 0.0) continue;
         double dx = X[a * st] - X[b * st], dy = Y[a * st] - Y[b * st], pen, t;
-        if (!tt__pair_push(a, b, p->rs * scale, ws, &dx, &dy, &pen, &t)) continue;
-        tt__correct(w, a, dx * t * ia, dy * t * ia);
-        tt__correct(w, b, -dx * t * ib, -dy * t * ib);
-        p->lambda += (float)pen;
-        if (pen > err) err = pen;
+        if (push && tt__pair_push(a, b, p->rs * scale, ws, &dx, &dy, &pen, &t)) {
+            tt__correct(w, a, dx * t * ia, dy * t * ia);
+            tt__correct(w, b, -dx * t * ib, -dy * t * ib);
+            p->lambda += (float)pen;
+            if (pen > err) err = pen;
+        }
+        if (anchored) anchored_rub(w, c, L, k, ia, ib);
     }
     return err;
 }
@@ -168,7 +199,9 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
     const tt__lay *L = blk->lay;
     const uint32_t np = pair_units(c), p1 = blk->u1 < np ? blk->u1 : np;
     double err = 0.0;
-    if (blk->u0 < p1) err = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : tt__pairs_sweep(w, c, L, blk->u0, p1, 1.0);
+    const uint8_t pass = c->scr.pass;
+    if (blk->u0 < p1 && pass != TT__PASS_SHAPES)
+        err = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : tt__pairs_sweep(w, c, L, blk->u0, p1, 1.0);
     const double *X = L->x, *Y = L->y;
     const size_t st = L->st;
     const double *sx = start_x(w, c), *sy = start_y(w, c);
@@ -184,7 +217,7 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
             tt__circle_vs_prim(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], &hit);
             if (hit.nx * s->nx + hit.ny * s->ny < 0.0) uncross(c, &c->prims[s->prim], X[a * st], Y[a * st], w->radius[a], s, &hit);
         }
-        if (hit.depth > 0.0) {
+        if (hit.depth > 0.0 && pass != TT__PASS_FRICTION) {
             tt__correct(w, a, hit.nx * hit.depth, hit.ny * hit.depth);
             s->nx = hit.nx;
             s->ny = hit.ny;
@@ -196,7 +229,7 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
             s->lambda += hit.depth;
             if (hit.depth > err) err = hit.depth;
         }
-        if (s->lambda == 0.0 || s->ccd || !fr) continue; /* a sweep's contact gets its friction with its restart, in end */
+        if (s->lambda == 0.0 || s->ccd || !fr || pass == TT__PASS_SHAPES) continue; /* a sweep's contact gets its friction with its restart, in end */
         const double tx = -s->ny, ty = s->nx;
         double f = rub((X[a * st] - sx[a] - s->cx) * tx + (Y[a * st] - sy[a] - s->cy) * ty, s->lambda, s->mu, &s->lambda_t);
         if (f != 0.0) tt__correct(w, a, tx * f, ty * f);
@@ -217,6 +250,7 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
 void tt__contacts_sweeps_done(tt_world *w, void *self)
 {
     tt__collide *c = self;
+    tt__anchors_passes(w, c);
     const uint32_t n = w->ppool.count;
     if (!c->nprim || !c->scr.guard || c->scr.gcap < n) return;
     for (uint32_t i = 0; i < n; i++) {
@@ -272,10 +306,29 @@ static inline __attribute__((always_inline)) void respond(double vx, double vy, 
     }
 }
 
+/* An anchored pair still slipping at its bound when the sweeps end slides
+ * on μk: it gets back the (μs − μk)·λ it was held by too much, each side its
+ * share (as a shape contact does, shape_end). */
+static void anchored_unrub(tt_world *w, tt__collide *c, uint32_t k, double h)
+{
+    const tt__pair *p = &c->scr.pairs[k];
+    const uint32_t a = p->a, b = p->b;
+    const double ia = w->inv_mass[a], ib = w->inv_mass[b], ws = ia + ib;
+    const double ex = w->px[a] - w->px[b], ey = w->py[a] - w->py[b], d = sqrt(ex * ex + ey * ey);
+    if (!(d > 0.0) || ws == 0.0) return;
+    const double tx = -ey / d, ty = ex / d, slide = (ex - c->scr.arx[k]) * tx + (ey - c->scr.ary[k]) * ty;
+    const double muk = c->mat ? sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)) : c->set.friction_kinetic;
+    const double f = unrub(slide, c->scr.alt[k], p->lambda, tt__pair_mus(c, a, b), muk);
+    if (f == 0.0) return;
+    tt__contact_shift(w, a, tx * f * ia / ws, ty * f * ia / ws, h);
+    tt__contact_shift(w, b, -tx * f * ib / ws, -ty * f * ib / ws, h);
+}
+
 /* Velocity pass of a pair that touched this substep; the normal (b to a)
- * from where the sweeps left the pair. */
+ * from where the sweeps left the pair; rubbed: its friction was solved in
+ * the sweeps (anchored), none here. */
 static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b, double ia, double ib, double lam, double h,
-                            double thr, bool events, tt__spin *sp)
+                            double thr, bool events, tt__spin *sp, bool rubbed)
 {
     double ws = ia + ib;
     if (ws == 0.0) return;
@@ -288,8 +341,8 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
     } else {
         tt__pair_apart(a, b, &nx, &ny);
     }
-    double mus = c->mat ? sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1)) : c->set.friction_static;
-    double muk = c->mat ? sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)) : c->set.friction_kinetic;
+    double mus = rubbed ? 0.0 : tt__pair_mus(c, a, b);
+    double muk = rubbed ? 0.0 : c->mat ? sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)) : c->set.friction_kinetic;
     double rvx, rvy; /* velocity of a relative to b; Verlet: the displacements' difference times 1/dt */
     if (w->integrator == TT_VERLET) {
         const double idt = 1.0 / w->dt_prev;
@@ -328,7 +381,7 @@ static void pair_one(void *ctx, uint32_t k)
 {
     pair_ctx *p = ctx;
     const tt__batches *B = &p->c->scr.bat;
-    pair_end(p->w, p->c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], p->h, p->thr, false, p->sp);
+    pair_end(p->w, p->c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], p->h, p->thr, false, p->sp, false);
 }
 
 /* A bounce off a still surface, placed in time. The velocity pass alone
@@ -436,6 +489,7 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
 void tt__contacts_end(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
+    tt__anchors_keep(w, c);
     const double g = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
     const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
     const bool events = c->set.events != 0;
@@ -453,12 +507,14 @@ void tt__contacts_end(tt_world *w, void *self, double h)
         pair_ctx pc = {w, c, h, thr, sp};
         if (!(w->integrator == TT_VERLET && !events && !sp && tt__batches_respond(w, B, &in, pair_one, &pc)))
             for (uint32_t k = 0; k < B->n; k++)
-                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp);
+                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp, false);
     } else {
         for (uint32_t k = 0; k < c->scr.npairs; k++)
             if (c->scr.pairs[k].lambda > 0.0f) {
                 const uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
-                pair_end(w, c, a, b, inv[a], inv[b], c->scr.pairs[k].lambda, h, thr, events, sp);
+                const bool rubbed = anchored_pair(c, k);
+                if (rubbed) anchored_unrub(w, c, k, h);
+                pair_end(w, c, a, b, inv[a], inv[b], c->scr.pairs[k].lambda, h, thr, events, sp, rubbed);
             }
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)

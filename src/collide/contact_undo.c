@@ -17,7 +17,7 @@ bool tt__contacts_fallible(const tt_world *w, const void *self)
 {
     (void)w;
     const tt__collide *c = self;
-    return tt__contacts_detect_any(c) && !c->scr.bounded;
+    return (tt__contacts_detect_any(c) && !c->scr.bounded) || c->set.anchored_friction; /* the anchors change */
 }
 
 /* Whether no radius is above zero (its bits): then no pair can be found,
@@ -76,7 +76,9 @@ static bool ends_valid(const tt_world *w, const tt__collide *c)
 
 bool tt__contacts_undo_reserve(tt_world *w, void *self)
 {
-    tt__collide_undo *u = &((tt__collide *)self)->scr.undo;
+    tt__collide *c = self;
+    tt__collide_undo *u = &c->scr.undo;
+    if (!tt__anchors_room(&u->anc, c->anc.n)) return false;
     if (w->integrator == TT_VERLET || u->cap >= w->pcap) return true;
     double *x = realloc(u->sx0, (size_t)w->pcap * sizeof *x);
     if (!x) return false;
@@ -111,6 +113,7 @@ void tt__contacts_undo_mark(tt_world *w, void *self)
     u->reach_rmax = c->reach_rmax;
     u->reach_n = c->reach_n;
     u->reach_epoch = c->reach_epoch;
+    (void)tt__anchors_copy(&u->anc, &c->anc); /* reserve made the room */
 }
 
 void tt__contacts_undo(tt_world *w, void *self)
@@ -136,6 +139,7 @@ void tt__contacts_undo(tt_world *w, void *self)
     c->reach_rmax = u->reach_rmax;
     c->reach_n = u->reach_n;
     c->reach_epoch = u->reach_epoch;
+    tt__anchors_restore(&c->anc, &u->anc);
     c->scr.nrec = 0;
     c->scr.npairs = 0; /* sleep.c reads the last substep's pairs after a step: this one's are gone */
     c->scr.nsc = 0;

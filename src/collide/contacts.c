@@ -33,6 +33,7 @@ static void particle_removed(tt_world *w, void *self, uint32_t i)
     }
     if (c->ccd_prim && i < c->bulletcap) c->ccd_prim[i] = -1;
     tt__pair_set_drop(&c->excl, i);
+    tt__anchors_drop(&c->anc, i);
     uint32_t k = 0;
     for (uint32_t j = 0; j < c->nprev; j++) {
         uint64_t key = c->prev[j].key;
@@ -52,7 +53,7 @@ static bool idle(const tt_world *w, const void *self)
     return !s->particles && s->broadphase == d.broadphase && s->cell_size == d.cell_size &&
            s->restitution == d.restitution && s->friction_static == d.friction_static &&
            s->friction_kinetic == d.friction_kinetic && s->restitution_threshold == d.restitution_threshold &&
-           s->events == d.events && s->stacking == d.stacking && c->spool.count == 0 && c->excl.used == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
+           s->events == d.events && s->stacking == d.stacking && s->anchored_friction == d.anchored_friction && c->spool.count == 0 && c->excl.used == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
            c->nevents == 0 && !c->terr;
 }
 
@@ -78,6 +79,8 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     b += (size_t)c->scr.runs_cap * sizeof *c->scr.runs + c->scr.near_cap;
     b += ((size_t)c->scr.reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
     b += (size_t)c->scr.undo.cap * 2 * sizeof(double);
+    b += tt__anchors_bytes(&c->anc) + tt__anchors_bytes(&c->scr.undo.anc) + (size_t)c->scr.acap * 4 * sizeof(double) +
+         (size_t)c->scr.abcap * sizeof(uint32_t);
     return b + tt__terrains_bytes(c->terr);
 }
 
@@ -94,6 +97,8 @@ void tt__contacts_scratch_free(tt_world *w, void *self)
     tt__batches_free(&s->bat);
     free(s->rec);
     free(s->undo.sx0); free(s->undo.sy0);
+    tt__anchors_free(&s->undo.anc);
+    free(s->arx); free(s->ary); free(s->alt); free(s->akey); free(s->abucket);
     *s = (tt__collide_scratch){0};
     s->bat.simd = simd;
     s->grid.epoch = UINT64_MAX; /* no grid: a query builds its own */
@@ -114,6 +119,7 @@ void tt__contacts_destroy(tt_world *w, void *self)
     tt__pair_set_free(&c->excl);
     free(c->prev); free(c->events);
     tt__terrains_free(c->terr);
+    tt__anchors_free(&c->anc);
     free(c);
 }
 
@@ -281,6 +287,7 @@ void tt__contacts_save(const tt_world *w, const void *self, tt__sink *s)
         tt__put_u32(s, TT__ID('S', 'T', 'A', 'K'));
         tt__put_f64(s, set->stacking);
     }
+    if (set->anchored_friction) tt__anchors_save(&c->anc, s); /* last, only when on: likewise */
 }
 
 /* A record (record: its kind is not set yet, 0) or a published event. */
@@ -449,8 +456,8 @@ static bool no_terrain_records(const tt__collide *c, tt__source *s)
 }
 
 /* What may follow the records, each only when there is one: the terrains,
- * then the stacking setting (a stream of a world without either is the
- * same as before they existed). */
+ * then the stacking setting, then anchored friction's anchors (a stream of
+ * a world without any is the same as before they existed). */
 static bool load_tail(tt_world *w, tt__collide *c, tt__source *s)
 {
     bool terrains = false;
@@ -461,11 +468,18 @@ static bool load_tail(tt_world *w, tt__collide *c, tt__source *s)
         if (terr && !(terrains = tt__terrains_load(w, c, s))) return false;
     }
     if (!terrains && !no_terrain_records(c, s)) return false;
-    if (s->at < s->len) {
-        if (tt__get_u32(s) != TT__ID('S', 'T', 'A', 'K')) return tt__src_fail(s, "collisions: unknown section");
+    uint32_t id = s->at < s->len ? tt__get_u32(s) : 0;
+    if (id == TT__ID('S', 'T', 'A', 'K')) {
         c->set.stacking = tt__get_num(s, 0.0, TT_MAX_VALUE, "stacking");
         if (!s->failed && c->set.stacking == 0.0) return tt__src_fail(s, "stacking 0 written out");
+        id = !s->failed && s->at < s->len ? tt__get_u32(s) : 0;
     }
+    if (id == TT__ID('A', 'N', 'C', 'H')) {
+        c->set.anchored_friction = true;
+        if (!tt__anchors_load(&c->anc, s, w->ppool.count)) return false;
+        id = 0;
+    }
+    if (id) return tt__src_fail(s, "collisions: unknown section");
     return !s->failed && s->at == s->len;
 }
 

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const names[SCENE_COUNT] = {"pour", "cloth", "zoo", "integrators", "settle", "roll"};
+static const char *const names[SCENE_COUNT] = {"pour", "cloth", "zoo", "integrators", "settle", "roll", "pyramid"};
 
 const char *scene_name(scene_kind k) { return (unsigned)k < SCENE_COUNT ? names[k] : "?"; }
 
@@ -353,13 +353,53 @@ static void drive_roll(scene *sc, uint64_t s)
     if (s == 100) tt_particle_apply_impulse(sc->w, sc->p[7], (tt_vec2){-1.5, 2});
 }
 
+/* A pyramid of eight rows of circles (radius 0.5, the bottom row 1.02 m
+ * apart, μ = 0.3) on a floor, held by anchored friction
+ * (collide/contact_anchor.c); sleeping off, so the anchors are worked every
+ * step. The driver removes one circle of the third row and drops a ball on
+ * the top (drive_pyramid). */
+static bool build_pyramid(scene *sc)
+{
+    tt_world *w = sc->w;
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = cs.friction_kinetic = 0.3;
+    cs.anchored_friction = true;
+    if (tt_world_set_collision(w, &cs) != TT_OK || tt_world_set_sleep(w, false, 0.0, 0.0) != TT_OK) return false;
+    sc->s[0] = aabb(w, -20, -1, 20, 0);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.5;
+    const int rows = 8;
+    const double sp = 1.02, dy = sqrt(1.0 - 0.25 * sp * sp);
+    int i = 0;
+    for (int r = 0; r < rows; r++)
+        for (int k = 0; k < rows - r; k++, i++) {
+            pd.position = (tt_vec2){(k - 0.5 * (rows - r - 1)) * sp, 0.5 + r * dy};
+            tt_particle p = tt_particle_create(w, &pd);
+            if (i % 5 == 0 && i / 5 < 8) sc->p[i / 5] = p;
+        }
+    return sc->s[0].gen && sc->p[7].gen;
+}
+
+/* Step 60: a circle of the third row goes (sc->p[4], the 21st); step
+ * 200: a ball of 3 kg lands on the top. */
+static void drive_pyramid(scene *sc, uint64_t s)
+{
+    if (s == 60) tt_particle_destroy(sc->w, sc->p[4]);
+    if (s != 200) return;
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.4;
+    pd.mass = 3;
+    pd.position = (tt_vec2){0.3, 9};
+    tt_particle_create(sc->w, &pd);
+}
+
 bool scene_build(scene *sc, scene_kind k)
 {
     memset(sc, 0, sizeof *sc);
     sc->kind = k;
     lcg_state = 2026 + (uint64_t)k;
     tt_world_def wd = tt_world_def_default();
-    if (k == SCENE_POUR || k == SCENE_SETTLE || k == SCENE_ROLL) wd.gravity = (tt_vec2){0, -10};
+    if (k == SCENE_POUR || k == SCENE_SETTLE || k == SCENE_ROLL || k == SCENE_PYRAMID) wd.gravity = (tt_vec2){0, -10};
     wd.spin = k == SCENE_ROLL;
     sc->w = tt_world_create(&wd);
     if (!sc->w) return false;
@@ -370,6 +410,7 @@ bool scene_build(scene *sc, scene_kind k)
     case SCENE_INTEGRATORS: return build_integrators(sc);
     case SCENE_SETTLE: return build_settle(sc);
     case SCENE_ROLL: return build_roll(sc);
+    case SCENE_PYRAMID: return build_pyramid(sc);
     default: return false;
     }
 }
@@ -413,6 +454,7 @@ void scene_step(scene *sc)
     case SCENE_INTEGRATORS: drive_integrators(sc, s); break;
     case SCENE_SETTLE: drive_settle(sc, s); break;
     case SCENE_ROLL: drive_roll(sc, s); break;
+    case SCENE_PYRAMID: drive_pyramid(sc, s); break;
     default: break;
     }
     tt_world_step(sc->w, 1.0 / 60);

@@ -13,6 +13,7 @@ typedef enum {
     SCENE_INTEGRATORS, /* springs under every integrator in turn, forces, damping, Jacobi */
     SCENE_SETTLE,      /* two bins of circles fall asleep (sleeping at its defaults); a ball dropped in one wakes it */
     SCENE_ROLL,        /* discs that turn (spin) roll down a slope into a pile; the driver spins and kicks some */
+    SCENE_PYRAMID,     /* a pyramid of circles held by anchored friction; one is removed, a ball lands on it */
     SCENE_COUNT
 } scene_kind;
 

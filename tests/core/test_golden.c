@@ -34,7 +34,10 @@
  * contacts faster than the fastest of them came in (contact_cap.c). Every
  * hash moved, and the zoo and settle positions, when the rest test began to
  * read the particle's position smoothed over a few steps (sleep_rest.c):
- * the smoothed positions are in the sleep section. */
+ * the smoothed positions are in the sleep section. The pyramid scene,
+ * added with its pin, pins anchored friction (collide/contact_anchor.c):
+ * a pyramid of circles that it holds, one circle removed from under the
+ * upper rows, a ball dropped on the top. */
 #include "test.h"
 #include "core/scenes.h"
 
@@ -52,6 +55,7 @@ static const struct {
     [SCENE_INTEGRATORS] = {0x27ae56b6631ba7eeull, 0xad7e88ab8523019full},
     [SCENE_SETTLE] = {0x6130b11f32fad7efull, 0x7dad36ae636c2d3aull},
     [SCENE_ROLL] = {0x7305931a3218983full, 0xe1f604779a002266ull},
+    [SCENE_PYRAMID] = {0x24aa109fddbc7ce5ull, 0xfff2af7f15ee4af0ull},
 };
 
 TEST(golden_scenes_keep_their_positions_and_hashes)

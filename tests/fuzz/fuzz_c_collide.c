@@ -217,10 +217,11 @@ static void c_world_set_collision(fz *f)
     s.restitution_threshold = fz_chance(f, 60) ? -1.0 : fz_real(f, 0, 5);
     s.events = fz_chance(f, 90) ? fz_below(f, 8) : (uint32_t)fz_rand(f);
     s.stacking = fz_chance(f, 60) ? 0.0 : fz_chance(f, 95) ? fz_real(f, 0, 10) : fz_real(f, -1, 1e13);
+    s.anchored_friction = fz_chance(f, 40);
     fz_log(f, "tt_world_set_collision(%s, &(tt_collision_settings){particles %d, broadphase %d, cell %s, material %s %s "
-              "%s, threshold %s, events %#x, stacking %s})", fz_wn(f, w), s.particles, (int)s.broadphase, fz_d(s.cell_size),
+              "%s, threshold %s, events %#x, stacking %s, anchored %d})", fz_wn(f, w), s.particles, (int)s.broadphase, fz_d(s.cell_size),
            fz_d(s.restitution), fz_d(s.friction_static), fz_d(s.friction_kinetic), fz_d(s.restitution_threshold),
-           s.events, fz_d(s.stacking));
+           s.events, fz_d(s.stacking), s.anchored_friction);
     FZ_HIT(f, tt_world_set_collision);
     fz_res(f, tt_world_set_collision(w, fz_chance(f, 2) ? NULL : &s));
 }

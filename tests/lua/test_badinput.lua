@@ -357,7 +357,8 @@ local OPTIONS = {
                                       category = "u16", mask = "u16", sensor = "bool" } },
   set_collision = { arg = 2, fields = { particles = "bool", cell_size = "nonneg", restitution = "unit",
                                         friction = "nonneg", friction_static = "nonneg", friction_kinetic = "nonneg",
-                                        restitution_threshold = "nonneg", stacking = "nonneg" } },
+                                        restitution_threshold = "nonneg", stacking = "nonneg",
+                                        anchored_friction = "bool" } },
 }
 
 local function good_args(spec)

@@ -1,0 +1,310 @@
+/* tether — anchored friction between particles
+ * (tt_collision_settings.anchored_friction).
+ *
+ * Friction between two particles is otherwise bounded in the velocity pass
+ * by μ·Δvn, and each substep measures the slide it undoes from where the
+ * pair began that substep. What a substep's sweeps leave of a slide is
+ * never undone, so a pile creeps: a pyramid of ten rows of circles at
+ * μ = 0.3 spreads 8.45 m at its base in 10 s (Box2D 2.4.1: 1.4 cm), and
+ * three of eleven jittered pours into the mask bowl still moved at 20 s
+ * (kinetic energy up to 5.9e-3 J/kg).
+ *
+ * With the setting on, a pair's friction is a position constraint solved
+ * in the sweeps beside its normal push (as a shape's is, contact_response.c
+ * rub), and the slide is measured from an anchor: the pair's relative
+ * position where it stuck, kept here from substep to substep. The anchor
+ * moves to where the pair is only when the pair slipped (its friction
+ * ended the sweeps at the static bound μs·λ) or moved faster than the
+ * restitution threshold (an impact is the velocity pass's to handle: with
+ * every pair held from its first touch, a landing pour builds a loose pile
+ * 10 % taller). A pair that stops touching loses its anchor. After the
+ * sweeps come two passes of friction alone and one pass that only pushes
+ * particles out of shapes (the friction may have moved them in), in
+ * sweeps_done, before the guard.
+ *
+ * The measures that chose this (each part left out, and what it did) are
+ * in docs/collisions.md "Anchored friction".
+ *
+ * The anchors are state: saved and hashed (contacts.c), put back with a
+ * step that fails (contact_undo.c), dropped with a removed particle. A
+ * substep looks every pair up (begin) and keeps the touching ones (end);
+ * the table is sorted by key, so the same pairs make the same stream
+ * whatever order the broadphase found them in. */
+#include "collide_internal.h"
+#include "core/spin.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+bool tt__anchors_on(const tt_world *w, const tt__collide *c)
+{
+    return c->set.anchored_friction && c->set.particles && w->order == TT_GAUSS_SEIDEL &&
+           (w->integrator == TT_VERLET || w->integrator == TT_SYMPLECTIC_EULER) && !tt__spin_peek(w);
+}
+
+static inline uint32_t hash_slot(uint64_t key, uint32_t nslot)
+{
+    return (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 32) & (nslot - 1);
+}
+
+/* Entry of key, or UINT32_MAX. */
+static uint32_t find(const tt__anchors *t, uint64_t key)
+{
+    if (t->n == 0) return UINT32_MAX;
+    for (uint32_t s = hash_slot(key, t->nslot);; s = (s + 1) & (t->nslot - 1)) {
+        const uint32_t e = t->slot[s];
+        if (e == 0) return UINT32_MAX;
+        if (t->key[e - 1] == key) return e - 1;
+    }
+}
+
+static void index_all(tt__anchors *t)
+{
+    if (t->nslot) memset(t->slot, 0, (size_t)t->nslot * sizeof *t->slot);
+    for (uint32_t e = 0; e < t->n; e++) {
+        uint32_t s = hash_slot(t->key[e], t->nslot);
+        while (t->slot[s]) s = (s + 1) & (t->nslot - 1);
+        t->slot[s] = e + 1;
+    }
+}
+
+/* Room for cap entries and their slots; the entries are kept. */
+static bool table_room(tt__anchors *t, uint32_t cap)
+{
+    if (cap < 16) cap = 16;
+    if (!tt__anchors_room(t, cap)) return false;
+    uint32_t ns = 16;
+    while (ns < 2 * (uint64_t)t->cap && ns < (1u << 31)) ns *= 2;
+    if (t->nslot < ns) {
+        uint32_t *s = realloc(t->slot, (size_t)ns * sizeof *s);
+        if (!s) return false;
+        t->slot = s;
+        t->nslot = ns;
+        index_all(t);
+    }
+    return true;
+}
+
+void tt__anchors_free(tt__anchors *t)
+{
+    free(t->key); free(t->rx); free(t->ry); free(t->slot);
+    *t = (tt__anchors){0};
+}
+
+size_t tt__anchors_bytes(const tt__anchors *t)
+{
+    return (size_t)t->cap * (sizeof *t->key + 2 * sizeof(double)) + (size_t)t->nslot * sizeof *t->slot;
+}
+
+void tt__anchors_clear(tt__anchors *t)
+{
+    t->n = 0;
+    if (t->nslot) memset(t->slot, 0, (size_t)t->nslot * sizeof *t->slot);
+}
+
+/* Begin, after detection: each pair's anchor (where it began the substep
+ * when it has none) and friction so far (none). The table is then spent
+ * until end rebuilds it: a substep that ends with no contact (end does not
+ * run) leaves none. */
+void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
+{
+    tt__collide_scratch *s = &c->scr;
+    const double g = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
+    s->anc_on = tt__anchors_on(w, c);
+    s->anc_thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h; /* as end's */
+    s->anc_h = h;
+    if (!s->anc_on) {
+        tt__anchors_clear(&c->anc);
+        return;
+    }
+    const uint32_t np = s->npairs;
+    uint32_t c1 = s->acap, c2 = s->acap, c3 = s->acap, c4 = s->acap;
+    if (!tt__grow((void **)&s->arx, &c1, np + 1, sizeof *s->arx) || !tt__grow((void **)&s->ary, &c2, np + 1, sizeof *s->ary) ||
+        !tt__grow((void **)&s->alt, &c3, np + 1, sizeof *s->alt) || !tt__grow((void **)&s->akey, &c4, np + 1, sizeof *s->akey) ||
+        !tt__grow((void **)&s->abucket, &s->abcap, n + 2, sizeof *s->abucket)) {
+        s->acap = 0; /* some grew: the next substep grows all again */
+        tt__step_oom(w, "anchored friction");
+        s->anc_on = false; /* this substep without it; the step is undone */
+        return;
+    }
+    s->acap = c1;
+    const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
+    for (uint32_t k = 0; k < np; k++) {
+        const uint32_t a = s->pairs[k].a, b = s->pairs[k].b, e = find(&c->anc, tt__pair_key(a, b));
+        s->alt[k] = 0.0;
+        if (e == UINT32_MAX) {
+            s->arx[k] = sx[a] - sx[b];
+            s->ary[k] = sy[a] - sy[b];
+        } else { /* stored lower minus higher */
+            s->arx[k] = a < b ? c->anc.rx[e] : -c->anc.rx[e];
+            s->ary[k] = a < b ? c->anc.ry[e] : -c->anc.ry[e];
+        }
+    }
+    tt__anchors_clear(&c->anc);
+    if (!table_room(&c->anc, np)) {
+        tt__step_oom(w, "anchored friction");
+        s->anc_on = false;
+    }
+}
+
+/* Sorts entries [0, n) by key: counting sort by the lower slot (below
+ * nb), then insertion within each slot's few. */
+static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const uint64_t *key, const double *rx, const double *ry)
+{
+    memset(bucket, 0, (size_t)(nb + 1) * sizeof *bucket);
+    for (uint32_t e = 0; e < t->n; e++) bucket[(key[e] >> 32) + 1]++;
+    for (uint32_t i = 0; i < nb; i++) bucket[i + 1] += bucket[i];
+    for (uint32_t e = 0; e < t->n; e++) {
+        const uint32_t to = bucket[key[e] >> 32]++;
+        t->key[to] = key[e];
+        t->rx[to] = rx[e];
+        t->ry[to] = ry[e];
+    }
+    for (uint32_t e = 1; e < t->n; e++) {
+        const uint64_t k = t->key[e];
+        const double x = t->rx[e], y = t->ry[e];
+        uint32_t j = e;
+        for (; j > 0 && t->key[j - 1] > k; j--) {
+            t->key[j] = t->key[j - 1];
+            t->rx[j] = t->rx[j - 1];
+            t->ry[j] = t->ry[j - 1];
+        }
+        t->key[j] = k;
+        t->rx[j] = x;
+        t->ry[j] = y;
+    }
+}
+
+/* End, before the velocity pass: the touching pairs' anchors, kept where
+ * the pair held (slow, and its friction within the static bound), else
+ * where the pair is now. Written pair by pair into the scratch (entry m
+ * over pair k ≥ m, read already), then sorted into the table. */
+void tt__anchors_keep(tt_world *w, tt__collide *c)
+{
+    tt__collide_scratch *s = &c->scr;
+    tt__anchors *t = &c->anc;
+    const uint32_t n = w->ppool.count;
+    if (!s->anc_on || t->cap < s->npairs || s->abcap < n + 2 || s->acap <= s->npairs) return;
+    uint64_t *key = s->akey;
+    double *rx = s->arx, *ry = s->ary;
+    uint32_t m = 0;
+    const double thr2 = s->anc_thr * s->anc_thr;
+    for (uint32_t k = 0; k < s->npairs; k++) {
+        const tt__pair *p = &s->pairs[k];
+        if (!(p->lambda > 0.0f)) continue;
+        const uint32_t a = p->a, b = p->b;
+        const double vx = s->vx0[a] - s->vx0[b], vy = s->vy0[a] - s->vy0[b];
+        double x = s->arx[k], y = s->ary[k];
+        if (vx * vx + vy * vy > thr2 || fabs(s->alt[k]) >= 0.999 * tt__pair_mus(c, a, b) * p->lambda) {
+            x = w->px[a] - w->px[b];
+            y = w->py[a] - w->py[b];
+        }
+        key[m] = tt__pair_key(a, b);
+        rx[m] = a < b ? x : -x;
+        ry[m] = a < b ? y : -y;
+        m++;
+    }
+    t->n = m;
+    sort_entries(t, s->abucket, n, key, rx, ry);
+    index_all(t);
+}
+
+/* The extra passes, after the sweeps (positions back in the world's
+ * arrays): friction alone twice, then shapes' pushes alone. */
+void tt__anchors_passes(tt_world *w, tt__collide *c)
+{
+    if (!c->scr.anc_on) return;
+    const tt__lay L = {w->px, w->py, w->inv_mass, 1}, kept = w->scr.lay;
+    w->scr.lay = L;
+    const tt__block b = {c->scr.anc_h, &L, 0, tt__contacts_units(w, c), false};
+    c->scr.pass = TT__PASS_FRICTION;
+    (void)tt__contacts_relax(w, c, &b);
+    (void)tt__contacts_relax(w, c, &b);
+    c->scr.pass = TT__PASS_SHAPES;
+    (void)tt__contacts_relax(w, c, &b);
+    c->scr.pass = TT__PASS_ALL;
+    w->scr.lay = kept;
+}
+
+/* A removed particle's anchors go (its slot may be reused). */
+void tt__anchors_drop(tt__anchors *t, uint32_t i)
+{
+    uint32_t m = 0;
+    for (uint32_t e = 0; e < t->n; e++) {
+        if ((uint32_t)(t->key[e] >> 32) == i || (uint32_t)t->key[e] == i) continue;
+        t->key[m] = t->key[e];
+        t->rx[m] = t->rx[e];
+        t->ry[m] = t->ry[e];
+        m++;
+    }
+    if (m == t->n) return;
+    t->n = m;
+    index_all(t);
+}
+
+/* Room for n entries (not their slots); false on no memory. */
+bool tt__anchors_room(tt__anchors *t, uint32_t n)
+{
+    if (t->cap >= n) return true;
+    uint32_t c1 = t->cap, c2 = t->cap, c3 = t->cap;
+    if (!tt__grow((void **)&t->key, &c1, n, sizeof *t->key) || !tt__grow((void **)&t->rx, &c2, n, sizeof *t->rx) ||
+        !tt__grow((void **)&t->ry, &c3, n, sizeof *t->ry))
+        return false;
+    t->cap = c1 < c2 ? (c1 < c3 ? c1 : c3) : (c2 < c3 ? c2 : c3);
+    return true;
+}
+
+/* Copies the entries of from into to (whose slots are not kept up); false on no memory. */
+bool tt__anchors_copy(tt__anchors *to, const tt__anchors *from)
+{
+    if (!tt__anchors_room(to, from->n)) return false;
+    to->n = from->n;
+    if (from->n) {
+        memcpy(to->key, from->key, (size_t)from->n * sizeof *to->key);
+        memcpy(to->rx, from->rx, (size_t)from->n * sizeof *to->rx);
+        memcpy(to->ry, from->ry, (size_t)from->n * sizeof *to->ry);
+    }
+    return true;
+}
+
+/* The undo's copy back: the table has room for it (it held more or as many). */
+void tt__anchors_restore(tt__anchors *t, const tt__anchors *from)
+{
+    if (!table_room(t, from->n) || !tt__anchors_copy(t, from)) { /* neither allocates: the table only grows */
+        tt__anchors_clear(t);
+        return;
+    }
+    index_all(t);
+}
+
+void tt__anchors_save(const tt__anchors *t, tt__sink *s)
+{
+    tt__put_u32(s, TT__ID('A', 'N', 'C', 'H'));
+    tt__put_u32(s, t->n);
+    for (uint32_t e = 0; e < t->n; e++) {
+        tt__put_u64(s, t->key[e]);
+        tt__put_f64(s, t->rx[e]);
+        tt__put_f64(s, t->ry[e]);
+    }
+}
+
+/* After the section's id: the entries, each a pair of live slots below n,
+ * in ascending order. */
+bool tt__anchors_load(tt__anchors *t, tt__source *s, uint32_t n)
+{
+    const uint32_t m = tt__get_count(s, 24, "anchors");
+    if (s->failed) return false;
+    if (!table_room(t, m)) return tt__src_fail(s, "out of memory");
+    for (uint32_t e = 0; e < m; e++) {
+        const uint64_t key = tt__get_u64(s);
+        const double x = tt__get_num(s, -1e300, 1e300, "anchor"), y = tt__get_num(s, -1e300, 1e300, "anchor");
+        const uint32_t lo = (uint32_t)(key >> 32), hi = (uint32_t)key;
+        if (s->failed || !(lo < hi && hi < n) || (e && t->key[e - 1] >= key)) return tt__src_fail(s, "anchor %u", e);
+        t->key[e] = key;
+        t->rx[e] = x;
+        t->ry[e] = y;
+    }
+    t->n = m;
+    index_all(t);
+    return true;
+}

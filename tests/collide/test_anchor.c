@@ -1,0 +1,261 @@
+/* tether — anchored friction (tt_collision_settings.anchored_friction,
+ * collide/contact_anchor.c): a circle on a circle holds inside Coulomb's
+ * cone and slides outside it, a pyramid of circles stands, and the anchors
+ * are state: saved, loaded, dropped with their particle, put back with a
+ * step that runs out of memory, refused when a stream holds bad ones. */
+#include "test.h"
+#include "alloc_fail.h"
+#include "collide/collide_internal.h"
+#include "core/stream.h" /* tt__hash_bytes: to reseal a stream changed by hand */
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static tt_world *world(bool anchored, double mu)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.gravity = (tt_vec2){0, -10};
+    wd.substeps = 1;
+    wd.iterations = 8;
+    wd.sleep = false;
+    tt_world *w = tt_world_create(&wd);
+    tt_collision_settings cs = tt_collision_settings_default();
+    cs.friction_static = cs.friction_kinetic = mu;
+    cs.anchored_friction = anchored;
+    tt_world_set_collision(w, &cs);
+    return w;
+}
+
+/* A circle (radius 0.5) resting on a pinned one, their centres at angle
+ * atan(slope) from the vertical, μ = 0.6; how far it moved in 2 s, m. */
+static double on_a_circle(bool anchored, double slope)
+{
+    tt_world *w = world(anchored, 0.6);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.5;
+    pd.pinned = true;
+    tt_particle_create(w, &pd);
+    const double th = atan(slope);
+    pd.pinned = false;
+    pd.position = (tt_vec2){sin(th), cos(th)};
+    tt_particle p = tt_particle_create(w, &pd);
+    for (int s = 0; s < 120; s++) tt_world_step(w, 1.0 / 60);
+    tt_vec2 x;
+    tt_particle_get_position(w, p, &x);
+    tt_world_destroy(w);
+    return hypot(x.x - sin(th), x.y - cos(th));
+}
+
+/* Coulomb: it sticks while tan θ < μ and slides when greater, as it does
+ * without anchors (the friction of the sweeps is not added to the velocity
+ * pass's: held by both, it stuck at tan θ = 0.8). */
+TEST(anchored_friction_holds_a_circle_on_a_circle_inside_the_friction_cone)
+{
+    const double held = on_a_circle(true, 0.4), slid = on_a_circle(true, 0.8), plain = on_a_circle(false, 0.8);
+    printf("    μ = 0.6, 2 s: moved %.2e m at tan θ = 0.4; at 0.8 %.2f m (%.2f without anchors)\n", held, slid, plain);
+    ENSURE(held < 1e-3);
+    ENSURE(slid > 0.5 * plain && slid > 1.0);
+}
+
+/* A pyramid of `rows` rows (as tests/core/scenes.c's), μ given, 1 × 8. */
+static tt_world *pyramid(bool anchored, double mu, int rows, tt_particle *ps)
+{
+    tt_world *w = world(anchored, mu);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.type = TT_SHAPE_AABB;
+    sd.a = (tt_vec2){-40, -1};
+    sd.b = (tt_vec2){40, 0};
+    sd.friction_static = sd.friction_kinetic = mu;
+    tt_shape_create(w, &sd);
+    tt_particle_def pd = tt_particle_def_default();
+    pd.radius = 0.5;
+    const double sp = 1.02, dy = sqrt(1.0 - 0.25 * sp * sp);
+    int i = 0;
+    for (int r = 0; r < rows; r++)
+        for (int k = 0; k < rows - r; k++) {
+            pd.position = (tt_vec2){(k - 0.5 * (rows - r - 1)) * sp, 0.5 + r * dy};
+            ps[i++] = tt_particle_create(w, &pd);
+        }
+    return w;
+}
+
+/* How far the base of a pyramid spread in `steps`, m. */
+static double spread(bool anchored, double mu, int steps)
+{
+    tt_particle ps[55];
+    tt_world *w = pyramid(anchored, mu, 10, ps);
+    for (int s = 0; s < steps; s++) tt_world_step(w, 1.0 / 60);
+    tt_vec2 l, r;
+    tt_particle_get_position(w, ps[0], &l);
+    tt_particle_get_position(w, ps[9], &r);
+    tt_world_destroy(w);
+    return r.x - l.x - 9 * 1.02;
+}
+
+/* Ten rows at μ = 0.3 for 10 s: Box2D 2.4.1 (discs that do not turn)
+ * spreads its base 1.4 cm; anchored, the base holds within that; without
+ * anchors it spreads metres. Without friction (μ = 0) the anchors hold
+ * nothing: the pyramid falls flat. */
+TEST(anchored_friction_holds_a_pyramid_of_circles_and_only_with_friction)
+{
+    const double held = spread(true, 0.3, 600), plain = spread(false, 0.3, 600), none = spread(true, 0.0, 600);
+    printf("    10 rows, 10 s: base spread %.4f m anchored, %.2f m without, %.2f m anchored at μ = 0\n", held, plain, none);
+    ENSURE(fabs(held) < 0.014);
+    ENSURE(plain > 1.0);
+    ENSURE(none > 5.0);
+}
+
+static unsigned char *save(const tt_world *w, size_t *n)
+{
+    tt_world_save(w, NULL, 0, n); /* the size, with TT_ENOMEM */
+    unsigned char *b = malloc(*n);
+    if (b && tt_world_save(w, b, *n, NULL) != TT_OK) {
+        free(b);
+        return NULL;
+    }
+    return b;
+}
+
+static uint32_t anchors(const tt_world *w) { return tt__collide_peek(w)->anc.n; }
+
+/* The anchors are in the stream (24 bytes each and a header of 8), a world
+ * loaded from it goes on as the original, a removed particle takes its
+ * anchors with it, and turning the setting off drops them all. */
+TEST(anchors_are_saved_loaded_and_dropped_with_their_particle)
+{
+    tt_particle ps[36];
+    tt_world *w = pyramid(true, 0.3, 8, ps);
+    for (int s = 0; s < 30; s++) tt_world_step(w, 1.0 / 60);
+    const uint32_t n = anchors(w);
+    ENSURE(n > 50); /* 8 rows: 77 touching pairs with the pyramid whole */
+    size_t on, off;
+    unsigned char *b = save(w, &on);
+    ENSURE(b != NULL);
+    tt_world *v = tt_world_load(b, on);
+    ENSURE(v != NULL);
+    ENSURE(tt_world_hash(v) == tt_world_hash(w));
+    ENSURE(anchors(v) == n);
+    for (int s = 0; s < 60; s++) {
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE_OK(tt_world_step(v, 1.0 / 60));
+    }
+    ENSURE(tt_world_hash(v) == tt_world_hash(w));
+    const uint32_t before = anchors(w), gone = ps[10].index;
+    ENSURE_OK(tt_particle_destroy(w, ps[10]));
+    ENSURE_OK(tt_particle_destroy(v, ps[10]));
+    const tt__anchors *t = &tt__collide_peek(w)->anc;
+    ENSURE(t->n < before);
+    for (uint32_t e = 0; e < t->n; e++) ENSURE((uint32_t)(t->key[e] >> 32) != gone && (uint32_t)t->key[e] != gone);
+    for (int s = 0; s < 60; s++) {
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE_OK(tt_world_step(v, 1.0 / 60));
+    }
+    ENSURE(tt_world_hash(v) == tt_world_hash(w));
+    tt_collision_settings cs;
+    tt_world_get_collision(w, &cs);
+    const size_t with = (free(save(w, &on)), on);
+    cs.anchored_friction = false;
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    free(save(w, &off));
+    ENSURE(anchors(w) == 0);
+    ENSURE(with == off + 8 + 24 * (size_t)anchors(v));
+    tt_world_destroy(v);
+    tt_world_destroy(w);
+    free(b);
+}
+
+/* Every allocation of a step refused in turn, from the first on: the step
+ * fails with the world as it was (anchors included), and the same step
+ * retried makes the world its twin's, which never ran out. The first step
+ * (the anchors' table made) and the 21st, after a ball fell on the
+ * pyramid's side (more pairs than the table had room for). */
+TEST(out_of_memory_in_an_anchored_step_leaves_the_world_as_it_was)
+{
+    int refusals = 0;
+    for (long k = 0, at = 0; at <= 20; k++) {
+        tt_particle pa[37], pb[37];
+        tt_world *a = pyramid(true, 0.3, 8, pa), *b = pyramid(true, 0.3, 8, pb);
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = 0.45;
+        pd.position = (tt_vec2){-2.4, 4.0};
+        pd.velocity = (tt_vec2){0, -8};
+        pa[36] = tt_particle_create(a, &pd);
+        pb[36] = tt_particle_create(b, &pd);
+        for (int s = 0; s < at; s++) tt_world_step(a, 1.0 / 60), tt_world_step(b, 1.0 / 60);
+        const uint64_t h0 = tt_world_hash(a);
+        tt_test_alloc_fail_from(k);
+        const tt_result r = tt_world_step(a, 1.0 / 60);
+        const bool refused = tt_test_alloc_ok();
+        if (r != TT_OK) {
+            ENSURE(refused && r == TT_ENOMEM);
+            ENSURE(tt_world_hash(a) == h0);
+            ENSURE_OK(tt_world_step(a, 1.0 / 60));
+            refusals++;
+        }
+        ENSURE_OK(tt_world_step(b, 1.0 / 60));
+        for (int s = 0; s < 5; s++) {
+            ENSURE_OK(tt_world_step(a, 1.0 / 60));
+            ENSURE_OK(tt_world_step(b, 1.0 / 60));
+        }
+        ENSURE(tt_world_hash(a) == tt_world_hash(b));
+        tt_world_destroy(a);
+        tt_world_destroy(b);
+        if (!refused) k = -1, at += 20; /* the step made no more allocations: the next step */
+    }
+    printf("    %d allocations refused in turn, each failed its step whole\n", refusals);
+    ENSURE(refusals > 0);
+}
+
+/* The stream's checksum remade after a change by hand. */
+static void reseal(unsigned char *b, size_t n)
+{
+    const uint64_t sum = tt__hash_bytes(b + 32, n - 32);
+    memcpy(b + 24, &sum, 8);
+}
+
+/* The anchors' section found by its marker and count (the last of the
+ * collision section, which is not the stream's last). */
+static size_t find_anchors(const unsigned char *b, size_t n, uint32_t count)
+{
+    const uint32_t id = TT__ID('A', 'N', 'C', 'H');
+    for (size_t at = 32; at + 8 <= n; at++)
+        if (!memcmp(b + at, &id, 4) && !memcmp(b + at + 4, &count, 4)) return at + 8;
+    return 0;
+}
+
+/* Anchors out of order, naming a particle past the last, or not finite:
+ * refused, nothing made. */
+TEST(a_stream_with_bad_anchors_is_refused)
+{
+    tt_particle ps[36];
+    tt_world *w = pyramid(true, 0.3, 8, ps);
+    for (int s = 0; s < 30; s++) tt_world_step(w, 1.0 / 60);
+    size_t n;
+    unsigned char *b = save(w, &n), *c = malloc(n);
+    ENSURE(b && c);
+    const size_t at = find_anchors(b, n, anchors(w));
+    ENSURE(at > 0);
+    for (int kind = 0; kind < 3; kind++) {
+        memcpy(c, b, n);
+        if (kind == 0) memcpy(c + at, b + at + 24, 8), memcpy(c + at + 24, b + at, 8); /* the first two swapped */
+        if (kind == 1) { /* the last pair: 35 and 36 of 36, still in order */
+            const uint64_t past = ((uint64_t)35 << 32) | 36u;
+            memcpy(c + at + 24 * (size_t)(anchors(w) - 1), &past, 8);
+        }
+        if (kind == 2) {
+            const double nan = NAN;
+            memcpy(c + at + 8, &nan, 8);
+        }
+        reseal(c, n);
+        tt_world *v = tt_world_load(c, n);
+        ENSURE(v == NULL);
+    }
+    memcpy(c, b, n);
+    tt_world *v = tt_world_load(c, n);
+    ENSURE(v != NULL);
+    tt_world_destroy(v);
+    tt_world_destroy(w);
+    free(b);
+    free(c);
+}
