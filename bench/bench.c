@@ -202,6 +202,7 @@ static const struct {
     {"mask", bench_mask},
     {"snapshot", bench_snapshot},
     {"terrain", bench_terrain},
+    {"bowlstarts", bench_bowl_starts},
     {"rewind", bench_rewind},
     {"journal", bench_journal},
     {"sleep", bench_sleep},

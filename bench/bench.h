@@ -27,6 +27,7 @@ void bench_cloth_strain(const tt_world *w, const tt_constraint *cs, uint32_t n, 
 void bench_mask(const char *dir);
 void bench_snapshot(const char *dir);
 void bench_terrain(const char *dir);
+void bench_bowl_starts(const char *dir);
 void bench_rewind(const char *dir);
 void bench_journal(const char *dir);
 /* Sleeping: the settled reference pour asleep vs awake, a ball dropped on it (bench_sleep.c). */

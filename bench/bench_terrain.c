@@ -107,12 +107,12 @@ static tb_world *box2d_bowl(int k)
 }
 
 /* Every circle's place and speed at the end, for bench/bowl.gp: engine 0
- * tether, 1 and 2 the Box2D bowls. */
+ * tether, 1 and 2 the Box2D bowls, 3 tether with anchored friction. */
 static void circles_csv(FILE *f, int engine, const ts_bowl *b, const tb_world *w)
 {
     for (uint32_t i = 0; i < b->t.circle_count; i++) {
         double x, y, vx, vy;
-        if (engine == 0) {
+        if (engine == 0 || engine == 3) {
             tt_vec2 p, v;
             tt_particle_get_position(b->t.world, b->t.circles[i], &p);
             tt_particle_get_velocity(b->t.world, b->t.circles[i], &v);
@@ -136,23 +136,31 @@ static void box2d_figures(const tb_world *w, uint32_t n, double *ke, ts_pile *pi
     free(xy);
 }
 
-/* The reference pour onto a mask bowl: 10 000 circles, 20 s; tether and the
- * two Box2D bowls take turns 30 steps at a time, each step timed. */
+/* The reference pour onto a mask bowl: 10 000 circles, 20 s; tether, the
+ * two Box2D bowls and tether with anchored friction take turns 30 steps at
+ * a time, each step timed. */
 static void bowl(FILE *csv, const char *dir)
 {
-    ts_bowl b;
+    ts_bowl b, ba;
     const char *why = NULL;
-    if (ts_bowl_build(10000, 100, &b, &why) != TT_OK) {
+    if (ts_bowl_build(10000, 100, &b, &why) != TT_OK || ts_bowl_build(10000, 100, &ba, &why) != TT_OK) {
         printf("  bowl: %s\n", why ? why : "failed");
         return;
     }
+    tt_collision_settings cs;
+    tt_world_get_collision(ba.t.world, &cs);
+    cs.anchored_friction = true;
+    tt_world_set_collision(ba.t.world, &cs);
     tb_world *b2[2] = {box2d_bowl(0), box2d_bowl(1)};
-    double ns[3] = {0, 0, 0};
+    double ns[4] = {0, 0, 0, 0};
     for (uint32_t s = 0; s < b.steps; s += 30) {
         const uint32_t m = b.steps - s < 30 ? b.steps - s : 30;
         double a = bench_now_ns();
         for (uint32_t j = 0; j < m; j++) tt_world_step(b.t.world, 1.0 / 60);
         ns[0] += bench_now_ns() - a;
+        a = bench_now_ns();
+        for (uint32_t j = 0; j < m; j++) tt_world_step(ba.t.world, 1.0 / 60);
+        ns[3] += bench_now_ns() - a;
         for (int k = 0; k < 2; k++) {
             if (!b2[k]) continue;
             a = bench_now_ns();
@@ -184,8 +192,17 @@ static void bowl(FILE *csv, const char *dir)
         circles_csv(cc, 1 + k, &b, b2[k]);
         tb_world_destroy(b2[k]);
     }
+    ts_bowl_measure(&ba, &f);
+    printf("  tether with anchored friction (tt_collision_settings.anchored_friction): %.2f ms/step (%.2fx plain tether's"
+           " time); KE %.2e J/kg, centres in solid pixels %u, deepest into the bowl %.1f %% of a radius, circle overlap"
+           " max %.1f %% mean %.2f %%\n",
+           ns[3] * 1e-6 / b.steps, ns[3] / ns[0], f.kinetic, f.inside, 100 * f.penetration, 100 * f.max_overlap,
+           100 * f.mean_overlap);
+    fprintf(csv, "bowl anchored,%.4f,%.3e,%.5f,%.5f\n", ns[3] * 1e-6 / b.steps, f.kinetic, f.penetration, f.max_overlap);
+    circles_csv(cc, 3, &ba, NULL);
     fclose(cc);
     ts_bowl_free(&b);
+    ts_bowl_free(&ba);
 }
 
 void bench_terrain(const char *dir)

@@ -8,6 +8,7 @@
 #include "core/simd.h"
 #include "core/stream.h" /* TT__ID */
 #include "tether/collide.h"
+#include "contact_anchor.h"
 
 /* Candidate pairs are kept when their gap is under this fraction of the
  * radii sum, so pairs that close during the sweeps are solved at once. */
@@ -211,17 +212,6 @@ typedef struct tt__record {  /* one contact of the step, for events */
  * the step began (contact_undo.c): the end positions the next substep
  * starts from (velocity integrators, while valid) and contact_skip.c's and
  * contact_reach.c's bounds with the epochs they hold for. Scratch. */
-/* Anchored friction (contact_anchor.c): where each pair that touched at
- * the end of the last substep stuck, sorted by key. State: saved, hashed,
- * put back with a failed step. */
-typedef struct tt__anchors {
-    uint64_t *key;        /* lower slot << 32 | higher slot, ascending */
-    double *rx, *ry;      /* the lower particle's position less the higher one's where the pair stuck */
-    uint32_t n, cap;
-    uint32_t *slot;       /* open addressing on key: entry + 1, 0 empty; nslot a power of two ≥ 2·cap */
-    uint32_t nslot;
-} tt__anchors;
-
 typedef struct tt__collide_undo {
     double *sx0, *sy0;
     uint32_t cap;
@@ -273,21 +263,9 @@ typedef struct tt__collide_scratch {
     uint32_t nrec, reccap;
     bool bounded;         /* the step about to run has room for all it can need: no undo (contacts_bound) */
     tt__collide_undo undo;
-    /* anchored friction this substep (contact_anchor.c): per pair its anchor and friction correction so far */
-    bool anc_on;
-    uint8_t pass;         /* TT__PASS_*: what relax does (the extra passes of anchored friction) */
-    double anc_thr;       /* pairs slower than this, m/s, hold to their anchor */
-    double anc_h;         /* the substep, s */
-    double *arx, *ary, *alt;
-    uint64_t *akey;       /* end: the touching pairs' keys before sorting */
-    uint32_t acap;        /* of all four */
-    uint32_t *abucket;    /* the anchors' counting sort by lower slot, one per particle + 1 */
-    uint32_t abcap;
+    tt__anchor_scratch anc; /* anchored friction this substep (contact_anchor.h) */
 } tt__collide_scratch;
 
-/* What a relax call does: every contact (the sweeps), or one of the extra
- * passes of anchored friction (contact_anchor.c). */
-enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
 
 /* State: what contacts.c saves (settings, shapes, materials, bullets,
  * switched-off pairs, the last step's records and events, and the last
@@ -454,23 +432,13 @@ void tt__contacts_scratch_free(tt_world *w, void *self);
 void tt__contacts_save(const tt_world *w, const void *self, struct tt__sink *s);
 void *tt__contacts_load(tt_world *w, struct tt__source *s);
 
-/* Anchored friction (contact_anchor.c). on: the setting applies this
- * substep; begin: each pair's anchor (h the substep);
- * passes: the extra passes after the sweeps; keep: the touching pairs'
- * anchors into the table, in end. The rest keeps the table as state. */
+/* Anchored friction (contact_anchor.c; the table's own calls in
+ * contact_anchor.h): whether it applies this substep; each pair's anchor
+ * (begin, after detection; h the substep); the touching pairs' anchors
+ * into the table (keep, in end). */
 bool tt__anchors_on(const tt_world *w, const tt__collide *c);
 void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h);
-void tt__anchors_passes(tt_world *w, tt__collide *c);
 void tt__anchors_keep(tt_world *w, tt__collide *c);
-void tt__anchors_clear(tt__anchors *t);
-void tt__anchors_drop(tt__anchors *t, uint32_t i);
-bool tt__anchors_room(tt__anchors *t, uint32_t n);
-bool tt__anchors_copy(tt__anchors *to, const tt__anchors *from);
-void tt__anchors_restore(tt__anchors *t, const tt__anchors *from);
-void tt__anchors_free(tt__anchors *t);
-size_t tt__anchors_bytes(const tt__anchors *t);
-void tt__anchors_save(const tt__anchors *t, struct tt__sink *s);
-bool tt__anchors_load(tt__anchors *t, struct tt__source *s, uint32_t n);
 
 /* Keys of a step's contacts: a particle pair, or a shape and a particle
  * (bit 63 set, the shape slot in bits 32..62). */

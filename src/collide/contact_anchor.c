@@ -19,8 +19,8 @@
  * every pair held from its first touch, a landing pour builds a loose pile
  * 10 % taller). A pair that stops touching loses its anchor. After the
  * sweeps come two passes of friction alone and one pass that only pushes
- * particles out of shapes (the friction may have moved them in), in
- * sweeps_done, before the guard.
+ * particles out of shapes (the friction may have moved them in): those,
+ * and the friction itself, are contact_response.c's.
  *
  * The measures that chose this (each part left out, and what it did) are
  * in docs/collisions.md "Anchored friction".
@@ -110,40 +110,40 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
 {
     tt__collide_scratch *s = &c->scr;
     const double g = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
-    s->anc_on = tt__anchors_on(w, c);
-    s->anc_thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h; /* as end's */
-    s->anc_h = h;
-    if (!s->anc_on) {
+    s->anc.on = tt__anchors_on(w, c);
+    s->anc.thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h; /* as end's */
+    s->anc.h = h;
+    if (!s->anc.on) {
         tt__anchors_clear(&c->anc);
         return;
     }
     const uint32_t np = s->npairs;
-    uint32_t c1 = s->acap, c2 = s->acap, c3 = s->acap, c4 = s->acap;
-    if (!tt__grow((void **)&s->arx, &c1, np + 1, sizeof *s->arx) || !tt__grow((void **)&s->ary, &c2, np + 1, sizeof *s->ary) ||
-        !tt__grow((void **)&s->alt, &c3, np + 1, sizeof *s->alt) || !tt__grow((void **)&s->akey, &c4, np + 1, sizeof *s->akey) ||
-        !tt__grow((void **)&s->abucket, &s->abcap, n + 2, sizeof *s->abucket)) {
-        s->acap = 0; /* some grew: the next substep grows all again */
+    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap;
+    if (!tt__grow((void **)&s->anc.rx, &c1, np + 1, sizeof *s->anc.rx) || !tt__grow((void **)&s->anc.ry, &c2, np + 1, sizeof *s->anc.ry) ||
+        !tt__grow((void **)&s->anc.lt, &c3, np + 1, sizeof *s->anc.lt) || !tt__grow((void **)&s->anc.key, &c4, np + 1, sizeof *s->anc.key) ||
+        !tt__grow((void **)&s->anc.bucket, &s->anc.bcap, n + 2, sizeof *s->anc.bucket)) {
+        s->anc.cap = 0; /* some grew: the next substep grows all again */
         tt__step_oom(w, "anchored friction");
-        s->anc_on = false; /* this substep without it; the step is undone */
+        s->anc.on = false; /* this substep without it; the step is undone */
         return;
     }
-    s->acap = c1;
+    s->anc.cap = c1;
     const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
     for (uint32_t k = 0; k < np; k++) {
         const uint32_t a = s->pairs[k].a, b = s->pairs[k].b, e = find(&c->anc, tt__pair_key(a, b));
-        s->alt[k] = 0.0;
+        s->anc.lt[k] = 0.0;
         if (e == UINT32_MAX) {
-            s->arx[k] = sx[a] - sx[b];
-            s->ary[k] = sy[a] - sy[b];
+            s->anc.rx[k] = sx[a] - sx[b];
+            s->anc.ry[k] = sy[a] - sy[b];
         } else { /* stored lower minus higher */
-            s->arx[k] = a < b ? c->anc.rx[e] : -c->anc.rx[e];
-            s->ary[k] = a < b ? c->anc.ry[e] : -c->anc.ry[e];
+            s->anc.rx[k] = a < b ? c->anc.rx[e] : -c->anc.rx[e];
+            s->anc.ry[k] = a < b ? c->anc.ry[e] : -c->anc.ry[e];
         }
     }
     tt__anchors_clear(&c->anc);
     if (!table_room(&c->anc, np)) {
         tt__step_oom(w, "anchored friction");
-        s->anc_on = false;
+        s->anc.on = false;
     }
 }
 
@@ -184,18 +184,18 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
     tt__collide_scratch *s = &c->scr;
     tt__anchors *t = &c->anc;
     const uint32_t n = w->ppool.count;
-    if (!s->anc_on || t->cap < s->npairs || s->abcap < n + 2 || s->acap <= s->npairs) return;
-    uint64_t *key = s->akey;
-    double *rx = s->arx, *ry = s->ary;
+    if (!s->anc.on || t->cap < s->npairs || s->anc.bcap < n + 2 || s->anc.cap <= s->npairs) return;
+    uint64_t *key = s->anc.key;
+    double *rx = s->anc.rx, *ry = s->anc.ry;
     uint32_t m = 0;
-    const double thr2 = s->anc_thr * s->anc_thr;
+    const double thr2 = s->anc.thr * s->anc.thr;
     for (uint32_t k = 0; k < s->npairs; k++) {
         const tt__pair *p = &s->pairs[k];
         if (!(p->lambda > 0.0f)) continue;
         const uint32_t a = p->a, b = p->b;
         const double vx = s->vx0[a] - s->vx0[b], vy = s->vy0[a] - s->vy0[b];
-        double x = s->arx[k], y = s->ary[k];
-        if (vx * vx + vy * vy > thr2 || fabs(s->alt[k]) >= 0.999 * tt__pair_mus(c, a, b) * p->lambda) {
+        double x = s->anc.rx[k], y = s->anc.ry[k];
+        if (vx * vx + vy * vy > thr2 || fabs(s->anc.lt[k]) >= 0.999 * tt__pair_mus(c, a, b) * p->lambda) {
             x = w->px[a] - w->px[b];
             y = w->py[a] - w->py[b];
         }
@@ -205,25 +205,8 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
         m++;
     }
     t->n = m;
-    sort_entries(t, s->abucket, n, key, rx, ry);
+    sort_entries(t, s->anc.bucket, n, key, rx, ry);
     index_all(t);
-}
-
-/* The extra passes, after the sweeps (positions back in the world's
- * arrays): friction alone twice, then shapes' pushes alone. */
-void tt__anchors_passes(tt_world *w, tt__collide *c)
-{
-    if (!c->scr.anc_on) return;
-    const tt__lay L = {w->px, w->py, w->inv_mass, 1}, kept = w->scr.lay;
-    w->scr.lay = L;
-    const tt__block b = {c->scr.anc_h, &L, 0, tt__contacts_units(w, c), false};
-    c->scr.pass = TT__PASS_FRICTION;
-    (void)tt__contacts_relax(w, c, &b);
-    (void)tt__contacts_relax(w, c, &b);
-    c->scr.pass = TT__PASS_SHAPES;
-    (void)tt__contacts_relax(w, c, &b);
-    c->scr.pass = TT__PASS_ALL;
-    w->scr.lay = kept;
 }
 
 /* A removed particle's anchors go (its slot may be reused). */

@@ -254,7 +254,7 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     c->scr.nsc = 0;
     c->cells_used = 0;
     c->scr.batched = false;
-    c->scr.anc_on = false; /* until this substep's detection: a substep that returns before has no pairs */
+    c->scr.anc.on = false; /* until this substep's detection: a substep that returns before has no pairs */
     c->scr.guard = false; /* until this substep's start positions are copied */
     if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) c->nprim = 0;
     tt__shapes_place_moved(w, c);

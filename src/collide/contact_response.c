@@ -147,7 +147,7 @@ static inline bool anchored_pair(const tt__collide *c, uint32_t k)
 {
     const uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
     const double vx = c->scr.vx0[a] - c->scr.vx0[b], vy = c->scr.vy0[a] - c->scr.vy0[b];
-    return c->scr.anc_on && !(vx * vx + vy * vy > c->scr.anc_thr * c->scr.anc_thr);
+    return c->scr.anc.on && !(vx * vx + vy * vy > c->scr.anc.thr * c->scr.anc.thr);
 }
 
 /* Anchored friction of pair k: its slide from its anchor undone as far as
@@ -162,7 +162,7 @@ static void anchored_rub(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t
     const double ex = L->x[a * st] - L->x[b * st], ey = L->y[a * st] - L->y[b * st], d = sqrt(ex * ex + ey * ey);
     if (!(d > 0.0)) return;
     const double tx = -ey / d, ty = ex / d, ws = ia + ib;
-    const double f = rub((ex - c->scr.arx[k]) * tx + (ey - c->scr.ary[k]) * ty, p->lambda, tt__pair_mus(c, a, b), &c->scr.alt[k]);
+    const double f = rub((ex - c->scr.anc.rx[k]) * tx + (ey - c->scr.anc.ry[k]) * ty, p->lambda, tt__pair_mus(c, a, b), &c->scr.anc.lt[k]);
     if (f == 0.0) return;
     tt__correct(w, a, tx * f * ia / ws, ty * f * ia / ws);
     tt__correct(w, b, -tx * f * ib / ws, -ty * f * ib / ws);
@@ -174,7 +174,7 @@ double tt__pairs_sweep(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k
 {
     const double *inv = w->inv_mass, *X = L->x, *Y = L->y;
     const size_t st = L->st;
-    const bool anchored = c->scr.anc_on && scale == 1.0, push = c->scr.pass != TT__PASS_FRICTION;
+    const bool anchored = c->scr.anc.on && scale == 1.0, push = c->scr.anc.pass != TT__PASS_FRICTION;
     double err = 0.0;
     for (uint32_t k = k0; k < k1; k++) {
         tt__pair *p = &c->scr.pairs[k];
@@ -199,7 +199,7 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
     const tt__lay *L = blk->lay;
     const uint32_t np = pair_units(c), p1 = blk->u1 < np ? blk->u1 : np;
     double err = 0.0;
-    const uint8_t pass = c->scr.pass;
+    const uint8_t pass = c->scr.anc.pass;
     if (blk->u0 < p1 && pass != TT__PASS_SHAPES)
         err = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : tt__pairs_sweep(w, c, L, blk->u0, p1, 1.0);
     const double *X = L->x, *Y = L->y;
@@ -237,8 +237,26 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
     return err;
 }
 
+/* Anchored friction's extra passes (contact_anchor.c), after the sweeps
+ * (positions back in the world's arrays): friction alone twice, then
+ * shapes' pushes alone. */
+static void anchored_passes(tt_world *w, tt__collide *c)
+{
+    if (!c->scr.anc.on) return;
+    const tt__lay L = {w->px, w->py, w->inv_mass, 1}, kept = w->scr.lay;
+    w->scr.lay = L;
+    const tt__block b = {c->scr.anc.h, &L, 0, tt__contacts_units(w, c), false};
+    c->scr.anc.pass = TT__PASS_FRICTION;
+    (void)tt__contacts_relax(w, c, &b);
+    (void)tt__contacts_relax(w, c, &b);
+    c->scr.anc.pass = TT__PASS_SHAPES;
+    (void)tt__contacts_relax(w, c, &b);
+    c->scr.anc.pass = TT__PASS_ALL;
+    w->scr.lay = kept;
+}
+
 /* After the last sweep (the solver has the positions back in the world's
- * arrays): the guard. A particle carried by the corrections (another particle's
+ * arrays): anchored friction's passes, then the guard. A particle carried by the corrections (another particle's
  * push-out, a constraint) into a static shape it had no contact with when
  * the substep began would stay in it, unresolved, and could cross a thin
  * one in the next substep (balls spawned into each other in the Galton
@@ -250,7 +268,7 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
 void tt__contacts_sweeps_done(tt_world *w, void *self)
 {
     tt__collide *c = self;
-    tt__anchors_passes(w, c);
+    anchored_passes(w, c);
     const uint32_t n = w->ppool.count;
     if (!c->nprim || !c->scr.guard || c->scr.gcap < n) return;
     for (uint32_t i = 0; i < n; i++) {
@@ -316,9 +334,9 @@ static void anchored_unrub(tt_world *w, tt__collide *c, uint32_t k, double h)
     const double ia = w->inv_mass[a], ib = w->inv_mass[b], ws = ia + ib;
     const double ex = w->px[a] - w->px[b], ey = w->py[a] - w->py[b], d = sqrt(ex * ex + ey * ey);
     if (!(d > 0.0) || ws == 0.0) return;
-    const double tx = -ey / d, ty = ex / d, slide = (ex - c->scr.arx[k]) * tx + (ey - c->scr.ary[k]) * ty;
+    const double tx = -ey / d, ty = ex / d, slide = (ex - c->scr.anc.rx[k]) * tx + (ey - c->scr.anc.ry[k]) * ty;
     const double muk = c->mat ? sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)) : c->set.friction_kinetic;
-    const double f = unrub(slide, c->scr.alt[k], p->lambda, tt__pair_mus(c, a, b), muk);
+    const double f = unrub(slide, c->scr.anc.lt[k], p->lambda, tt__pair_mus(c, a, b), muk);
     if (f == 0.0) return;
     tt__contact_shift(w, a, tx * f * ia / ws, ty * f * ia / ws, h);
     tt__contact_shift(w, b, -tx * f * ib / ws, -ty * f * ib / ws, h);

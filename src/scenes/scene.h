@@ -218,6 +218,10 @@ void ts_tether_free(ts_tether *t);
 tt_result ts_tether_state(const ts_tether *t, uint32_t body, ts_state *out);
 /* Kinetic energy per kg of the dynamic bodies, J/kg. */
 double ts_tether_kinetic_per_kg(const ts_tether *t);
+/* A jittered start: each circle moved by up to ±amount in x and in y
+ * (uniform, its own generator from seed), velocity reset; seed 0 leaves
+ * the start as built. The bowl's tests and bench share it. */
+tt_result ts_tether_jitter(ts_tether *t, uint64_t seed, double amount);
 
 /* --- the reference pour onto a mask bowl (scene_bowl.c) ------------------- */
 

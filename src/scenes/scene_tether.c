@@ -313,6 +313,24 @@ double ts_tether_kinetic_per_kg(const ts_tether *t)
     return e.kinetic / t->mass;
 }
 
+tt_result ts_tether_jitter(ts_tether *t, uint64_t seed, double amount)
+{
+    uint64_t st = seed * 2654435761u + 1;
+    for (uint32_t i = 0; seed && i < t->circle_count; i++) {
+        tt_vec2 p;
+        tt_result r = tt_particle_get_position(t->world, t->circles[i], &p);
+        for (int k = 0; k < 2; k++) {
+            st = st * 6364136223846793005ull + 1442695040888963407ull;
+            const double u = 2.0 * ((double)(st >> 11) / 9007199254740992.0) - 1.0;
+            if (k == 0) p.x += u * amount;
+            else p.y += u * amount;
+        }
+        if (r == TT_OK) r = tt_particle_set_position(t->world, t->circles[i], p, TT_MOVE_RESET_VELOCITY);
+        if (r != TT_OK) return r;
+    }
+    return TT_OK;
+}
+
 tt_result ts_tether_pour_circles(uint32_t n, double width, double lift, const char *name, ts_tether *t, double *top,
                                  uint32_t *steps, const char **why)
 {

@@ -451,18 +451,7 @@ TEST(terrain_pour_into_a_mask_bowl_rests_from_jittered_starts_with_anchored_fric
         ts_bowl b;
         const char *why = NULL;
         ENSURE_OK(ts_bowl_build(1000, 31.6, &b, &why));
-        uint64_t st = seed * 2654435761u + 1;
-        for (uint32_t i = 0; i < b.t.circle_count; i++) {
-            tt_vec2 p;
-            tt_particle_get_position(b.t.world, b.t.circles[i], &p);
-            for (int k = 0; k < 2; k++) {
-                st = st * 6364136223846793005ull + 1442695040888963407ull;
-                const double u = (double)(st >> 11) / 9007199254740992.0;
-                if (k == 0) p.x += (2 * u - 1) * 0.05;
-                else p.y += (2 * u - 1) * 0.05;
-            }
-            ENSURE_OK(tt_particle_set_position(b.t.world, b.t.circles[i], p, TT_MOVE_RESET_VELOCITY));
-        }
+        ENSURE_OK(ts_tether_jitter(&b.t, seed, 0.05));
         tt_collision_settings cs;
         tt_world_get_collision(b.t.world, &cs);
         cs.anchored_friction = true;

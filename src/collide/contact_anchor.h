@@ -1,0 +1,57 @@
+/* tether — anchored friction's table and scratch (contact_anchor.c): the
+ * types the collision state holds, and the calls that keep the table as
+ * state (saved, hashed, put back with a failed step, dropped with a
+ * particle). The substep's calls are in collide_internal.h. */
+#ifndef TETHER_CONTACT_ANCHOR_H
+#define TETHER_CONTACT_ANCHOR_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+struct tt__sink;
+struct tt__source;
+
+/* Where each pair that touched at the end of the last substep stuck, sorted by key. */
+typedef struct tt__anchors {
+    uint64_t *key;        /* lower slot << 32 | higher slot, ascending */
+    double *rx, *ry;      /* the lower particle's position less the higher one's where the pair stuck */
+    uint32_t n, cap;
+    uint32_t *slot;       /* open addressing on key: entry + 1, 0 empty; nslot a power of two ≥ 2·cap */
+    uint32_t nslot;
+} tt__anchors;
+
+/* What a relax call does: every contact (the sweeps), or one of the extra
+ * passes of anchored friction after them. */
+enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
+
+/* The substep's: per pair its anchor (rx, ry, relative a − b) and friction
+ * so far (lt); at the end the touching pairs' keys before sorting (key) and
+ * the sort's counts (bucket, one per particle + 2). */
+typedef struct tt__anchor_scratch {
+    bool on;              /* the setting applies this substep */
+    uint8_t pass;         /* TT__PASS_* */
+    double thr;           /* pairs slower than this, m/s, hold to their anchor */
+    double h;             /* the substep, s */
+    double *rx, *ry, *lt;
+    uint64_t *key;
+    uint32_t cap;         /* of rx, ry, lt, key */
+    uint32_t *bucket, bcap;
+} tt__anchor_scratch;
+
+void tt__anchors_clear(tt__anchors *t);
+void tt__anchors_drop(tt__anchors *t, uint32_t i);
+/* Room for n entries (not their slots); false on no memory. */
+bool tt__anchors_room(tt__anchors *t, uint32_t n);
+/* The entries of from into to (its slots not kept up: the undo's copy); false on no memory. */
+bool tt__anchors_copy(tt__anchors *to, const tt__anchors *from);
+/* The undo's copy back into the table it was taken from (which only grew since: allocates nothing). */
+void tt__anchors_restore(tt__anchors *t, const tt__anchors *from);
+void tt__anchors_free(tt__anchors *t);
+size_t tt__anchors_bytes(const tt__anchors *t);
+/* The stream's section: its id, the count, the entries. load reads what
+ * follows the id, each pair of slots below n. */
+void tt__anchors_save(const tt__anchors *t, struct tt__sink *s);
+bool tt__anchors_load(tt__anchors *t, struct tt__source *s, uint32_t n);
+
+#endif
