@@ -7,7 +7,7 @@ set datafile separator ','
 set multiplot layout 1,4 title 'The reference pour onto a bowl at 20 s, coloured by speed (issue 19: KE <= 1e-3 J/kg at 20 s)'
 set size ratio -1
 set xrange [-52:52]
-set yrange [-2:100]
+set yrange [-2:104]
 set cbrange [-4:0]
 set cblabel 'log10 speed, m/s'
 set palette defined (-4 '#d8d8d8', -2 '#4060c0', -1 '#f0a000', 0 '#d00000')
