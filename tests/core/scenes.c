@@ -466,6 +466,7 @@ tt_world *scene_small_world(void)
     tt_world *w = tt_world_create(NULL);
     tt_collision_settings cs = tt_collision_settings_default();
     cs.events = TT_EVENT_BEGIN | TT_EVENT_PERSIST | TT_EVENT_END;
+    cs.anchored_friction = true; /* its anchors in the stream */
     tt_world_set_collision(w, &cs);
     static const tt_vec2 tri[] = {{-3, -1}, {3, -1}, {0, -0.5}};
     tt_shape_def sd = tt_shape_def_default();
