@@ -12,7 +12,7 @@
 
 void bench_pour100k(const char *dir)
 {
-    static const ts_tether_settings rows[] = {{1, 8, 4, false}, {2, 8, 4, false}, {4, 8, 4, false}};
+    static const ts_tether_settings rows[] = {{1, 8, 4, false, false}, {2, 8, 4, false, false}, {4, 8, 4, false, false}};
     printf("\n== The 100 k pour (100 000 circles r = 0.5 into a 316-wide box), 20 s of 1/60 s steps, sleeping off ==\n");
     printf("target (issue 21): at rest (KE <= 1e-4 J/kg), max overlap <= 1 %% of a radius over the run, <= 25 ms/step mean\n");
     printf("%8s %10s %10s %10s %9s\n", "setting", "mean ms", "median ms", "worst ms", "target");

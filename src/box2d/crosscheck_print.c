@@ -72,21 +72,21 @@ void cc_load(char *buf, size_t n)
 
 static void print_terminal(const cc_report *r, FILE *out)
 {
-    fprintf(out, "%-9s %-34s %-12s %10s %10s %10s %10s %10s %10s %s\n", "scene", "measure", "tether at", "expected", "Box2D",
+    fprintf(out, "%-9s %-34s %-15s %10s %10s %10s %10s %10s %10s %s\n", "scene", "measure", "tether at", "expected", "Box2D",
             "tether", "difference", "Box2D err", "tether err", "unit");
     for (int i = 0; i < r->nrows; i++) {
         const cc_row *w = &r->rows[i];
         char c[6][24];
         row_cells(w, c);
-        fprintf(out, "%-9s %-34s %-12s %10s %10s %10s %10s %10s %10s %s\n", w->scene, w->measure, w->setting, c[0], c[1], c[2], c[3],
+        fprintf(out, "%-9s %-34s %-15s %10s %10s %10s %10s %10s %10s %s\n", w->scene, w->measure, w->setting, c[0], c[1], c[2], c[3],
                 c[4], c[5], w->unit);
     }
-    fprintf(out, "\n%-9s %-30s %-26s %-26s %8s %s\n", "scene", "setting", "Box2D ms/step", "tether ms/step", "ratio", "runs x steps");
+    fprintf(out, "\n%-9s %-38s %-26s %-26s %8s %s\n", "scene", "setting", "Box2D ms/step", "tether ms/step", "ratio", "runs x steps");
     for (int i = 0; i < r->ncosts; i++) {
         const cc_cost *c = &r->costs[i];
         char t[3][48];
         cost_cells(c, t);
-        fprintf(out, "%-9s %-30s %-26s %-26s %8s %d x %d\n", c->scene, c->setting, t[0], t[1], t[2], c->runs, c->steps);
+        fprintf(out, "%-9s %-38s %-26s %-26s %8s %d x %d\n", c->scene, c->setting, t[0], t[1], t[2], c->runs, c->steps);
     }
 }
 
@@ -145,12 +145,13 @@ void cc_print(const cc_report *r, FILE *out, const char *dir, const char *load_b
 
 static int usage(FILE *f, int status)
 {
-    fprintf(f, "usage: tether crosscheck [--quick] [--runs N] [--tether SxI] [--lattice N] [--out DIR] [SCENE]\n"
+    fprintf(f, "usage: tether crosscheck [--quick] [--runs N] [--tether SxI] [--lattice N] [--anchored] [--out DIR] [SCENE]\n"
                "Runs SCENE (fall, pendulum, bounce, slope, spin, pyramid, discs, pour; default all) in tether and in\n"
                "Box2D 2.4.1 and prints the comparison; --out DIR also writes crosscheck.csv and crosscheck.md.\n"
                "--quick: the 1 000-circle pour and 2 timed runs (for tests); --runs N: timed runs of each small scene (1..50, default 5);\n"
                "--tether SxI: tether's substeps x iterations in the small scenes (default 1x8); --lattice N: particles along a box's\n"
-               "shorter side (2..64, default 4). The pour always runs its own list of settings.\n");
+               "shorter side (2..64, default 4); --anchored: tether's small scenes with anchored friction between particles.\n"
+               "The pour always runs its own list of settings.\n");
     return status;
 }
 
@@ -168,6 +169,7 @@ int tb_crosscheck_main(int argc, char **argv)
         else if (!strcmp(argv[i], "--tether") && i + 1 < argc) {
             if (sscanf(argv[++i], "%ux%u", &r->small.substeps, &r->small.iterations) != 2) return free(r), usage(stderr, 2);
         } else if (!strcmp(argv[i], "--lattice") && i + 1 < argc) r->small.lattice = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--anchored")) r->small.anchored = true;
         else if (!strcmp(argv[i], "--help")) return free(r), usage(stdout, 0);
         else if (argv[i][0] == '-' || scene) return free(r), usage(stderr, 2);
         else scene = argv[i];

@@ -43,7 +43,8 @@ bool cc_run_small(cc_report *r, const ts_scene *s, bool timed, cc_probe probe, v
     }
     cc_cost *c = timed ? cc_add_cost(r, s->name, "") : NULL;
     if (c) {
-        snprintf(c->setting, sizeof c->setting, "%ux%u lattice %u vs b2 8/3 no sleep", set.substeps, set.iterations, set.lattice);
+        snprintf(c->setting, sizeof c->setting, "%ux%u lattice %u%s vs b2 8/3 no sleep", set.substeps, set.iterations, set.lattice,
+                 set.anchored ? " anch" : "");
         cc_stats(b2, runs, &c->box2d_med, &c->box2d_min, &c->box2d_max);
         cc_stats(tt, runs, &c->tether_med, &c->tether_min, &c->tether_max);
         c->runs = runs;
@@ -56,7 +57,8 @@ void cc_put(cc_report *r, const char *scene, const char *measure, const char *un
 {
     cc_row *w = cc_add(r, scene, measure, unit);
     if (!w) return;
-    snprintf(w->setting, sizeof w->setting, "%ux%u L%u", r->small.substeps, r->small.iterations, r->small.lattice);
+    snprintf(w->setting, sizeof w->setting, "%ux%u L%u%s", r->small.substeps, r->small.iterations, r->small.lattice,
+             r->small.anchored ? " anchored" : "");
     w->expected = expected;
     w->box2d = b2;
     w->tether = tt;

@@ -176,6 +176,7 @@ typedef struct ts_tether_settings {
     uint32_t substeps, iterations;      /* the world's; default 1 and 8 */
     uint32_t lattice;                   /* particles along a box's shorter side, 2 … 64; default 4 */
     bool spin;                          /* particles turn (tt_world_def.spin); default false */
+    bool anchored;                      /* tt_collision_settings.anchored_friction; default false */
 } ts_tether_settings;
 
 /* What each body became: a particle (dynamic circle), a lattice composite

@@ -12,7 +12,7 @@
 
 ts_tether_settings ts_tether_settings_default(void)
 {
-    ts_tether_settings s = {1, 8, 4, false};
+    ts_tether_settings s = {1, 8, 4, false, false};
     return s;
 }
 
@@ -218,6 +218,7 @@ static tt_world *make_world(const ts_scene *s, const ts_tether_settings *set)
     tt_world *w = tt_world_create(&wd);
     tt_collision_settings cs = tt_collision_settings_default();
     cs.friction_static = cs.friction_kinetic = 0.3;
+    cs.anchored_friction = set->anchored;
     if (w && tt_world_set_collision(w, &cs) != TT_OK) {
         tt_world_destroy(w);
         return NULL;

@@ -144,8 +144,8 @@ TEST(box2d_crosscheck_pyramid_stands)
  * under 5 cm in 10 s). Tether's particles take friction from each other
  * only in the velocity pass, bounded by the contact's normal speed change,
  * which at rest is about nothing (docs/collisions.md): the base is wedged
- * apart, 8.4 m at 1 × 8. That is the gap issues 19 and 21 leave open, printed
- * here, not asserted; this test pins the scene's answer. */
+ * apart, 8.4 m at 1 × 8, printed here, not asserted; this test pins the
+ * scene's answer. With anchored friction tether stands it too (below). */
 TEST(box2d_crosscheck_disc_pyramid_stands_in_box2d)
 {
     cc_report *r = quick("discs", 1, 8, 4);
@@ -156,6 +156,29 @@ TEST(box2d_crosscheck_disc_pyramid_stands_in_box2d)
            sink->box2d, sink->tether);
     ENSURE(fabs(spread->box2d) < 0.05 && fabs(sink->box2d) < 0.05);
     ENSURE(isfinite(spread->tether) && isfinite(sink->tether));
+    free(r);
+}
+
+/* The same with anchored friction (tt_collision_settings.anchored_friction):
+ * tether's pyramid stands as Box2D's does, base spread and top sink under
+ * 5 cm in 10 s at 1 × 8 (3.5 mm and 7.8 mm; Box2D 1.6 and 2.4 cm). */
+TEST(box2d_crosscheck_disc_pyramid_stands_in_both_with_anchored_friction)
+{
+    cc_report *r = calloc(1, sizeof *r);
+    ENSURE(r != NULL);
+    r->quick = true;
+    r->runs = 1;
+    r->small = ts_tether_settings_default();
+    r->small.anchored = true;
+    const char *why = NULL;
+    ENSURE(cc_run(r, "discs", &why));
+    const cc_row *spread = row(r, "base spread", NULL), *sink = row(r, "top disc sunk", NULL);
+    ENSURE(spread && sink);
+    printf("    discs, anchored, 10 s: base spread Box2D %.3f m, tether %.4f m; top sunk %.3f m, %.4f m\n", spread->box2d,
+           spread->tether, sink->box2d, sink->tether);
+    ENSURE(fabs(spread->box2d) < 0.05 && fabs(sink->box2d) < 0.05);
+    ENSURE(fabs(spread->tether) < 0.05 && fabs(sink->tether) < 0.05);
+    ENSURE(strstr(spread->setting, "anchored") != NULL);
     free(r);
 }
 
