@@ -266,7 +266,6 @@ typedef struct tt__collide_scratch {
     tt__anchor_scratch anc; /* anchored friction this substep (contact_anchor.h) */
 } tt__collide_scratch;
 
-
 /* State: what contacts.c saves (settings, shapes, materials, bullets,
  * switched-off pairs, the last step's records and events, and the last
  * substep's end positions while valid). The rest is derived: the
