@@ -77,8 +77,8 @@ void tt__contacts_cap(tt_world *w, tt__collide *c)
         const double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0);
         const double sa = speed2(c, a), sb = speed2(c, b);
         const double s = ea > 0.0 || eb > 0.0 ? INFINITY : sa > sb ? sa : sb;
-        if (s > top[a]) top[a] = s;
-        if (s > top[b]) top[b] = s;
+        top[a] = s > top[a] ? s : top[a]; /* a max of two variables: no branch */
+        top[b] = s > top[b] ? s : top[b];
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)
         if (c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) top[c->scr.sc[k].a] = INFINITY;

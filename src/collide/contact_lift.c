@@ -30,7 +30,11 @@
 
 /* The separation speed the pair allows, from its pre-solve relative normal
  * speed vn0: a bounce after an impact, else no more than it had. */
-static inline double allowed(double vn0, double e, double thr) { return vn0 < -thr ? -e * vn0 : vn0 > 0.0 ? vn0 : 0.0; }
+static inline double allowed(double vn0, double e, double thr)
+{
+    const double bounce = -e * vn0, kept = vn0 > 0.0 ? vn0 : 0.0;
+    return vn0 < -thr ? bounce : kept;
+}
 
 static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, double thr)
 {
@@ -45,9 +49,13 @@ static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, doub
     const double vn0 = (c->scr.vx0[up] - c->scr.vx0[lo]) * nx + (c->scr.vy0[up] - c->scr.vy0[lo]) * ny;
     const double ea = tt__mat(c, up, 0), eb = tt__mat(c, lo, 0);
     double cap = ln + allowed(vn0, ea > eb ? ea : eb, thr);
-    if (cap < 0.0) cap = 0.0;                   /* a lower one falling away does not pull the upper one down */
+    cap = 0.0 > cap ? 0.0 : cap;                /* a lower one falling away does not pull the upper one down */
     const double floor = ln < 0.0 ? ln : 0.0;   /* nor does one rising push it up: it only stops its approach */
-    const double to = un > cap ? cap : un < floor ? floor : un;
+    /* un above cap: cap; else un, or floor where un is under it. Written as a
+     * min and a max of two variables (cap ≥ 0 ≥ floor: the same bits, NaN
+     * and signed zeros included), which compile without branches. */
+    const double above = floor > un ? floor : un;
+    const double to = cap < above ? cap : above;
     if (to != un) tt__add_velocity(w, up, (to - un) * nx, (to - un) * ny);
 }
 
