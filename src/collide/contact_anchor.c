@@ -102,8 +102,9 @@ void tt__anchors_clear(tt__anchors *t)
     if (t->nslot) memset(t->slot, 0, (size_t)t->nslot * sizeof *t->slot);
 }
 
-/* Begin, after detection: each pair's anchor (where it began the substep
- * when it has none) and friction so far (none). The table is then spent
+/* Begin, after detection and the pre-solve velocities: each pair's anchor
+ * (where it began the substep when it has none), friction so far (none)
+ * and whether it is slow. The table is then spent
  * until end rebuilds it: a substep that ends with no contact (end does not
  * run) leaves none. */
 void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
@@ -118,9 +119,10 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
         return;
     }
     const uint32_t np = s->npairs;
-    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap;
+    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap;
     if (!tt__grow((void **)&s->anc.rx, &c1, np + 1, sizeof *s->anc.rx) || !tt__grow((void **)&s->anc.ry, &c2, np + 1, sizeof *s->anc.ry) ||
         !tt__grow((void **)&s->anc.lt, &c3, np + 1, sizeof *s->anc.lt) || !tt__grow((void **)&s->anc.key, &c4, np + 1, sizeof *s->anc.key) ||
+        !tt__grow((void **)&s->anc.slow, &c5, np + 1, sizeof *s->anc.slow) ||
         !tt__grow((void **)&s->anc.bucket, &s->anc.bcap, n + 2, sizeof *s->anc.bucket)) {
         s->anc.cap = 0; /* some grew: the next substep grows all again */
         tt__step_oom(w, "anchored friction");
@@ -129,8 +131,11 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
     }
     s->anc.cap = c1;
     const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
+    const double thr2 = s->anc.thr * s->anc.thr;
     for (uint32_t k = 0; k < np; k++) {
         const uint32_t a = s->pairs[k].a, b = s->pairs[k].b, e = find(&c->anc, tt__pair_key(a, b));
+        const double vx = s->vx0[a] - s->vx0[b], vy = s->vy0[a] - s->vy0[b];
+        s->anc.slow[k] = !(vx * vx + vy * vy > thr2);
         s->anc.lt[k] = 0.0;
         if (e == UINT32_MAX) {
             s->anc.rx[k] = sx[a] - sx[b];
@@ -188,14 +193,12 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
     uint64_t *key = s->anc.key;
     double *rx = s->anc.rx, *ry = s->anc.ry;
     uint32_t m = 0;
-    const double thr2 = s->anc.thr * s->anc.thr;
     for (uint32_t k = 0; k < s->npairs; k++) {
         const tt__pair *p = &s->pairs[k];
         if (!(p->lambda > 0.0f)) continue;
         const uint32_t a = p->a, b = p->b;
-        const double vx = s->vx0[a] - s->vx0[b], vy = s->vy0[a] - s->vy0[b];
         double x = s->anc.rx[k], y = s->anc.ry[k];
-        if (vx * vx + vy * vy > thr2 || fabs(s->anc.lt[k]) >= 0.999 * tt__pair_mus(c, a, b) * p->lambda) {
+        if (!s->anc.slow[k] || fabs(s->anc.lt[k]) >= 0.999 * tt__pair_mus(c, a, b) * p->lambda) {
             x = w->px[a] - w->px[b];
             y = w->py[a] - w->py[b];
         }

@@ -25,9 +25,10 @@ typedef struct tt__anchors {
  * passes of anchored friction after them. */
 enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
 
-/* The substep's: per pair its anchor (rx, ry, relative a − b) and friction
- * so far (lt); at the end the touching pairs' keys before sorting (key) and
- * the sort's counts (bucket, one per particle + 2). */
+/* The substep's: per pair its anchor (rx, ry, relative a − b), friction
+ * so far (lt) and whether it is slow (slower than thr before the sweeps:
+ * its friction is anchored); at the end the touching pairs' keys before
+ * sorting (key) and the sort's counts (bucket, one per particle + 2). */
 typedef struct tt__anchor_scratch {
     bool on;              /* the setting applies this substep */
     uint8_t pass;         /* TT__PASS_* */
@@ -35,7 +36,8 @@ typedef struct tt__anchor_scratch {
     double h;             /* the substep, s */
     double *rx, *ry, *lt;
     uint64_t *key;
-    uint32_t cap;         /* of rx, ry, lt, key */
+    uint8_t *slow;
+    uint32_t cap;         /* of rx, ry, lt, key, slow */
     uint32_t *bucket, bcap;
 } tt__anchor_scratch;
 

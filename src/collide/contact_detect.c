@@ -281,10 +281,10 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (start_first) substep_start(w, c, h, n);
     if (c->nbullets && (c->nprim || c->terr)) tt__ccd(w, c, h);
     bool grid_built = pairs && detect_pairs(w, c, n);
-    if (c->set.anchored_friction) tt__anchors_begin(w, c, n, h);
     if (c->nprim) detect_shapes(w, c, n, grid_built);
     if (c->terr && !tt__terrain_detect(w, c, n, grid_built)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);
+    if (c->set.anchored_friction) tt__anchors_begin(w, c, n, h); /* before pre-stabilisation moves the starts */
     if (c->scr.npairs) tt__contacts_prestab(w, c, n);
     /* stacking weighs the sweeps' and the velocity pass's pairs, not pre-stabilisation's (contact_batch.c) */
     if (c->scr.batched) tt__batches_stack(&c->scr.bat, w->px, w->py, w->gravity, c->set.stacking);

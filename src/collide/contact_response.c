@@ -143,12 +143,7 @@ bool tt__contacts_rows(const tt_world *w, const void *self)
 /* Whether pair k's friction is anchored this substep (contact_anchor.c):
  * the setting applies and the pair was slower than the bound before the
  * sweeps (faster ones keep the velocity pass's friction). */
-static inline bool anchored_pair(const tt__collide *c, uint32_t k)
-{
-    const uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
-    const double vx = c->scr.vx0[a] - c->scr.vx0[b], vy = c->scr.vy0[a] - c->scr.vy0[b];
-    return c->scr.anc.on && !(vx * vx + vy * vy > c->scr.anc.thr * c->scr.anc.thr);
-}
+static inline bool anchored_pair(const tt__collide *c, uint32_t k) { return c->scr.anc.on && c->scr.anc.slow[k]; }
 
 /* Anchored friction of pair k: its slide from its anchor undone as far as
  * its friction so far stays within μs·λ, each side by its share of the
