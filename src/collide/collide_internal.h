@@ -457,10 +457,10 @@ static inline double tt__mat(const tt__collide *c, uint32_t i, int k)
     if (c->mat && i < c->matcap && c->mat[3 * (size_t)i + k] >= 0.0f) return c->mat[3 * (size_t)i + k];
     return k == 0 ? c->set.restitution : k == 1 ? c->set.friction_static : c->set.friction_kinetic;
 }
-/* A particle pair's static friction: the geometric mean of the two. */
-static inline double tt__pair_mus(const tt__collide *c, uint32_t a, uint32_t b)
+/* A particle pair's friction k (1 static, 2 kinetic): the geometric mean of the two. */
+static inline double tt__pair_mu(const tt__collide *c, uint32_t a, uint32_t b, int k)
 {
-    return c->mat ? sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1)) : c->set.friction_static;
+    return c->mat ? sqrt(tt__mat(c, a, k) * tt__mat(c, b, k)) : k == 1 ? c->set.friction_static : c->set.friction_kinetic;
 }
 
 /* Filters: the one place that decides whether two particles may collide

@@ -198,7 +198,7 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
         if (!(p->lambda > 0.0f)) continue;
         const uint32_t a = p->a, b = p->b;
         double x = s->anc.rx[k], y = s->anc.ry[k];
-        if (!s->anc.slow[k] || fabs(s->anc.lt[k]) >= 0.999 * tt__pair_mus(c, a, b) * p->lambda) {
+        if (!s->anc.slow[k] || fabs(s->anc.lt[k]) >= 0.999 * tt__pair_mu(c, a, b, 1) * p->lambda) {
             x = w->px[a] - w->px[b];
             y = w->py[a] - w->py[b];
         }

@@ -157,7 +157,7 @@ static void anchored_rub(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t
     const double ex = L->x[a * st] - L->x[b * st], ey = L->y[a * st] - L->y[b * st], d = sqrt(ex * ex + ey * ey);
     if (!(d > 0.0)) return;
     const double tx = -ey / d, ty = ex / d, ws = ia + ib;
-    const double f = rub((ex - c->scr.anc.rx[k]) * tx + (ey - c->scr.anc.ry[k]) * ty, p->lambda, tt__pair_mus(c, a, b), &c->scr.anc.lt[k]);
+    const double f = rub((ex - c->scr.anc.rx[k]) * tx + (ey - c->scr.anc.ry[k]) * ty, p->lambda, tt__pair_mu(c, a, b, 1), &c->scr.anc.lt[k]);
     if (f == 0.0) return;
     tt__correct(w, a, tx * f * ia / ws, ty * f * ia / ws);
     tt__correct(w, b, -tx * f * ib / ws, -ty * f * ib / ws);
@@ -330,8 +330,8 @@ static void anchored_unrub(tt_world *w, tt__collide *c, uint32_t k, double h)
     const double ex = w->px[a] - w->px[b], ey = w->py[a] - w->py[b], d = sqrt(ex * ex + ey * ey);
     if (!(d > 0.0) || ws == 0.0) return;
     const double tx = -ey / d, ty = ex / d, slide = (ex - c->scr.anc.rx[k]) * tx + (ey - c->scr.anc.ry[k]) * ty;
-    const double muk = c->mat ? sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)) : c->set.friction_kinetic;
-    const double f = unrub(slide, c->scr.anc.lt[k], p->lambda, tt__pair_mus(c, a, b), muk);
+    const double muk = tt__pair_mu(c, a, b, 2);
+    const double f = unrub(slide, c->scr.anc.lt[k], p->lambda, tt__pair_mu(c, a, b, 1), muk);
     if (f == 0.0) return;
     tt__contact_shift(w, a, tx * f * ia / ws, ty * f * ia / ws, h);
     tt__contact_shift(w, b, -tx * f * ib / ws, -ty * f * ib / ws, h);
@@ -354,8 +354,8 @@ static inline void pair_end(tt_world *w, tt__collide *c, uint32_t a, uint32_t b,
     } else {
         tt__pair_apart(a, b, &nx, &ny);
     }
-    double mus = rubbed ? 0.0 : tt__pair_mus(c, a, b);
-    double muk = rubbed ? 0.0 : c->mat ? sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)) : c->set.friction_kinetic;
+    double mus = rubbed ? 0.0 : tt__pair_mu(c, a, b, 1);
+    double muk = rubbed ? 0.0 : tt__pair_mu(c, a, b, 2);
     double rvx, rvy; /* velocity of a relative to b; Verlet: the displacements' difference times 1/dt */
     if (w->integrator == TT_VERLET) {
         const double idt = 1.0 / w->dt_prev;
