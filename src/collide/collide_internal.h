@@ -109,83 +109,8 @@ typedef struct tt__pair { /* 16 bytes: hundreds of thousands are written every s
     float lambda;         /* normal correction applied this substep, m */
 } tt__pair;
 
-/* Pair contacts in batches of four, one from each of four parts of the
- * pair list (contact_batch.c): the order Gauss-Seidel solves them in when a
- * substep sweeps more than once, the same with and without vector lanes. */
-typedef struct tt__batches {
-    uint32_t *a, *b;      /* particle slots, 4 per batch; padding lanes name np */
-    double *rs, *lam;     /* radii sum; normal correction accumulated this substep, m */
-    double *pre;          /* radii sum less the pre-stabilisation slop (TT__PRESTAB_SLOP) */
-    double *wa, *wb;      /* inverse masses of a and b (0: padding), beside the entry the sweeps read them with */
-    double *sa, *sb;      /* stacking's weights of a and b (tt__batches_stack) */
-    const double *ka, *kb; /* the weights the sweeps use: wa, wb, or sa, sb with stacking */
-    uint32_t n, cap;      /* entries (a multiple of 4), room */
-    uint8_t *solo;        /* per batch: its lanes share a particle, so they go one by one */
-    uint32_t *stamp;      /* planner: per particle slot, the last batch (+ mark) naming it */
-    uint32_t stamp_cap, mark;
-    double *xy;           /* the velocity pass's xy rows (simd.h) of particles [0, np) and the padding row np */
-    uint32_t xy_cap, np;  /* np: the particle count the plan was made for; the sweeps' padding row */
-    double *q, *v0;       /* the velocity pass's xy rows: x_old, y_old; pre-solve vx, vy */
-    uint32_t q_cap, v0_cap;
-    double *me;           /* the velocity pass with particle materials: per entry e, μs, μk (3 arrays of cap) */
-    uint32_t me_cap;
-    uint8_t simd;         /* tt__simd_mode */
-} tt__batches;
+#include "contact_batch.h"
 
-/* Lays pairs [0, npairs) out in batches. Part k is, for each of nrows
- * rows, pairs [runs[y·TT__PARTS + k], runs[y·TT__PARTS + k + 1]); runs NULL:
- * TT__PARTS equal parts. inv: the particles' inverse masses, which stay
- * as they are until the substep ends. False on no memory. */
-/* Room for the stamps of np particles (the rest follows the pairs). */
-bool tt__batches_reserve(tt__batches *B, uint32_t np);
-bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, const uint32_t *runs, uint32_t nrows,
-                      const double *inv, uint32_t np);
-/* Batches [t0, t1) of a Gauss-Seidel sweep on positions L (in vector
- * lanes on the solver's rows, st = 4); returns the deepest overlap seen. */
-double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1);
-/* Stacking (tt_collision_settings.stacking = k): the weights ka, kb the sweeps and the velocity
- * pass use, the lower particle of each entry 1 + k·u times heavier, u its height under the upper
- * one over the radii sum (px, py the positions, g the gravity); k = 0: wa, wb as they are. */
-void tt__batches_stack(tt__batches *B, const double *px, const double *py, tt_vec2 g, double k);
-/* The batches' sweep runs in vector lanes when the solver packs rows. */
-bool tt__batches_want_rows(const tt__batches *B);
-/* What the velocity pass of a batch reads besides the world. */
-typedef struct tt__respond_in {
-    const double *vx0, *vy0; /* pre-solve velocities */
-    double e, mus, muk, thr; /* the world's materials; restitution threshold */
-    double h;                /* substep */
-    const struct tt__collide *mat; /* particles have their own materials (tt__mat): the pair's, entry by entry; else NULL */
-} tt__respond_in;
-/* The velocity pass of the batches' pairs in vector lanes, as
- * contact_response.c's pair_end does it lane by lane for Verlet; one(ctx,
- * entry) takes the batches the lanes cannot (solo, two particles on one
- * centre) through pair_end. False, touching nothing, when there are no
- * vector lanes here: then the caller runs pair_end on every pair. */
-bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, void (*one)(void *, uint32_t), void *ctx);
-void tt__batches_free(tt__batches *B);
-size_t tt__batches_bytes(const tt__batches *B);
-/* The same-centre direction of pair (a, b): fixed and deterministic. */
-void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny);
-/* Pair (a, b)'s overlap, (dx, dy) = xa − xb, rs the radii sum, ws > 0 the
- * inverse-mass sum: false when apart. Else pen, the overlap, and t: a moves
- * by (dx, dy)·t·ia, b by −(dx, dy)·t·ib; on one centre (dx, dy) becomes the
- * pair's fixed direction. The one projection both pair sweeps do. */
-static inline bool tt__pair_push(uint32_t a, uint32_t b, double rs, double ws, double *dx, double *dy, double *pen,
-                                 double *t)
-{
-    const double d2 = *dx * *dx + *dy * *dy;
-    if (!(d2 < rs * rs)) return false;
-    if (d2 > 0.0) {
-        const double d = sqrt(d2);
-        *pen = rs - d;
-        *t = *pen / (ws * d);
-    } else {
-        tt__pair_apart(a, b, dx, dy);
-        *pen = rs;
-        *t = *pen / ws;
-    }
-    return true;
-}
 /* Forces w's pair sweep mode (tests compare them bit for bit); false when
  * this build or processor lacks it (collide.c). */
 bool tt__contacts_set_simd(tt_world *w, tt__simd_mode mode);
