@@ -388,6 +388,21 @@ static inline double tt__pair_mu(const tt__collide *c, uint32_t a, uint32_t b, i
     return c->mat ? sqrt(tt__mat(c, a, k) * tt__mat(c, b, k)) : k == 1 ? c->set.friction_static : c->set.friction_kinetic;
 }
 
+/* Anchored friction's units (contact_anchor.c): the batch entries when the
+ * substep batches its pairs (in their order, padding included), else the
+ * pairs. */
+static inline uint32_t tt__anc_units(const tt__collide *c) { return c->scr.batched ? c->scr.bat.n : c->scr.npairs; }
+/* Unit k's particles and its normal correction so far; false for a batch's padding. */
+static inline bool tt__anc_unit(const tt__collide *c, uint32_t k, uint32_t *a, uint32_t *b, double *lam)
+{
+    if (c->scr.batched) {
+        *a = c->scr.bat.a[k], *b = c->scr.bat.b[k], *lam = c->scr.bat.lam[k];
+        return *a < c->scr.bat.np;
+    }
+    *a = c->scr.pairs[k].a, *b = c->scr.pairs[k].b, *lam = c->scr.pairs[k].lambda;
+    return true;
+}
+
 /* Filters: the one place that decides whether two particles may collide
  * (layers, two pinned, switched-off pairs, particles joined by a constraint
  * that does not let them collide; both sets of pairs are core/pair_set.h's). */

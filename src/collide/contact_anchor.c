@@ -118,11 +118,11 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
         tt__anchors_clear(&c->anc);
         return;
     }
-    const uint32_t np = s->npairs;
+    const uint32_t nu = tt__anc_units(c);
     uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap;
-    if (!tt__grow((void **)&s->anc.rx, &c1, np + 1, sizeof *s->anc.rx) || !tt__grow((void **)&s->anc.ry, &c2, np + 1, sizeof *s->anc.ry) ||
-        !tt__grow((void **)&s->anc.lt, &c3, np + 1, sizeof *s->anc.lt) || !tt__grow((void **)&s->anc.key, &c4, np + 1, sizeof *s->anc.key) ||
-        !tt__grow((void **)&s->anc.slow, &c5, np + 1, sizeof *s->anc.slow) ||
+    if (!tt__grow((void **)&s->anc.rxy, &c1, nu + 1, 2 * sizeof *s->anc.rxy) || !tt__grow((void **)&s->anc.lt, &c2, nu + 1, sizeof *s->anc.lt) ||
+        !tt__grow((void **)&s->anc.mu, &c3, nu + 1, sizeof *s->anc.mu) || !tt__grow((void **)&s->anc.key, &c4, nu + 1, sizeof *s->anc.key) ||
+        !tt__grow((void **)&s->anc.slow, &c5, nu + 1, sizeof *s->anc.slow) ||
         !tt__grow((void **)&s->anc.bucket, &s->anc.bcap, n + 2, sizeof *s->anc.bucket)) {
         s->anc.cap = 0; /* some grew: the next substep grows all again */
         tt__step_oom(w, "anchored friction");
@@ -132,21 +132,30 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
     s->anc.cap = c1;
     const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
     const double thr2 = s->anc.thr * s->anc.thr;
-    for (uint32_t k = 0; k < np; k++) {
-        const uint32_t a = s->pairs[k].a, b = s->pairs[k].b, e = find(&c->anc, tt__pair_key(a, b));
+    for (uint32_t k = 0; k < nu; k++) {
+        uint32_t a, b;
+        double lam, *r = s->anc.rxy + 2 * (size_t)k;
+        s->anc.lt[k] = 0.0;
+        if (!tt__anc_unit(c, k, &a, &b, &lam)) { /* a batch's padding */
+            s->anc.slow[k] = 0;
+            s->anc.mu[k] = r[0] = r[1] = 0.0;
+            continue;
+        }
+        const uint32_t e = find(&c->anc, tt__pair_key(a, b));
         const double vx = s->vx0[a] - s->vx0[b], vy = s->vy0[a] - s->vy0[b];
         s->anc.slow[k] = !(vx * vx + vy * vy > thr2);
-        s->anc.lt[k] = 0.0;
+        s->anc.mu[k] = s->anc.slow[k] ? tt__pair_mu(c, a, b, 1) : 0.0;
         if (e == UINT32_MAX) {
-            s->anc.rx[k] = sx[a] - sx[b];
-            s->anc.ry[k] = sy[a] - sy[b];
+            r[0] = sx[a] - sx[b];
+            r[1] = sy[a] - sy[b];
         } else { /* stored lower minus higher */
-            s->anc.rx[k] = a < b ? c->anc.rx[e] : -c->anc.rx[e];
-            s->anc.ry[k] = a < b ? c->anc.ry[e] : -c->anc.ry[e];
+            r[0] = a < b ? c->anc.rx[e] : -c->anc.rx[e];
+            r[1] = a < b ? c->anc.ry[e] : -c->anc.ry[e];
         }
     }
+    if (s->batched) tt__batches_anchor(&s->bat, s->anc.rxy, s->anc.lt, s->anc.mu);
     tt__anchors_clear(&c->anc);
-    if (!table_room(&c->anc, np)) {
+    if (!table_room(&c->anc, nu)) {
         tt__step_oom(w, "anchored friction");
         s->anc.on = false;
     }
@@ -154,7 +163,7 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
 
 /* Sorts entries [0, n) by key: counting sort by the lower slot (below
  * nb), then insertion within each slot's few. */
-static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const uint64_t *key, const double *rx, const double *ry)
+static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const uint64_t *key, const double *rxy)
 {
     memset(bucket, 0, (size_t)(nb + 1) * sizeof *bucket);
     for (uint32_t e = 0; e < t->n; e++) bucket[(key[e] >> 32) + 1]++;
@@ -162,8 +171,8 @@ static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const ui
     for (uint32_t e = 0; e < t->n; e++) {
         const uint32_t to = bucket[key[e] >> 32]++;
         t->key[to] = key[e];
-        t->rx[to] = rx[e];
-        t->ry[to] = ry[e];
+        t->rx[to] = rxy[2 * (size_t)e];
+        t->ry[to] = rxy[2 * (size_t)e + 1];
     }
     for (uint32_t e = 1; e < t->n; e++) {
         const uint64_t k = t->key[e];
@@ -188,27 +197,27 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
 {
     tt__collide_scratch *s = &c->scr;
     tt__anchors *t = &c->anc;
-    const uint32_t n = w->ppool.count;
-    if (!s->anc.on || t->cap < s->npairs || s->anc.bcap < n + 2 || s->anc.cap <= s->npairs) return;
+    const uint32_t n = w->ppool.count, nu = tt__anc_units(c);
+    if (!s->anc.on || t->cap < nu || s->anc.bcap < n + 2 || s->anc.cap <= nu) return;
     uint64_t *key = s->anc.key;
-    double *rx = s->anc.rx, *ry = s->anc.ry;
+    double *rxy = s->anc.rxy;
     uint32_t m = 0;
-    for (uint32_t k = 0; k < s->npairs; k++) {
-        const tt__pair *p = &s->pairs[k];
-        if (!(p->lambda > 0.0f)) continue;
-        const uint32_t a = p->a, b = p->b;
-        double x = s->anc.rx[k], y = s->anc.ry[k];
-        if (!s->anc.slow[k] || fabs(s->anc.lt[k]) >= 0.999 * tt__pair_mu(c, a, b, 1) * p->lambda) {
+    for (uint32_t k = 0; k < nu; k++) {
+        uint32_t a, b;
+        double lam;
+        if (!tt__anc_unit(c, k, &a, &b, &lam) || !(lam > 0.0)) continue;
+        double x = rxy[2 * (size_t)k], y = rxy[2 * (size_t)k + 1];
+        if (!s->anc.slow[k] || fabs(s->anc.lt[k]) >= 0.999 * s->anc.mu[k] * lam) {
             x = w->px[a] - w->px[b];
             y = w->py[a] - w->py[b];
         }
         key[m] = tt__pair_key(a, b);
-        rx[m] = a < b ? x : -x;
-        ry[m] = a < b ? y : -y;
+        rxy[2 * (size_t)m] = a < b ? x : -x;
+        rxy[2 * (size_t)m + 1] = a < b ? y : -y;
         m++;
     }
     t->n = m;
-    sort_entries(t, s->anc.bucket, n, key, rx, ry);
+    sort_entries(t, s->anc.bucket, n, key, rxy);
     index_all(t);
 }
 

@@ -25,19 +25,21 @@ typedef struct tt__anchors {
  * passes of anchored friction after them. */
 enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
 
-/* The substep's: per pair its anchor (rx, ry, relative a − b), friction
- * so far (lt) and whether it is slow (slower than thr before the sweeps:
- * its friction is anchored); at the end the touching pairs' keys before
- * sorting (key) and the sort's counts (bucket, one per particle + 2). */
+/* The substep's, per unit (a batch entry when the substep batches its
+ * pairs, else a pair): its anchor (rxy: x, y of a − b), friction so far
+ * (lt), whether it is slow (slower than thr before the sweeps: its friction
+ * is anchored) and then its static friction (mu, else 0); at the end the
+ * touching pairs' keys before sorting (key) and the sort's counts (bucket,
+ * one per particle + 2). */
 typedef struct tt__anchor_scratch {
     bool on;              /* the setting applies this substep */
     uint8_t pass;         /* TT__PASS_* */
     double thr;           /* pairs slower than this, m/s, hold to their anchor */
     double h;             /* the substep, s */
-    double *rx, *ry, *lt;
+    double *rxy, *lt, *mu;
     uint64_t *key;
     uint8_t *slow;
-    uint32_t cap;         /* of rx, ry, lt, key, slow */
+    uint32_t cap;         /* units of rxy (two each), lt, mu, key, slow */
     uint32_t *bucket, bcap;
 } tt__anchor_scratch;
 

@@ -185,6 +185,13 @@ void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny)
     *ny = sin(ang);
 }
 
+void tt__batches_anchor(tt__batches *B, const double *rxy, double *lt, const double *mu)
+{
+    B->arxy = rxy;
+    B->alt = lt;
+    B->amu = mu;
+}
+
 /* Entries [k0, k1) in order on positions X, Y, the particle i's at i·st:
  * the reference every vector lane reproduces. */
 static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint32_t k0, uint32_t k1, double err)
@@ -194,19 +201,66 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
         const double ia = B->ka[k], ib = B->kb[k], ws = ia + ib, rs = B->rs[k];
         if (ws == 0.0) continue; /* padding too */
         double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
-        if (!tt__pair_push(B->a[k], B->b[k], rs, ws, &dx, &dy, &pen, &t)) continue;
-        const double ca = t * ia, cb = t * ib;
-        X[a] += dx * ca;
-        Y[a] += dy * ca;
-        X[b] -= dx * cb;
-        Y[b] -= dy * cb;
-        B->lam[k] += pen;
-        if (pen > err) err = pen;
+        if (B->rub != 2 && tt__pair_push(B->a[k], B->b[k], rs, ws, &dx, &dy, &pen, &t)) {
+            const double ca = t * ia, cb = t * ib;
+            X[a] += dx * ca;
+            Y[a] += dy * ca;
+            X[b] -= dx * cb;
+            Y[b] -= dy * cb;
+            B->lam[k] += pen;
+            if (pen > err) err = pen;
+        }
+        if (!B->rub) continue;
+        const double ex = X[a] - X[b], ey = Y[a] - Y[b];
+        const double g = tt__anchored_rub(ex, ey, B->arxy + 2 * (size_t)k, B->amu[k], B->lam[k], ws, B->alt + k);
+        if (g == 0.0) continue;
+        const double ga = g * ia, gb = g * ib;
+        X[a] += -ey * ga;
+        Y[a] += ex * ga;
+        X[b] -= -ey * gb;
+        Y[b] -= ex * gb;
     }
     return err;
 }
 
 #ifdef TT_SIMD_X86
+#define LO(v) _mm256_unpacklo_pd((v), (v)) /* lanes 0, 2 of a per-lane vector in pair form */
+#define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
+#define LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
+
+/* tt__anchored_rub of batch k's four entries, lane by lane, on the
+ * positions after their push in pair form (a02: a's x, y of lanes 0 and
+ * 2), lam the normal corrections so far, ia, ib, ws the weights. */
+TT_AVX2 TT_INLINE void rub4(const tt__batches *B, uint32_t k, __m256d lam, __m256d ia, __m256d ib, __m256d ws, __m256d *a02,
+                            __m256d *a13, __m256d *b02, __m256d *b13)
+{
+    const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), sign = _mm256_set1_pd(-0.0);
+    const __m256d e02 = _mm256_sub_pd(*a02, *b02), e13 = _mm256_sub_pd(*a13, *b13);
+    const __m256d d = _mm256_sqrt_pd(LANES(_mm256_mul_pd(e02, e02), _mm256_mul_pd(e13, e13)));
+    const __m256d mu = _mm256_loadu_pd(B->amu + k);
+    const __m256d act = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(mu, zero, _CMP_GT_OQ), _mm256_cmp_pd(lam, zero, _CMP_GT_OQ)),
+                                      _mm256_cmp_pd(d, zero, _CMP_GT_OQ));
+    if (!_mm256_movemask_pd(act)) return;
+    const __m256d neg = _mm256_set_pd(0.0, -0.0, 0.0, -0.0);
+    const __m256d p02 = _mm256_xor_pd(_mm256_permute_pd(e02, 5), neg), p13 = _mm256_xor_pd(_mm256_permute_pd(e13, 5), neg); /* −ey, ex */
+    const __m256d r01 = _mm256_loadu_pd(B->arxy + 2 * (size_t)k), r23 = _mm256_loadu_pd(B->arxy + 2 * (size_t)k + 4);
+    const __m256d r02 = _mm256_permute2f128_pd(r01, r23, 0x20), r13 = _mm256_permute2f128_pd(r01, r23, 0x31);
+    const __m256d cr = LANES(_mm256_mul_pd(_mm256_sub_pd(e02, r02), p02), _mm256_mul_pd(_mm256_sub_pd(e13, r13), p13));
+    /* lanes out of play divide by 1 (no exception the scalar code would not raise) */
+    const __m256d slide = _mm256_div_pd(cr, _mm256_blendv_pd(one, d, act)), lim = _mm256_mul_pd(mu, lam);
+    const __m256d lt = _mm256_loadu_pd(B->alt + k), want = _mm256_sub_pd(lt, slide), nlim = _mm256_xor_pd(lim, sign);
+    __m256d got = _mm256_blendv_pd(want, nlim, _mm256_cmp_pd(want, nlim, _CMP_LT_OQ));
+    got = _mm256_blendv_pd(got, lim, _mm256_cmp_pd(want, lim, _CMP_GT_OQ));
+    _mm256_storeu_pd(B->alt + k, _mm256_blendv_pd(lt, got, act));
+    const __m256d g = _mm256_div_pd(_mm256_sub_pd(got, lt), _mm256_blendv_pd(one, _mm256_mul_pd(d, ws), act));
+    const __m256d app = _mm256_and_pd(act, _mm256_cmp_pd(g, zero, _CMP_NEQ_UQ));
+    const __m256d ga = _mm256_mul_pd(g, ia), gb = _mm256_mul_pd(g, ib);
+    *a02 = _mm256_blendv_pd(*a02, _mm256_add_pd(*a02, _mm256_mul_pd(p02, LO(ga))), LO(app));
+    *a13 = _mm256_blendv_pd(*a13, _mm256_add_pd(*a13, _mm256_mul_pd(p13, HI(ga))), HI(app));
+    *b02 = _mm256_blendv_pd(*b02, _mm256_sub_pd(*b02, _mm256_mul_pd(p02, LO(gb))), LO(app));
+    *b13 = _mm256_blendv_pd(*b13, _mm256_sub_pd(*b13, _mm256_mul_pd(p13, HI(gb))), HI(app));
+}
+
 /* One batch in "pair form" (as distance_sweep.c: a ymm holds (x, y) of lanes
  * 0 and 2, or of 1 and 3) on the solver's rows pk. Returns false, touching
  * nothing, when an active lane has two particles on one centre: the scalar
@@ -235,13 +289,19 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
     const __m256d sign = _mm256_set1_pd(-0.0);
     const __m256d ca = _mm256_mul_pd(t, _mm256_xor_pd(wa, sign)), cb = _mm256_mul_pd(t, wb);
     const __m256d u02 = _mm256_unpacklo_pd(act, act), u13 = _mm256_unpackhi_pd(act, act);
-    tt__rows_store2(pk, R(A[0]), R(A[2]), _mm256_sub_pd(pa02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(ca, ca)), u02)));
-    tt__rows_store2(pk, R(A[1]), R(A[3]), _mm256_sub_pd(pa13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)), u13)));
-    tt__rows_store2(pk, R(Bb[0]), R(Bb[2]), _mm256_sub_pd(pb02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(cb, cb)), u02)));
-    tt__rows_store2(pk, R(Bb[1]), R(Bb[3]), _mm256_sub_pd(pb13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(cb, cb)), u13)));
+    __m256d na02 = _mm256_sub_pd(pa02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(ca, ca)), u02));
+    __m256d na13 = _mm256_sub_pd(pa13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(ca, ca)), u13));
+    __m256d nb02 = _mm256_sub_pd(pb02, _mm256_and_pd(_mm256_mul_pd(d02, _mm256_unpacklo_pd(cb, cb)), u02));
+    __m256d nb13 = _mm256_sub_pd(pb13, _mm256_and_pd(_mm256_mul_pd(d13, _mm256_unpackhi_pd(cb, cb)), u13));
     const __m256d got = _mm256_and_pd(pen, act); /* lam ≥ +0 stays as it was plus +0 */
-    _mm256_storeu_pd(B->lam + k, _mm256_add_pd(_mm256_loadu_pd(B->lam + k), got));
+    const __m256d lam = _mm256_add_pd(_mm256_loadu_pd(B->lam + k), got);
+    _mm256_storeu_pd(B->lam + k, lam);
     *err = _mm256_max_pd(*err, got);
+    if (B->rub) rub4(B, k, lam, wa, wb, ws, &na02, &na13, &nb02, &nb13);
+    tt__rows_store2(pk, R(A[0]), R(A[2]), na02);
+    tt__rows_store2(pk, R(A[1]), R(A[3]), na13);
+    tt__rows_store2(pk, R(Bb[0]), R(Bb[2]), nb02);
+    tt__rows_store2(pk, R(Bb[1]), R(Bb[3]), nb13);
     return true;
 }
 
@@ -264,10 +324,6 @@ TT_AVX2 TT_INLINE double batches_run(tt__batches *B, double *pk, uint32_t t0, ui
 /* The same code for AVX2, and with AVX-512VL for its 32 registers. */
 TT_AVX2 static double run_avx2(tt__batches *B, double *pk, uint32_t t0, uint32_t t1) { return batches_run(B, pk, t0, t1); }
 TT_AVX512 static double run_avx512(tt__batches *B, double *pk, uint32_t t0, uint32_t t1) { return batches_run(B, pk, t0, t1); }
-
-#define LO(v) _mm256_unpacklo_pd((v), (v)) /* lanes 0, 2 of a per-lane vector in pair form */
-#define HI(v) _mm256_unpackhi_pd((v), (v)) /* lanes 1, 3 */
-#define LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
 
 /* respond's Coulomb friction, lane by lane, for respond4 below: r the
  * relative velocity and n the normal in pair form, vn the normal speed,
@@ -294,21 +350,29 @@ TT_AVX2 TT_INLINE void friction4(__m256d mus, __m256d muk, __m256d r02, __m256d 
 /* friction4 with the world's materials or, with particle materials, each
  * entry's. Lanes with no friction at all skip it, as respond returns
  * before it (its arithmetic with μ = 0 could turn a −0 velocity change
- * into +0). */
-TT_AVX2 TT_INLINE void friction_lanes(const tt__batches *B, uint32_t k, const tt__respond_in *in, __m256d r02, __m256d r13,
-                                      __m256d n02, __m256d n13, __m256d vn, __m256d change, __m256d act, __m256d *dv02,
-                                      __m256d *dv13, __m256d *st02, __m256d *st13)
+ * into +0); so do the rubbed lanes (anchored friction: the sweeps'). */
+TT_AVX2 TT_INLINE void friction_lanes(const tt__batches *B, uint32_t k, const tt__respond_in *in, __m256d rubbed, __m256d r02,
+                                      __m256d r13, __m256d n02, __m256d n13, __m256d vn, __m256d change, __m256d act,
+                                      __m256d *dv02, __m256d *dv13, __m256d *st02, __m256d *st13)
 {
-    if (!in->mat) {
-        if (!(in->mus == 0.0 && in->muk == 0.0))
-            friction4(_mm256_set1_pd(in->mus), _mm256_set1_pd(in->muk), r02, r13, n02, n13, vn, change, act, dv02, dv13, st02, st13);
-        return;
-    }
     const __m256d zero = _mm256_setzero_pd();
-    const __m256d mus = _mm256_loadu_pd(B->me + B->cap + k), muk = _mm256_loadu_pd(B->me + 2 * (size_t)B->cap + k);
-    const __m256d rough = _mm256_andnot_pd(_mm256_and_pd(_mm256_cmp_pd(mus, zero, _CMP_EQ_OQ), _mm256_cmp_pd(muk, zero, _CMP_EQ_OQ)), act);
-    const int rm = _mm256_movemask_pd(rough);
-    if (!rm) return;
+    __m256d mus, muk, rough;
+    if (!in->mat) {
+        if (in->mus == 0.0 && in->muk == 0.0) return;
+        mus = _mm256_set1_pd(in->mus);
+        muk = _mm256_set1_pd(in->muk);
+        if (!_mm256_movemask_pd(rubbed)) {
+            friction4(mus, muk, r02, r13, n02, n13, vn, change, act, dv02, dv13, st02, st13);
+            return;
+        }
+        rough = _mm256_andnot_pd(rubbed, act);
+    } else {
+        mus = _mm256_loadu_pd(B->me + B->cap + k);
+        muk = _mm256_loadu_pd(B->me + 2 * (size_t)B->cap + k);
+        const __m256d none = _mm256_and_pd(_mm256_cmp_pd(mus, zero, _CMP_EQ_OQ), _mm256_cmp_pd(muk, zero, _CMP_EQ_OQ));
+        rough = _mm256_andnot_pd(_mm256_or_pd(none, rubbed), act);
+    }
+    if (!_mm256_movemask_pd(rough)) return;
     __m256d f02 = *dv02, f13 = *dv13;
     friction4(mus, muk, r02, r13, n02, n13, vn, change, act, &f02, &f13, st02, st13);
     *dv02 = _mm256_blendv_pd(*dv02, f02, LO(rough));
@@ -370,7 +434,9 @@ TT_AVX2 TT_INLINE bool respond4(const tt__batches *B, uint32_t k, const tt__resp
     change = _mm256_blendv_pd(change, zero, _mm256_cmp_pd(change, zero, _CMP_LT_OQ));
     const __m256d tv = _mm256_sub_pd(target, vn);
     __m256d dv02 = _mm256_mul_pd(LO(tv), n02), dv13 = _mm256_mul_pd(HI(tv), n13), st02 = zero, st13 = zero;
-    friction_lanes(B, k, in, r02, r13, n02, n13, vn, change, act, &dv02, &dv13, &st02, &st13);
+    const uint8_t *rb = in->rubbed ? in->rubbed + k : NULL;
+    const __m256d rubbed = rb ? _mm256_cmp_pd(_mm256_set_pd(rb[3], rb[2], rb[1], rb[0]), zero, _CMP_NEQ_OQ) : zero;
+    friction_lanes(B, k, in, rubbed, r02, r13, n02, n13, vn, change, act, &dv02, &dv13, &st02, &st13);
     /* a lane slid (its stick velocity is not zero): x moves back; both components of a lane agree */
     const __m256d z02 = _mm256_cmp_pd(st02, zero, _CMP_NEQ_UQ), z13 = _mm256_cmp_pd(st13, zero, _CMP_NEQ_UQ);
     const __m256d m02 = LO(act), m13 = HI(act);
@@ -490,7 +556,7 @@ bool tt__batches_want_rows(const tt__batches *B) { return tt__simd_kind(B->simd)
 double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1)
 {
     const uint8_t kind = tt__simd_kind(B->simd);
-    if (kind == TT__SIMD_SCALAR || L->st != 4) return solve(B, L->x, L->y, L->st, 4 * t0, 4 * t1, 0.0);
+    if (kind == TT__SIMD_SCALAR || L->st != 4 || B->rub == 2) return solve(B, L->x, L->y, L->st, 4 * t0, 4 * t1, 0.0);
 #ifdef TT_SIMD_X86
     /* the rows' padding row (np, past the last particle) is zero: no mass, never active */
     return kind == TT__SIMD_AVX512 ? run_avx512(B, L->x, t0, t1) : run_avx2(B, L->x, t0, t1);

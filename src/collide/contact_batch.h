@@ -26,6 +26,9 @@ typedef struct tt__batches {
     double *me;           /* the velocity pass with particle materials: per entry e, μs, μk (3 arrays of cap) */
     uint32_t me_cap;
     uint8_t simd;         /* tt__simd_mode */
+    uint8_t rub;          /* anchored friction in the sweeps: 0 none, 1 after each push, 2 alone (its extra passes) */
+    const double *arxy, *amu; /* anchored friction per entry (contact_anchor.h): anchor (x, y), static friction or 0 */
+    double *alt;          /* its friction so far */
 } tt__batches;
 
 /* Lays pairs [0, npairs) out in batches. Part k is, for each of nrows
@@ -43,6 +46,25 @@ double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t
  * pass use, the lower particle of each entry 1 + k·u times heavier, u its height under the upper
  * one over the radii sum (px, py the positions, g the gravity); k = 0: wa, wb as they are. */
 void tt__batches_stack(tt__batches *B, const double *px, const double *py, tt_vec2 g, double k);
+/* Anchored friction's per-entry arrays (contact_anchor.c), which the sweeps read when rub is set. */
+void tt__batches_anchor(tt__batches *B, const double *rxy, double *lt, const double *mu);
+/* Anchored friction of one pair (contact_anchor.c), after its push:
+ * (ex, ey) = xa − xb, r its anchor (x, y), mu·lam the bound, ws > 0 the
+ * weights' sum, lt its friction so far (updated). Its slide from the anchor
+ * is undone as far as lt stays within the bound. Returns g: a moves by
+ * (−ey, ex)·(g·ia), b by −(−ey, ex)·(g·ib); 0 for no move. Both pair sweeps
+ * and the vector lanes (contact_batch.c) do this arithmetic. */
+static inline double tt__anchored_rub(double ex, double ey, const double *r, double mu, double lam, double ws, double *lt)
+{
+    const double d = sqrt(ex * ex + ey * ey);
+    if (!(mu > 0.0 && lam > 0.0 && d > 0.0)) return 0.0;
+    const double slide = ((ex - r[0]) * -ey + (ey - r[1]) * ex) / d, lim = mu * lam;
+    double want = *lt - slide;
+    want = want > lim ? lim : want < -lim ? -lim : want;
+    const double f = want - *lt;
+    *lt = want;
+    return f / (d * ws);
+}
 /* The batches' sweep runs in vector lanes when the solver packs rows. */
 bool tt__batches_want_rows(const tt__batches *B);
 /* What the velocity pass of a batch reads besides the world. */
@@ -51,6 +73,7 @@ typedef struct tt__respond_in {
     double e, mus, muk, thr; /* the world's materials; restitution threshold */
     double h;                /* substep */
     const struct tt__collide *mat; /* particles have their own materials (tt__mat): the pair's, entry by entry; else NULL */
+    const uint8_t *rubbed;   /* anchored friction: per entry, its friction was the sweeps' (none here); else NULL */
 } tt__respond_in;
 /* The velocity pass of the batches' pairs in vector lanes, as
  * contact_response.c's pair_end does it lane by lane for Verlet; one(ctx,

@@ -199,7 +199,7 @@ static bool detect_pairs(tt_world *w, tt__collide *c, uint32_t n)
     if (!ok) tt__step_oom(w, "contact pairs");
     /* batches pay for their planning from the second sweep on */
     c->scr.batched = false;
-    if (w->order == TT_GAUSS_SEIDEL && w->iterations > 1 && !tt__anchors_on(w, c)) { /* anchored friction: one by one */
+    if (w->order == TT_GAUSS_SEIDEL && w->iterations > 1) {
         c->scr.batched = tt__batches_plan(&c->scr.bat, c->scr.pairs, c->scr.npairs, c->scr.runs, c->scr.nrows, w->inv_mass, n);
         if (!c->scr.batched) tt__step_oom(w, "contact batches");
     }
@@ -287,7 +287,8 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->set.anchored_friction) tt__anchors_begin(w, c, n, h); /* before pre-stabilisation moves the starts */
     if (c->scr.npairs) tt__contacts_prestab(w, c, n);
     /* stacking weighs the sweeps' and the velocity pass's pairs, not pre-stabilisation's (contact_batch.c) */
-    if (c->scr.batched) tt__batches_stack(&c->scr.bat, w->px, w->py, w->gravity, c->set.stacking);
+    /* not with anchored friction: pairs held from substep to substep loosen a pile weighted so (docs/collisions.md) */
+    if (c->scr.batched) tt__batches_stack(&c->scr.bat, w->px, w->py, w->gravity, c->scr.anc.on ? 0.0 : c->set.stacking);
     c->quiet_last = c->scr.npairs == 0 && c->scr.nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->scr.npairs > c->pair_peak) c->pair_peak = c->scr.npairs;

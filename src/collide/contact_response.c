@@ -145,22 +145,18 @@ bool tt__contacts_rows(const tt_world *w, const void *self)
  * sweeps (faster ones keep the velocity pass's friction). */
 static inline bool anchored_pair(const tt__collide *c, uint32_t k) { return c->scr.anc.on && c->scr.anc.slow[k]; }
 
-/* Anchored friction of pair k: its slide from its anchor undone as far as
- * its friction so far stays within μs·λ, each side by its share of the
- * inverse masses. */
+/* Anchored friction of pair k (tt__anchored_rub), each side by its share
+ * of the inverse masses. */
 static void anchored_rub(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k, double ia, double ib)
 {
     const tt__pair *p = &c->scr.pairs[k];
-    const uint32_t a = p->a, b = p->b;
-    if (!(p->lambda > 0.0f) || !anchored_pair(c, k)) return;
-    const size_t st = L->st;
-    const double ex = L->x[a * st] - L->x[b * st], ey = L->y[a * st] - L->y[b * st], d = sqrt(ex * ex + ey * ey);
-    if (!(d > 0.0)) return;
-    const double tx = -ey / d, ty = ex / d, ws = ia + ib;
-    const double f = rub((ex - c->scr.anc.rx[k]) * tx + (ey - c->scr.anc.ry[k]) * ty, p->lambda, tt__pair_mu(c, a, b, 1), &c->scr.anc.lt[k]);
-    if (f == 0.0) return;
-    tt__correct(w, a, tx * f * ia / ws, ty * f * ia / ws);
-    tt__correct(w, b, -tx * f * ib / ws, -ty * f * ib / ws);
+    const size_t st = L->st, a = p->a, b = p->b;
+    const double ex = L->x[a * st] - L->x[b * st], ey = L->y[a * st] - L->y[b * st];
+    const double g = tt__anchored_rub(ex, ey, c->scr.anc.rxy + 2 * (size_t)k, c->scr.anc.mu[k], p->lambda, ia + ib, c->scr.anc.lt + k);
+    if (g == 0.0) return;
+    const double ga = g * ia, gb = g * ib;
+    tt__correct(w, p->a, -ey * ga, ex * ga);
+    tt__correct(w, p->b, ey * gb, -ex * gb);
 }
 
 /* Pairs [k0, k1) one by one, unbatched (Jacobi, a single sweep, anchored
@@ -195,8 +191,11 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
     const uint32_t np = pair_units(c), p1 = blk->u1 < np ? blk->u1 : np;
     double err = 0.0;
     const uint8_t pass = c->scr.anc.pass;
-    if (blk->u0 < p1 && pass != TT__PASS_SHAPES)
+    if (blk->u0 < p1 && pass != TT__PASS_SHAPES) {
+        c->scr.bat.rub = c->scr.anc.on ? (pass == TT__PASS_FRICTION ? 2 : 1) : 0;
         err = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : tt__pairs_sweep(w, c, L, blk->u0, p1, 1.0);
+        c->scr.bat.rub = 0; /* pre-stabilisation's sweeps have none */
+    }
     const double *X = L->x, *Y = L->y;
     const size_t st = L->st;
     const double *sx = start_x(w, c), *sy = start_y(w, c);
@@ -324,14 +323,15 @@ static inline __attribute__((always_inline)) void respond(double vx, double vy, 
  * share (as a shape contact does, shape_end). */
 static void anchored_unrub(tt_world *w, tt__collide *c, uint32_t k, double h)
 {
-    const tt__pair *p = &c->scr.pairs[k];
-    const uint32_t a = p->a, b = p->b;
+    uint32_t a, b;
+    double lam;
+    if (!tt__anc_unit(c, k, &a, &b, &lam) || !c->scr.anc.slow[k] || !(lam > 0.0)) return;
     const double ia = w->inv_mass[a], ib = w->inv_mass[b], ws = ia + ib;
     const double ex = w->px[a] - w->px[b], ey = w->py[a] - w->py[b], d = sqrt(ex * ex + ey * ey);
     if (!(d > 0.0) || ws == 0.0) return;
-    const double tx = -ey / d, ty = ex / d, slide = (ex - c->scr.anc.rx[k]) * tx + (ey - c->scr.anc.ry[k]) * ty;
-    const double muk = tt__pair_mu(c, a, b, 2);
-    const double f = unrub(slide, c->scr.anc.lt[k], p->lambda, tt__pair_mu(c, a, b, 1), muk);
+    const double *r = c->scr.anc.rxy + 2 * (size_t)k;
+    const double tx = -ey / d, ty = ex / d, slide = (ex - r[0]) * tx + (ey - r[1]) * ty;
+    const double f = unrub(slide, c->scr.anc.lt[k], lam, c->scr.anc.mu[k], tt__pair_mu(c, a, b, 2));
     if (f == 0.0) return;
     tt__contact_shift(w, a, tx * f * ia / ws, ty * f * ia / ws, h);
     tt__contact_shift(w, b, -tx * f * ib / ws, -ty * f * ib / ws, h);
@@ -394,7 +394,7 @@ static void pair_one(void *ctx, uint32_t k)
 {
     pair_ctx *p = ctx;
     const tt__batches *B = &p->c->scr.bat;
-    pair_end(p->w, p->c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], p->h, p->thr, false, p->sp, false);
+    pair_end(p->w, p->c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], p->h, p->thr, false, p->sp, anchored_pair(p->c, k));
 }
 
 /* A bounce off a still surface, placed in time. The velocity pass alone
@@ -516,11 +516,13 @@ void tt__contacts_end(tt_world *w, void *self, double h)
         tt__batches *B = &c->scr.bat;
         /* four pairs at once where pair_end's arithmetic is the same for all (Verlet, no events, no spin) */
         const tt__respond_in in = {c->scr.vx0, c->scr.vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h,
-                                   c->mat ? c : NULL};
+                                   c->mat ? c : NULL, c->scr.anc.on ? c->scr.anc.slow : NULL};
         pair_ctx pc = {w, c, h, thr, sp};
+        for (uint32_t k = 0; c->scr.anc.on && k < B->n; k++) anchored_unrub(w, c, k, h); /* all before the lanes take the positions */
         if (!(w->integrator == TT_VERLET && !events && !sp && tt__batches_respond(w, B, &in, pair_one, &pc)))
             for (uint32_t k = 0; k < B->n; k++)
-                if (B->lam[k] > 0.0) pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp, false);
+                if (B->lam[k] > 0.0)
+                    pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp, anchored_pair(c, k));
     } else {
         for (uint32_t k = 0; k < c->scr.npairs; k++)
             if (c->scr.pairs[k].lambda > 0.0f) {

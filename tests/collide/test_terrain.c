@@ -440,10 +440,15 @@ TEST(terrain_pour_into_a_mask_bowl_comes_to_rest)
 }
 
 /* The same bowl with anchored friction (tt_collision_settings.
- * anchored_friction), from three starts jittered by up to ±0.05 m: at rest
- * over the whole second half of the 15 s (every step under 1e-4 J/kg),
- * where the plain build's piles still slide on some starts (1.6e-3 J/kg at
- * 15 s on the second: docs/collisions.md "Anchored friction"). */
+ * anchored_friction), from three starts jittered by up to ±0.05 m: every
+ * step of the second half of the 15 s within issue 19's bound (1e-3 J/kg),
+ * and at rest at 15 s (under 1e-5), where the plain build's piles still
+ * slide on some starts (the second: 1.6e-3 J/kg at 12.8 s, 7.5e-4 at 15 s).
+ * Over seeds 1–10 (docs/collisions.md "Anchored friction"), anchored, the
+ * second half's largest is 5.0e-7 … 1.5e-4 (the second start: one slip at
+ * 9.7 s) and 15 s ends at 1.1e-8 … 8.4e-7; plain 1.2e-6 … 4.9e-2 and up to
+ * 6.4e-3. (It asked for every step under 1e-4 while the pairs were solved
+ * in the grid's order, one by one: 7.8e-7 … 3.3e-5 then.) */
 TEST(terrain_pour_into_a_mask_bowl_rests_from_jittered_starts_with_anchored_friction)
 {
     if (getenv("TT_MEMCHECK")) return; /* 8 s of pour: minutes under valgrind */
@@ -465,7 +470,8 @@ TEST(terrain_pour_into_a_mask_bowl_rests_from_jittered_starts_with_anchored_fric
         ts_bowl_measure(&b, &f);
         printf("    start %d: KE at most %.1e J/kg over 7.5-15 s, %.1e at 15 s; deepest into the bowl %.1f %% of a radius\n",
                (int)seed, most, f.kinetic, 100 * f.penetration);
-        ENSURE(most <= 1e-4);
+        ENSURE(most <= 1e-3);
+        ENSURE(f.kinetic <= 1e-5);
         ENSURE(f.inside == 0);
         ENSURE(f.penetration <= 0.1);
         ts_bowl_free(&b);
