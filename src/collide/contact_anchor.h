@@ -17,8 +17,8 @@ typedef struct tt__anchors {
     uint64_t *key;        /* lower slot << 32 | higher slot, ascending */
     double *rx, *ry;      /* the lower particle's position less the higher one's where the pair stuck */
     uint32_t n, cap;
-    uint32_t *slot;       /* open addressing on key: entry + 1, 0 empty; nslot a power of two ≥ 2·cap */
-    uint32_t nslot;
+    uint32_t *first;      /* the entries whose lower slot is p: [first[p], first[p + 1]), p + 1 < nfirst */
+    uint32_t nfirst, fcap;
 } tt__anchors;
 
 /* What a relax call does: every contact (the sweeps), or one of the extra
@@ -45,9 +45,9 @@ typedef struct tt__anchor_scratch {
 
 void tt__anchors_clear(tt__anchors *t);
 void tt__anchors_drop(tt__anchors *t, uint32_t i);
-/* Room for n entries (not their slots); false on no memory. */
+/* Room for n entries (not their index); false on no memory. */
 bool tt__anchors_room(tt__anchors *t, uint32_t n);
-/* The entries of from into to (its slots not kept up: the undo's copy); false on no memory. */
+/* The entries of from into to (its index not kept up: the undo's copy); false on no memory. */
 bool tt__anchors_copy(tt__anchors *to, const tt__anchors *from);
 /* The undo's copy back into the table it was taken from (which only grew since: allocates nothing). */
 void tt__anchors_restore(tt__anchors *t, const tt__anchors *from);
