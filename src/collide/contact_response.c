@@ -159,8 +159,9 @@ static void anchored_rub(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t
     tt__correct(w, p->b, ey * gb, -ex * gb);
 }
 
-/* Pairs [k0, k1) one by one, unbatched (Jacobi, a single sweep, anchored
- * friction); pre-stabilisation's sweeps too (scale: its slop). */
+/* Pairs [k0, k1) one by one, unbatched (Jacobi, a single sweep, no memory
+ * for the batches), with anchored friction when it is on; pre-stabilisation's
+ * sweeps too (scale: its slop, no friction). */
 double tt__pairs_sweep(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k0, uint32_t k1, double scale)
 {
     const double *inv = w->inv_mass, *X = L->x, *Y = L->y;
