@@ -325,6 +325,30 @@ TT_AVX2 TT_INLINE double batches_run(tt__batches *B, double *pk, uint32_t t0, ui
 TT_AVX2 static double run_avx2(tt__batches *B, double *pk, uint32_t t0, uint32_t t1) { return batches_run(B, pk, t0, t1); }
 TT_AVX512 static double run_avx512(tt__batches *B, double *pk, uint32_t t0, uint32_t t1) { return batches_run(B, pk, t0, t1); }
 
+/* Anchored friction alone (rub 2) on xy rows: each batch's lanes rubbed as
+ * after their push; batches whose lanes share a particle go lane by lane. */
+TT_AVX2 TT_INLINE void rubs_run(tt__batches *B, double *xy)
+{
+    for (uint32_t k = 0; k < B->n; k += 4) {
+        if (B->solo[k / 4]) {
+            (void)solve(B, xy, xy + 1, 2, k, k + 4, 0.0);
+            continue;
+        }
+        const uint32_t *A = B->a + k, *Bb = B->b + k;
+        __m256d a02 = tt__xy_load2(xy, A[0], A[2]), a13 = tt__xy_load2(xy, A[1], A[3]);
+        __m256d b02 = tt__xy_load2(xy, Bb[0], Bb[2]), b13 = tt__xy_load2(xy, Bb[1], Bb[3]);
+        const __m256d wa = _mm256_loadu_pd(B->ka + k), wb = _mm256_loadu_pd(B->kb + k);
+        rub4(B, k, _mm256_loadu_pd(B->lam + k), wa, wb, _mm256_add_pd(wa, wb), &a02, &a13, &b02, &b13);
+        tt__xy_store2(xy, A[0], A[2], a02);
+        tt__xy_store2(xy, A[1], A[3], a13);
+        tt__xy_store2(xy, Bb[0], Bb[2], b02);
+        tt__xy_store2(xy, Bb[1], Bb[3], b13);
+    }
+}
+
+TT_AVX2 static void rubs_avx2(tt__batches *B, double *xy) { rubs_run(B, xy); }
+TT_AVX512 static void rubs_avx512(tt__batches *B, double *xy) { rubs_run(B, xy); }
+
 /* respond's Coulomb friction, lane by lane, for respond4 below: r the
  * relative velocity and n the normal in pair form, vn the normal speed,
  * change the normal velocity change (Δvn). A lane sticks (tangential
@@ -553,8 +577,31 @@ bool tt__batches_respond(tt_world *w, tt__batches *B, const tt__respond_in *in, 
 
 bool tt__batches_want_rows(const tt__batches *B) { return tt__simd_kind(B->simd) != TT__SIMD_SCALAR; }
 
+/* A friction-alone pass over every batch on the world's arrays (st 1), in
+ * lanes on xy rows packed for it; false when there are no lanes here (or no
+ * memory for the rows): then the caller's scalar pass gives the same bits. */
+static bool rubs(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1)
+{
+#ifdef TT_SIMD_X86
+    const uint8_t kind = tt__simd_kind(B->simd);
+    const uint32_t np = B->np;
+    if (kind == TT__SIMD_SCALAR || L->st != 1 || t0 != 0 || t1 != B->n / 4 || !tt__xy_reserve(&B->xy, &B->xy_cap, np + 1))
+        return false;
+    tt__xy_pack(B->xy, L->x, L->y, np);
+    B->xy[2 * (size_t)np] = B->xy[2 * (size_t)np + 1] = 0.0; /* padding */
+    if (kind == TT__SIMD_AVX512) rubs_avx512(B, B->xy);
+    else rubs_avx2(B, B->xy);
+    tt__xy_unpack(B->xy, L->x, L->y, np);
+    return true;
+#else
+    (void)B, (void)L, (void)t0, (void)t1;
+    return false;
+#endif
+}
+
 double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1)
 {
+    if (B->rub == 2 && rubs(B, L, t0, t1)) return 0.0;
     const uint8_t kind = tt__simd_kind(B->simd);
     if (kind == TT__SIMD_SCALAR || L->st != 4 || B->rub == 2) return solve(B, L->x, L->y, L->st, 4 * t0, 4 * t1, 0.0);
 #ifdef TT_SIMD_X86
