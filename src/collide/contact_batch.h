@@ -31,6 +31,15 @@ typedef struct tt__batches {
     double *alt;          /* its friction so far */
 } tt__batches;
 
+#ifdef TT_SIMD_X86
+/* Pair form (a ymm holding x, y of lanes 0 and 2, or of 1 and 3):
+ * a per-lane vector's lanes 0, 2 and 1, 3 spread to it, and the per-lane
+ * sums of a pair-form product's x and y parts. */
+#define TT__LO(v) _mm256_unpacklo_pd((v), (v))
+#define TT__HI(v) _mm256_unpackhi_pd((v), (v))
+#define TT__LANES(x02, x13) _mm256_add_pd(_mm256_unpacklo_pd((x02), (x13)), _mm256_unpackhi_pd((x02), (x13)))
+#endif
+
 /* Lays pairs [0, npairs) out in batches. Part k is, for each of nrows
  * rows, pairs [runs[y·TT__PARTS + k], runs[y·TT__PARTS + k + 1]); runs NULL:
  * TT__PARTS equal parts. inv: the particles' inverse masses, which stay
