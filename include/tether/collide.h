@@ -91,7 +91,7 @@ typedef struct tt_collision_settings {
                                    ///< not slip keeps the relative position it stuck at, so piles and stacks of circles
                                    ///< stand (a 10-row pyramid, a pour in a bowl); slow pairs only (under the restitution
                                    ///< threshold), Verlet or symplectic Euler, Gauss-Seidel, particles that do not turn.
-                                   ///< Stacking's weights do not apply with it. About 1.5–1.8× the step time of a pile.
+                                   ///< Stacking's weights do not apply with it. About 1.5–1.7× the step time of a pile.
                                    ///< A pile settling can gain energy (docs/collisions.md). Default false
 } tt_collision_settings;
 
