@@ -333,6 +333,10 @@ double tt__pairs_sweep(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t k
  * start positions and the predicted ones alike, so it makes no velocity
  * (contact_prestab.c). After detection, in begin. */
 void tt__contacts_prestab(tt_world *w, tt__collide *c, uint32_t n);
+/* Stacking (tt_collision_settings.stacking, contact_stack.c): the batches'
+ * weights for the sweeps and the velocity pass, and which particles lean
+ * on a shape. After pre-stabilisation, in begin. */
+void tt__contacts_stack(tt_world *w, tt__collide *c);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);
 void tt__contacts_stopped(tt_world *w, void *self, uint32_t i);

@@ -73,6 +73,7 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
 {
     B->n = 0;
     B->np = np;
+    B->lean = false; /* until stacking's, after pre-stabilisation (contact_stack.c) */
     if (npairs == 0) return true;
     if (!tt__batches_reserve(B, np)) return false;
     uint32_t eq[TT__PARTS + 1], L = 0;
@@ -130,53 +131,13 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
             shared |= stamp[a] == id || stamp[b] == id;
             stamp[a] = stamp[b] = id;
         }
-        solo[t] = shared;
+        solo[t] = shared ? TT__SOLO_SHARED : 0;
     }
     B->mark += nb;
     B->n = 4 * nb;
     B->ka = B->wa;
     B->kb = B->wb;
     return true;
-}
-
-/* Stacking (tt_collision_settings.stacking): mass scaling by height
- * (Müller, Heidelberger, Hennix and Ratcliff 2007, "Position based
- * dynamics", on stacking; Macklin, Müller, Chentanez and Kim 2014,
- * "Unified particle physics for real-time applications", section 5.2).
- * Gauss-Seidel sweeps split each pair's push by inverse mass, so in a pile
- * the weight of every layer above is pushed down as much as up, and a few
- * sweeps leave a deep pile sunk into itself (the reference pour at 1 × 8:
- * 17 % of a radius at rest). Here the lower particle of each entry weighs
- * 1 + k·u times its mass, u the height of the upper over the lower along
- * −g as a share of the radii sum (0 side by side, 1 one on top of the
- * other), for the sweeps and the pair's velocity pass alike (the same
- * weights in both, else the pass hands the upper's push back as speed).
- * The weights are this entry's, from the positions after
- * pre-stabilisation, fixed for the substep; scalar code and the lanes read
- * the same ka, kb, so the bits are the same. Not momentum-conserving between
- * the two (the lower one is heavier for this pair only), as in the papers. */
-void tt__batches_stack(tt__batches *B, const double *px, const double *py, tt_vec2 g, double k)
-{
-    B->ka = B->wa;
-    B->kb = B->wb;
-    const double gl = sqrt(g.x * g.x + g.y * g.y);
-    if (!(k > 0.0) || !(gl > 0.0) || B->n == 0) return; /* off, or no up */
-    const double ux = -g.x / gl, uy = -g.y / gl;
-    for (uint32_t e = 0; e < B->n; e++) {
-        double sa = B->wa[e], sb = B->wb[e];
-        const uint32_t a = B->a[e], b = B->b[e];
-        if (a < B->np && B->rs[e] > 0.0) {
-            const double u = ((px[b] - px[a]) * ux + (py[b] - py[a]) * uy) / B->rs[e]; /* b's height over a's */
-            const double v = u < 0.0 ? (u < -1.0 ? 1.0 : -u) : (u > 1.0 ? 1.0 : u);
-            const double s = 1.0 / (1.0 + k * v);
-            if (u > 0.0) sa *= s;
-            else sb *= s;
-        }
-        B->sa[e] = sa;
-        B->sb[e] = sb;
-    }
-    B->ka = B->sa;
-    B->kb = B->sb;
 }
 
 void tt__pair_apart(uint32_t a, uint32_t b, double *nx, double *ny)
@@ -193,6 +154,58 @@ void tt__batches_anchor(tt__batches *B, const double *rxy, double *lt, const dou
     B->amu = mu;
 }
 
+/* Direction (x, y) of particle i's share of a push, less what would take
+ * it into a shape it leans on; wedged between two, nothing. Whether any was
+ * taken. */
+static bool held(const tt__batches *B, uint32_t i, double *x, double *y)
+{
+    const uint8_t m = B->lc[i];
+    if (m == 0) return false;
+    const double *n = B->ln + 4 * (size_t)i;
+    bool cut = false;
+    for (uint8_t j = 0; j < m; j++) {
+        const double dn = *x * n[2 * j] + *y * n[2 * j + 1];
+        if (dn >= 0.0) continue;
+        *x -= dn * n[2 * j];
+        *y -= dn * n[2 * j + 1];
+        cut = true;
+    }
+    if (m == 2 && cut && *x * n[0] + *y * n[1] < 0.0) *x = *y = 0.0; /* back into the first */
+    return cut;
+}
+
+/* A pile leaning on a wall: the pair push splits each correction between
+ * the two, and the share of a particle against the wall goes into the
+ * wall, which pushes it back, last, into its neighbour. Gauss-Seidel then
+ * needs many sweeps to carry the push along the pile; a few leave the
+ * layers by the walls pressed into each other (the reference pour at 1 × 8
+ * with stacking and anchored friction: 1.3–10.5 % of a radius, every such
+ * pair by a wall; docs/collisions.md). So the particle moves only along the
+ * wall, as if the wall took the rest (it does: it is static), and the
+ * pair's correction is solved for the directions left:
+ * C(xa, xb) = |xa − xb| − rs, each moving along its own direction. */
+static bool lean_push(const tt__batches *B, uint32_t k, double *X, double *Y, size_t st, double *pen)
+{
+    const uint32_t i = B->a[k], j = B->b[k];
+    const size_t a = i * st, b = j * st;
+    const double ia = B->ka[k], ib = B->kb[k];
+    double dx = X[a] - X[b], dy = Y[a] - Y[b], t;
+    if (!tt__pair_push(i, j, B->rs[k], ia + ib, &dx, &dy, pen, &t)) return false;
+    double ax = dx, ay = dy, bx = -dx, by = -dy;
+    const bool ha = held(B, i, &ax, &ay), hb = held(B, j, &bx, &by);
+    if (ha || hb) {
+        /* a moves by (ax, ay)·t·ia, b by (bx, by)·t·ib; the distance grows by t·wd/d */
+        const double wd = ia * (ax * dx + ay * dy) - ib * (bx * dx + by * dy);
+        if (!(wd > 0.0)) return true; /* neither can move: pressed, not pushed */
+        t = *pen * sqrt(dx * dx + dy * dy) / wd;
+    }
+    X[a] += ax * (t * ia);
+    Y[a] += ay * (t * ia);
+    X[b] += bx * (t * ib);
+    Y[b] += by * (t * ib);
+    return true;
+}
+
 /* Entries [k0, k1) in order on positions X, Y, the particle i's at i·st:
  * the reference every vector lane reproduces. */
 static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint32_t k0, uint32_t k1, double err)
@@ -202,7 +215,12 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
         const double ia = B->ka[k], ib = B->kb[k], ws = ia + ib, rs = B->rs[k];
         if (ws == 0.0) continue; /* padding too */
         double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
-        if (B->rub != 2 && tt__pair_push(B->a[k], B->b[k], rs, ws, &dx, &dy, &pen, &t)) {
+        if (B->rub != 2 && B->lean && (B->lc[B->a[k]] | B->lc[B->b[k]])) {
+            if (lean_push(B, k, X, Y, st, &pen)) {
+                B->lam[k] += pen;
+                if (pen > err) err = pen;
+            }
+        } else if (B->rub != 2 && tt__pair_push(B->a[k], B->b[k], rs, ws, &dx, &dy, &pen, &t)) {
             const double ca = t * ia, cb = t * ib;
             X[a] += dx * ca;
             Y[a] += dy * ca;
@@ -331,7 +349,7 @@ TT_AVX512 static double run_avx512(tt__batches *B, double *pk, uint32_t t0, uint
 TT_AVX2 TT_INLINE void rubs_run(tt__batches *B, double *xy)
 {
     for (uint32_t k = 0; k < B->n; k += 4) {
-        if (B->solo[k / 4]) {
+        if (B->solo[k / 4] & TT__SOLO_SHARED) {
             (void)solve(B, xy, xy + 1, 2, k, k + 4, 0.0);
             continue;
         }
@@ -401,11 +419,13 @@ void tt__batches_free(tt__batches *B)
     free(B->q);
     free(B->v0);
     free(B->me);
+    free(B->ln);
     memset(B, 0, sizeof *B);
 }
 
 size_t tt__batches_bytes(const tt__batches *B)
 {
     return (size_t)B->cap * (7 * sizeof(double) + 2 * sizeof(uint32_t)) + B->cap / 4 + (size_t)B->stamp_cap * sizeof(uint32_t) +
-           ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double) + (size_t)B->me_cap * 3 * sizeof(double);
+           ((size_t)B->xy_cap + B->q_cap + B->v0_cap) * 2 * sizeof(double) + (size_t)B->me_cap * 3 * sizeof(double) +
+           (size_t)B->ln_cap * (4 * sizeof(double) + 1);
 }

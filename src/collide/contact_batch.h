@@ -13,10 +13,10 @@ typedef struct tt__batches {
     double *rs, *lam;     /* radii sum; normal correction accumulated this substep, m */
     double *pre;          /* radii sum less the pre-stabilisation slop (TT__PRESTAB_SLOP) */
     double *wa, *wb;      /* inverse masses of a and b (0: padding), beside the entry the sweeps read them with */
-    double *sa, *sb;      /* stacking's weights of a and b (tt__batches_stack) */
+    double *sa, *sb;      /* stacking's weights of a and b (tt__contacts_stack) */
     const double *ka, *kb; /* the weights the sweeps use: wa, wb, or sa, sb with stacking */
     uint32_t n, cap;      /* entries (a multiple of 4), room */
-    uint8_t *solo;        /* per batch: its lanes share a particle, so they go one by one */
+    uint8_t *solo;        /* per batch, TT__SOLO_*: its lanes go one by one, in scalar code */
     uint32_t *stamp;      /* planner: per particle slot, the last batch (+ mark) naming it */
     uint32_t stamp_cap, mark;
     double *xy;           /* the velocity pass's xy rows (simd.h) of particles [0, np) and the padding row np */
@@ -29,7 +29,18 @@ typedef struct tt__batches {
     uint8_t rub;          /* anchored friction in the sweeps: 0 none, 1 after each push, 2 alone (its extra passes) */
     const double *arxy, *amu; /* anchored friction per entry (contact_anchor.h): anchor (x, y), static friction or 0 */
     double *alt;          /* its friction so far */
+    double *ln;           /* stacking: per particle slot, the normals (x, y, x, y) of the first two shapes it leans on */
+    uint8_t *lc;          /* how many shapes it leans on (0, 1, 2: two or more); ln_cap slots, the padding row's 0 */
+    uint32_t ln_cap;
+    bool lean;            /* this substep's pushes keep particles off the shapes they lean on (ln, lc) */
 } tt__batches;
+
+/* Why a batch goes lane by lane (solo): its lanes share a particle; a
+ * lane's particle leans on a shape (stacking, contact_stack.c), a push the
+ * lanes do not do (contact_batch.c's lean_push). The velocity pass only
+ * minds the first. */
+#define TT__SOLO_SHARED 1
+#define TT__SOLO_LEAN 2
 
 #ifdef TT_SIMD_X86
 /* Pair form (a ymm holding x, y of lanes 0 and 2, or of 1 and 3):
@@ -51,10 +62,6 @@ bool tt__batches_plan(tt__batches *B, const tt__pair *pairs, uint32_t npairs, co
 /* Batches [t0, t1) of a Gauss-Seidel sweep on positions L (in vector
  * lanes on the solver's rows, st = 4); returns the deepest overlap seen. */
 double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t t1);
-/* Stacking (tt_collision_settings.stacking = k): the weights ka, kb the sweeps and the velocity
- * pass use, the lower particle of each entry 1 + k·u times heavier, u its height under the upper
- * one over the radii sum (px, py the positions, g the gravity); k = 0: wa, wb as they are. */
-void tt__batches_stack(tt__batches *B, const double *px, const double *py, tt_vec2 g, double k);
 /* Anchored friction's per-entry arrays (contact_anchor.c), which the sweeps read when rub is set. */
 void tt__batches_anchor(tt__batches *B, const double *rxy, double *lt, const double *mu);
 /* Anchored friction of one pair (contact_anchor.c), after its push:

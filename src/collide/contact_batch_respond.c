@@ -171,7 +171,7 @@ TT_AVX2 TT_INLINE void respond_run(tt_world *w, tt__batches *B, const tt__respon
 {
     const double dtp = w->dt_prev;
     for (uint32_t k = 0; k < B->n; k += 4) {
-        if (!B->solo[k / 4] && respond4(B, k, in, dtp)) continue;
+        if (!(B->solo[k / 4] & TT__SOLO_SHARED) && respond4(B, k, in, dtp)) continue;
         sync_batch(w, B, k, true);
         for (uint32_t j = k; j < k + 4; j++)
             if (B->lam[j] > 0.0) one(ctx, j);

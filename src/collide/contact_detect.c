@@ -286,9 +286,8 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);
     if (c->set.anchored_friction) tt__anchors_begin(w, c, n, h); /* before pre-stabilisation moves the starts */
     if (c->scr.npairs) tt__contacts_prestab(w, c, n);
-    /* stacking weighs the sweeps' and the velocity pass's pairs, not pre-stabilisation's (contact_batch.c) */
-    /* not with anchored friction: pairs held from substep to substep loosen a pile weighted so (docs/collisions.md) */
-    if (c->scr.batched) tt__batches_stack(&c->scr.bat, w->px, w->py, w->gravity, c->scr.anc.on ? 0.0 : c->set.stacking);
+    /* stacking weighs the sweeps' and the velocity pass's pairs, not pre-stabilisation's */
+    if (c->scr.batched) tt__contacts_stack(w, c);
     c->quiet_last = c->scr.npairs == 0 && c->scr.nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->scr.npairs > c->pair_peak) c->pair_peak = c->scr.npairs;
