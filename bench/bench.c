@@ -195,6 +195,7 @@ static const struct {
     {"tradeoff", bench_tradeoff},
     {"collide", bench_collide},
     {"pour", bench_pour},
+    {"pourstarts", bench_pour_starts},
     {"pour100k", bench_pour100k},
     {"render", bench_render},
     {"constraints", bench_constraints},

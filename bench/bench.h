@@ -16,8 +16,10 @@ FILE *bench_csv(const char *dir, const char *name, const char *header);
 void bench_integrate(const char *dir);
 void bench_tradeoff(const char *dir);
 void bench_collide(const char *dir);
-/* The reference pour against Box2D 2.4.1 (bench_collide.c). */
+/* The reference pour against Box2D 2.4.1 (bench_pour.c): at the default
+ * setting; with stacking and anchored friction from 11 starts. */
 void bench_pour(const char *dir);
+void bench_pour_starts(const char *dir);
 void bench_pour100k(const char *dir);
 void bench_render(const char *dir);
 void bench_constraints(const char *dir);

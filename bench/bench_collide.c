@@ -1,11 +1,10 @@
 /* tether — collision benchmarks: ms/step against particle count (grid and
- * brute force, equal radii and a 1:4 mix), the grid's scaling slope,
- * broadphase memory per particle, and the reference pour (src/scenes/)
- * against Box2D 2.4.1 doing the same (through src/box2d/). */
+ * brute force, equal radii and a 1:4 mix), the grid's scaling slope and
+ * broadphase memory per particle (the reference pour against Box2D:
+ * bench_pour.c). */
 #include "bench.h"
 #include "bench_accuracy.h"
 #include "tether.h"
-#include "box2d/box2d_scene.h"
 #include "scenes/scene.h"
 
 #include <math.h>
@@ -205,99 +204,4 @@ void bench_collide(const char *dir)
     }
     bench_100k(dir);
 
-}
-
-/* The deepest and mean overlap of a pile now, into the run's worst and sum. */
-typedef struct pour_acc { double max_overlap, mean_sum; int steps; double *xy; } pour_acc;
-
-static void pour_measure(pour_acc *a, const double *xy_in, uint32_t n)
-{
-    memcpy(a->xy, xy_in, 2 * (size_t)n * sizeof *a->xy);
-    ts_pile pile;
-    ts_pile_measure(a->xy, n, 0.5, &pile);
-    a->max_overlap = fmax(a->max_overlap, pile.max_overlap);
-    a->mean_sum += pile.mean_overlap;
-    a->steps++;
-}
-
-/* The reference pour (src/scenes/, the scene `make crosscheck` uses) in
- * both engines for the 20 s issue 21 measures (the landing alone, its
- * first 5 s, flattered tether: 7.8x against 6.0-6.5x over the 20 s),
- * sleeping off in both, taking turns 30 steps at a time; every step timed,
- * and both piles measured after every step (untimed) with the same
- * measure, ts_pile_measure. */
-void bench_pour(const char *dir)
-{
-    printf("\n== The reference pour (10 000 circles r = 0.5 into a 100-wide box), 20 s of 1/60 s steps: tether vs Box2D 2.4.1 ==\n");
-    printf("Box2D: 8 velocity / 3 position iterations, continuous off, sleeping off. tether: Verlet, 1 substep, 8 iterations\n");
-    printf("(the two take turns, 30 steps each, timing only the step; means over the whole run)\n");
-    printf("target: tether >= 20x faster than Box2D at the same accuracy (overlap flagged above %.0f %% of a radius at any step)\n",
-           100 * ACC_MAX_OVERLAP);
-    const int steps = 1200, block = 30;
-    ts_scene sc;
-    ts_scene_pour(&sc, 10000, 100);
-    ts_tether_settings set = ts_tether_settings_default();
-    tb_world_def bd = tb_world_def_default();
-    bd.sleep = bd.continuous = false;
-    cc_pair p;
-    const char *why = "";
-    const bool opened = cc_pair_open(&p, &sc, &set, &bd, &why);
-    ts_scene_free(&sc);
-    if (!opened) {
-        printf("pour: %s\n", why);
-        return;
-    }
-    const uint32_t n = p.tt.circle_count;
-    double *xy = malloc(2 * (size_t)n * sizeof *xy), *t_b2 = malloc(steps * sizeof *t_b2), *t_tt = malloc(steps * sizeof *t_tt);
-    pour_acc ab = {0, 0, 0, malloc(2 * (size_t)n * sizeof(double))}, at = {0, 0, 0, malloc(2 * (size_t)n * sizeof(double))};
-    const double dt = p.scene.dt;
-    bool good = true;
-    for (int s0 = 0; s0 < steps && good; s0 += block) {
-        for (int s = s0; s < s0 + block && good; s++) {
-            const double t0 = bench_now_ns();
-            good = tb_world_step(p.b2, dt);
-            t_b2[s] = (bench_now_ns() - t0) * 1e-6;
-            tb_positions(p.b2, 3, (int)n, xy); /* bodies 0–2 are the floor and the walls */
-            pour_measure(&ab, xy, n);
-        }
-        for (int s = s0; s < s0 + block && good; s++) {
-            const double t0 = bench_now_ns();
-            good = tt_world_step(p.tt.world, dt) == TT_OK;
-            t_tt[s] = (bench_now_ns() - t0) * 1e-6;
-            tt_particles_get_positions(p.tt.world, p.tt.circles, n, xy);
-            pour_measure(&at, xy, n);
-        }
-    }
-    if (!good) printf("pour: a step failed\n");
-    double b2 = 0, tt = 0, b2max = 0, worst = 0;
-    for (int s = 0; s < steps; s++) {
-        b2 += t_b2[s] / steps;
-        tt += t_tt[s] / steps;
-        b2max = fmax(b2max, t_b2[s]);
-        worst = fmax(worst, t_tt[s]);
-    }
-    ts_pile pb, pt;
-    tb_positions(p.b2, 3, (int)n, xy);
-    ts_pile_measure(xy, n, 0.5, &pb);
-    tt_particles_get_positions(p.tt.world, p.tt.circles, n, xy);
-    ts_pile_measure(xy, n, 0.5, &pt);
-    const double ke_b2 = tb_scene_kinetic_per_kg(p.b2), ke_tt = ts_tether_kinetic_per_kg(&p.tt);
-    free(xy); free(t_b2); free(t_tt);
-    cc_pair_close(&p);
-    const double mb = ab.mean_sum / ab.steps, mt = at.mean_sum / at.steps;
-    printf("%10s %12s %10s %10s %16s %16s %12s %10s\n", "engine", "mean ms", "worst ms", "height m", "max overlap (run)",
-           "mean overlap", "KE J/kg", "flags");
-    printf("%10s %12.3f %10.3f %10.2f %14.1f %%r %14.2f %%r %12.2e %10s\n", "Box2D", b2, b2max, pb.height, 100 * ab.max_overlap,
-           100 * mb, ke_b2, ab.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
-    printf("%10s %12.3f %10.3f %10.2f %14.1f %%r %14.2f %%r %12.2e %10s\n", "tether", tt, worst, pt.height, 100 * at.max_overlap,
-           100 * mt, ke_tt, at.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
-    printf("speed-up %.1fx   target >= 20x: %s%s\n", b2 / tt, b2 / tt >= 20 ? "met" : "NOT met",
-           at.max_overlap > ab.max_overlap ? " (and tether's overlap is deeper than Box2D's: not at equal accuracy)" : "");
-    FILE *c2 = bench_csv(dir, "collide_box2d.csv", "engine,steps,mean_ms,worst_ms,height,max_overlap_run,mean_overlap_run,ke_per_kg,flags");
-    fprintf(c2, "box2d,%d,%.4f,%.4f,%.3f,%.4f,%.4f,%.4g,%s\ntether,%d,%.4f,%.4f,%.3f,%.4f,%.4f,%.4g,%s\n", steps, b2, b2max,
-            pb.height, ab.max_overlap, mb, ke_b2, ab.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok", steps, tt, worst, pt.height,
-            at.max_overlap, mt, ke_tt, at.max_overlap > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
-    fclose(c2);
-    free(ab.xy);
-    free(at.xy);
 }

@@ -85,13 +85,16 @@ typedef struct tt_collision_settings {
     uint32_t events;               ///< TT_EVENT_* bits to gather; default 0
     double stacking;               ///< mass scaling by height for piles, 0…TT_MAX_VALUE: in a pair contact the lower
                                    ///< particle weighs 1 + stacking·u times its mass, u (0…1) how far the pair's normal
-                                   ///< points along −gravity (Gauss-Seidel with iterations ≥ 2 only); 2 holds the
+                                   ///< points along −gravity (Gauss-Seidel with iterations ≥ 2 only); with anchored
+                                   ///< friction, a particle within reach of a shape is pushed by its pairs only along
+                                   ///< the shape; 2 holds the
                                    ///< 10 000-circle pour under 1 % overlap at 1 × 8 (docs/collisions.md); default 0 = off
     bool anchored_friction;        ///< static friction between particles held from substep to substep: a pair that does
                                    ///< not slip keeps the relative position it stuck at, so piles and stacks of circles
                                    ///< stand (a 10-row pyramid, a pour in a bowl); slow pairs only (under the restitution
                                    ///< threshold), Verlet or symplectic Euler, Gauss-Seidel, particles that do not turn.
-                                   ///< Stacking's weights do not apply with it. About 1.5–1.7× the step time of a pile.
+                                   ///< With stacking 2 the pour rests from every start tried. About 1.5–1.7× the step
+                                   ///< time of a pile.
                                    ///< A pile settling can gain energy (docs/collisions.md). Default false
 } tt_collision_settings;
 

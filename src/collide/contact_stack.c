@@ -1,6 +1,6 @@
 /* tether — stacking (tt_collision_settings.stacking): mass scaling by
- * height, and particles held off the shapes they lean on, in the batches'
- * pair pushes. */
+ * height, and, with anchored friction, particles held off the shapes they
+ * lean on, in the batches' pair pushes. */
 #include "collide_internal.h"
 
 #include <math.h>
@@ -80,7 +80,9 @@ void tt__contacts_stack(tt_world *w, tt__collide *c)
     tt__batches *B = &c->scr.bat;
     B->lean = false;
     const double k = c->set.stacking;
-    if (k > 0.0 && c->scr.nsc) {
+    /* the hold with anchored friction only: without it a stacked pile held
+     * off its walls never rests (docs/collisions.md "Particles against a shape") */
+    if (k > 0.0 && c->scr.nsc && c->scr.anc.on) {
         B->lean = lean(B, c->scr.sc, c->scr.nsc);
         if (!B->lean) tt__step_oom(w, "stacking's shape contacts");
     }
