@@ -215,6 +215,7 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
         const double ia = B->ka[k], ib = B->kb[k], ws = ia + ib, rs = B->rs[k];
         if (ws == 0.0) continue; /* padding too */
         double dx = X[a] - X[b], dy = Y[a] - Y[b], pen, t;
+        bool at_rs = false; /* pushed to contact along its own line: now rs apart */
         if (B->rub != 2 && B->lean && (B->lc[B->a[k]] | B->lc[B->b[k]])) {
             if (lean_push(B, k, X, Y, st, &pen)) {
                 B->lam[k] += pen;
@@ -228,10 +229,11 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
             Y[b] -= dy * cb;
             B->lam[k] += pen;
             if (pen > err) err = pen;
+            at_rs = true;
         }
         if (!B->rub) continue;
-        const double ex = X[a] - X[b], ey = Y[a] - Y[b];
-        const double g = tt__anchored_rub(ex, ey, B->arxy + 2 * (size_t)k, B->amu[k], B->lam[k], ws, B->alt + k);
+        const double ex = X[a] - X[b], ey = Y[a] - Y[b], d = at_rs ? rs : sqrt(ex * ex + ey * ey);
+        const double g = tt__anchored_rub(ex, ey, d, B->arxy + 2 * (size_t)k, B->amu[k], B->lam[k], ws, B->alt + k);
         if (g == 0.0) continue;
         const double ga = g * ia, gb = g * ib;
         X[a] += -ey * ga;
@@ -249,13 +251,13 @@ static double solve(const tt__batches *B, double *X, double *Y, size_t st, uint3
 
 /* tt__anchored_rub of batch k's four entries, lane by lane, on the
  * positions after their push in pair form (a02: a's x, y of lanes 0 and
- * 2), lam the normal corrections so far, ia, ib, ws the weights. */
-TT_AVX2 TT_INLINE void rub4(const tt__batches *B, uint32_t k, __m256d lam, __m256d ia, __m256d ib, __m256d ws, __m256d *a02,
-                            __m256d *a13, __m256d *b02, __m256d *b13)
+ * 2), d their distances as tt__anchored_rub takes them, lam the normal
+ * corrections so far, ia, ib, ws the weights. */
+TT_AVX2 TT_INLINE void rub4(const tt__batches *B, uint32_t k, __m256d d, __m256d lam, __m256d ia, __m256d ib, __m256d ws,
+                            __m256d *a02, __m256d *a13, __m256d *b02, __m256d *b13)
 {
     const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), sign = _mm256_set1_pd(-0.0);
     const __m256d e02 = _mm256_sub_pd(*a02, *b02), e13 = _mm256_sub_pd(*a13, *b13);
-    const __m256d d = _mm256_sqrt_pd(LANES(_mm256_mul_pd(e02, e02), _mm256_mul_pd(e13, e13)));
     const __m256d mu = _mm256_loadu_pd(B->amu + k);
     const __m256d act = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(mu, zero, _CMP_GT_OQ), _mm256_cmp_pd(lam, zero, _CMP_GT_OQ)),
                                       _mm256_cmp_pd(d, zero, _CMP_GT_OQ));
@@ -266,12 +268,14 @@ TT_AVX2 TT_INLINE void rub4(const tt__batches *B, uint32_t k, __m256d lam, __m25
     const __m256d r02 = _mm256_permute2f128_pd(r01, r23, 0x20), r13 = _mm256_permute2f128_pd(r01, r23, 0x31);
     const __m256d cr = LANES(_mm256_mul_pd(_mm256_sub_pd(e02, r02), p02), _mm256_mul_pd(_mm256_sub_pd(e13, r13), p13));
     /* lanes out of play divide by 1 (no exception the scalar code would not raise) */
-    const __m256d slide = _mm256_div_pd(cr, _mm256_blendv_pd(one, d, act)), lim = _mm256_mul_pd(mu, lam);
+    const __m256d dd = _mm256_blendv_pd(one, d, act);
+    const __m256d id = _mm256_div_pd(one, dd), iw = _mm256_div_pd(one, _mm256_blendv_pd(one, _mm256_mul_pd(d, ws), act));
+    const __m256d slide = _mm256_mul_pd(cr, id), lim = _mm256_mul_pd(mu, lam);
     const __m256d lt = _mm256_loadu_pd(B->alt + k), want = _mm256_sub_pd(lt, slide), nlim = _mm256_xor_pd(lim, sign);
     __m256d got = _mm256_blendv_pd(want, nlim, _mm256_cmp_pd(want, nlim, _CMP_LT_OQ));
     got = _mm256_blendv_pd(got, lim, _mm256_cmp_pd(want, lim, _CMP_GT_OQ));
     _mm256_storeu_pd(B->alt + k, _mm256_blendv_pd(lt, got, act));
-    const __m256d g = _mm256_div_pd(_mm256_sub_pd(got, lt), _mm256_blendv_pd(one, _mm256_mul_pd(d, ws), act));
+    const __m256d g = _mm256_mul_pd(_mm256_sub_pd(got, lt), iw);
     const __m256d app = _mm256_and_pd(act, _mm256_cmp_pd(g, zero, _CMP_NEQ_UQ));
     const __m256d ga = _mm256_mul_pd(g, ia), gb = _mm256_mul_pd(g, ib);
     *a02 = _mm256_blendv_pd(*a02, _mm256_add_pd(*a02, _mm256_mul_pd(p02, LO(ga))), LO(app));
@@ -316,7 +320,7 @@ TT_AVX2 TT_INLINE bool batch(double *pk, const tt__batches *B, uint32_t k, __m25
     const __m256d lam = _mm256_add_pd(_mm256_loadu_pd(B->lam + k), got);
     _mm256_storeu_pd(B->lam + k, lam);
     *err = _mm256_max_pd(*err, got);
-    if (B->rub) rub4(B, k, lam, wa, wb, ws, &na02, &na13, &nb02, &nb13);
+    if (B->rub) rub4(B, k, _mm256_blendv_pd(d, rs, act), lam, wa, wb, ws, &na02, &na13, &nb02, &nb13);
     tt__rows_store2(pk, R(A[0]), R(A[2]), na02);
     tt__rows_store2(pk, R(A[1]), R(A[3]), na13);
     tt__rows_store2(pk, R(Bb[0]), R(Bb[2]), nb02);
@@ -357,7 +361,9 @@ TT_AVX2 TT_INLINE void rubs_run(tt__batches *B, double *xy)
         __m256d a02 = tt__xy_load2(xy, A[0], A[2]), a13 = tt__xy_load2(xy, A[1], A[3]);
         __m256d b02 = tt__xy_load2(xy, Bb[0], Bb[2]), b13 = tt__xy_load2(xy, Bb[1], Bb[3]);
         const __m256d wa = _mm256_loadu_pd(B->ka + k), wb = _mm256_loadu_pd(B->kb + k);
-        rub4(B, k, _mm256_loadu_pd(B->lam + k), wa, wb, _mm256_add_pd(wa, wb), &a02, &a13, &b02, &b13);
+        const __m256d e02 = _mm256_sub_pd(a02, b02), e13 = _mm256_sub_pd(a13, b13);
+        const __m256d d = _mm256_sqrt_pd(LANES(_mm256_mul_pd(e02, e02), _mm256_mul_pd(e13, e13)));
+        rub4(B, k, d, _mm256_loadu_pd(B->lam + k), wa, wb, _mm256_add_pd(wa, wb), &a02, &a13, &b02, &b13);
         tt__xy_store2(xy, A[0], A[2], a02);
         tt__xy_store2(xy, A[1], A[3], a13);
         tt__xy_store2(xy, Bb[0], Bb[2], b02);

@@ -65,21 +65,27 @@ double tt__batches_sweep(tt__batches *B, const tt__lay *L, uint32_t t0, uint32_t
 /* Anchored friction's per-entry arrays (contact_anchor.c), which the sweeps read when rub is set. */
 void tt__batches_anchor(tt__batches *B, const double *rxy, double *lt, const double *mu);
 /* Anchored friction of one pair (contact_anchor.c), after its push:
- * (ex, ey) = xa − xb, r its anchor (x, y), mu·lam the bound, ws > 0 the
+ * (ex, ey) = xa − xb, d its length as the caller knows it (a pair pushed
+ * to contact: rs, which the push left it at up to rounding; else
+ * sqrt(ex² + ey²)), r its anchor (x, y), mu·lam the bound, ws > 0 the
  * weights' sum, lt its friction so far (updated). Its slide from the anchor
  * is undone as far as lt stays within the bound. Returns g: a moves by
  * (−ey, ex)·(g·ia), b by −(−ey, ex)·(g·ib); 0 for no move. Both pair sweeps
- * and the vector lanes (contact_batch.c) do this arithmetic. */
-static inline double tt__anchored_rub(double ex, double ey, const double *r, double mu, double lam, double ws, double *lt)
+ * and the vector lanes (contact_batch.c) do this arithmetic. The sweep is
+ * one chain of dependent pairs, so d is not taken again after the push and
+ * the two divisions are by d alone (reciprocals the processor works out
+ * while the slide is still being computed): a square root and two
+ * divisions off the chain of every anchored pair. */
+static inline double tt__anchored_rub(double ex, double ey, double d, const double *r, double mu, double lam, double ws, double *lt)
 {
-    const double d = sqrt(ex * ex + ey * ey);
     if (!(mu > 0.0 && lam > 0.0 && d > 0.0)) return 0.0;
-    const double slide = ((ex - r[0]) * -ey + (ey - r[1]) * ex) / d, lim = mu * lam;
+    const double id = 1.0 / d, iw = 1.0 / (d * ws);
+    const double slide = ((ex - r[0]) * -ey + (ey - r[1]) * ex) * id, lim = mu * lam;
     double want = *lt - slide;
     want = want > lim ? lim : want < -lim ? -lim : want;
     const double f = want - *lt;
     *lt = want;
-    return f / (d * ws);
+    return f * iw;
 }
 /* The batches' sweep runs in vector lanes when the solver packs rows. */
 bool tt__batches_want_rows(const tt__batches *B);
