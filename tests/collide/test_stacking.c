@@ -135,50 +135,37 @@ static bool small_pour(uint64_t seed, bool anchored, uint32_t iterations, double
     return ok;
 }
 
+/* The small pours from starts 1 and 2 at 1 × iterations, with or without
+ * anchored friction: at 15 s no two circles more than deepest (a share of
+ * a radius) into each other, and KE at most ke_max. */
+static void small_pours(bool anchored, uint32_t iterations, double deepest, double ke_max)
+{
+    if (getenv("TT_MEMCHECK")) return; /* two 15 s pours: minutes under valgrind */
+    for (uint64_t seed = 1; seed <= 2; seed++) {
+        double deep, ke;
+        ENSURE(small_pour(seed, anchored, iterations, &deep, &ke));
+        ENSURE(deep <= deepest);
+        ENSURE(ke <= ke_max);
+    }
+}
+
 /* With anchored friction: at 15 s at rest, and no two circles more than
  * 1.5 % of a radius into each other at 1 × 8. Pairs that pushed a particle
  * into the wall it leans on (the wall pushing it back, last, into its
  * neighbour) left the layers by the walls 1.8–6.2 % deep on these starts
  * (docs/collisions.md "Particles against a shape"); held off the walls,
  * 1.06 and 0.99 % (0.52–1.06 % on starts 1–8). */
-TEST(stacking_with_anchored_friction_keeps_the_layers_by_the_walls_apart)
-{
-    if (getenv("TT_MEMCHECK")) return; /* two 15 s pours: minutes under valgrind */
-    for (uint64_t seed = 1; seed <= 2; seed++) {
-        double deep, ke;
-        ENSURE(small_pour(seed, true, 8, &deep, &ke));
-        ENSURE(deep <= 0.015);
-        ENSURE(ke <= 1e-4);
-    }
-}
+TEST(stacking_with_anchored_friction_keeps_the_layers_by_the_walls_apart) { small_pours(true, 8, 0.015, 1e-4); }
 
 /* At 1 × 12, the setting docs/collisions.md gives for piles under 1 %
  * (`make bench pourstarts`): the same pours at rest under 1 %, 0.37 and
  * 0.72 % (0.37–0.88 % on starts 1–8). */
-TEST(stacking_with_anchored_friction_at_1x12_rests_under_one_percent)
-{
-    if (getenv("TT_MEMCHECK")) return; /* two 15 s pours: minutes under valgrind */
-    for (uint64_t seed = 1; seed <= 2; seed++) {
-        double deep, ke;
-        ENSURE(small_pour(seed, true, 12, &deep, &ke));
-        ENSURE(deep <= 0.01);
-        ENSURE(ke <= 1e-4);
-    }
-}
+TEST(stacking_with_anchored_friction_at_1x12_rests_under_one_percent) { small_pours(true, 12, 0.01, 1e-4); }
 
 /* Without anchored friction the same pours rest under 1 % (KE ≤ 1e-9 J/kg
  * at 15 s): the walls' hold is not applied there, where it kept the piles
  * moving (2.4e-4 … 4.0e-3 J/kg on starts 0–3). */
-TEST(stacking_alone_rests_in_a_box)
-{
-    if (getenv("TT_MEMCHECK")) return; /* two 15 s pours: minutes under valgrind */
-    for (uint64_t seed = 1; seed <= 2; seed++) {
-        double deep, ke;
-        ENSURE(small_pour(seed, false, 8, &deep, &ke));
-        ENSURE(deep <= 0.01);
-        ENSURE(ke <= 1e-6);
-    }
-}
+TEST(stacking_alone_rests_in_a_box) { small_pours(false, 8, 0.01, 1e-6); }
 
 /* Stacking's weights in the sweeps and the velocity pass, in vector lanes
  * and in scalar code: the same bits; with anchored friction too (its
