@@ -72,10 +72,10 @@ void tt__batches_anchor(tt__batches *B, const double *rxy, double *lt, const dou
  * is undone as far as lt stays within the bound. Returns g: a moves by
  * (−ey, ex)·(g·ia), b by −(−ey, ex)·(g·ib); 0 for no move. Both pair sweeps
  * and the vector lanes (contact_batch.c) do this arithmetic. The sweep is
- * one chain of dependent pairs, so d is not taken again after the push and
- * the two divisions are by d alone (reciprocals the processor works out
- * while the slide is still being computed): a square root and two
- * divisions off the chain of every anchored pair. */
+ * one chain of dependent pairs, so d is not taken again after the push,
+ * and the two divisions are reciprocals the processor works out while the
+ * slide is still being computed: a square root and two divisions off the
+ * chain of every anchored pair. */
 static inline double tt__anchored_rub(double ex, double ey, double d, const double *r, double mu, double lam, double ws, double *lt)
 {
     if (!(mu > 0.0 && lam > 0.0 && d > 0.0)) return 0.0;

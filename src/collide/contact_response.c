@@ -152,7 +152,8 @@ static void anchored_rub(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t
     const tt__pair *p = &c->scr.pairs[k];
     const size_t st = L->st, a = p->a, b = p->b;
     const double ex = L->x[a * st] - L->x[b * st], ey = L->y[a * st] - L->y[b * st];
-    const double g = tt__anchored_rub(ex, ey, sqrt(ex * ex + ey * ey), c->scr.anc.rxy + 2 * (size_t)k, c->scr.anc.mu[k], p->lambda, ia + ib, c->scr.anc.lt + k);
+    const double g = tt__anchored_rub(ex, ey, sqrt(ex * ex + ey * ey), c->scr.anc.rxy + 2 * (size_t)k, c->scr.anc.mu[k],
+                                      p->lambda, ia + ib, c->scr.anc.lt + k);
     if (g == 0.0) return;
     const double ga = g * ia, gb = g * ib;
     tt__correct(w, p->a, -ey * ga, ex * ga);
