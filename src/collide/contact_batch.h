@@ -38,9 +38,11 @@ typedef struct tt__batches {
 /* Why a batch goes lane by lane (solo): its lanes share a particle; a
  * lane's particle leans on a shape (stacking, contact_stack.c), a push the
  * lanes do not do (contact_batch.c's lean_push). The velocity pass only
- * minds the first. */
+ * minds the first. And, on an odd batch, why it is not solved beside the
+ * one before in eight lanes: it shares a particle with it (PREV). */
 #define TT__SOLO_SHARED 1
 #define TT__SOLO_LEAN 2
+#define TT__SOLO_PREV 4
 
 #ifdef TT_SIMD_X86
 /* Pair form (a ymm holding x, y of lanes 0 and 2, or of 1 and 3):
