@@ -89,9 +89,7 @@ typedef struct tt_collision_settings {
                                    ///< friction, a particle within reach of a shape is pushed by its pairs only along
                                    ///< the shape (together at 1 × 12 the 10 000-circle pour rests under 1 % from every
                                    ///< start tried); 2 holds the
-                                   ///< 10 000-circle pour under 1 % overlap at 1 × 8 (docs/collisions.md). At 1 substep a
-                                   ///< pile that collapses into itself at landing (the 100 k pour) is thrown apart as it is
-                                   ///< undone; 4 substeps keep it together. Default 0 = off
+                                   ///< 10 000-circle pour under 1 % overlap at 1 × 8 (docs/collisions.md); default 0 = off
     bool anchored_friction;        ///< static friction between particles held from substep to substep: a pair that does
                                    ///< not slip keeps the relative position it stuck at, so piles and stacks of circles
                                    ///< stand (a 10-row pyramid, a pour in a bowl); slow pairs only (under the restitution

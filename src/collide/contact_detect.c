@@ -285,9 +285,11 @@ void tt__contacts_begin(tt_world *w, void *self, double h)
     if (c->terr && !tt__terrain_detect(w, c, n, grid_built)) tt__step_oom(w, "terrain contacts");
     if (!start_first && (c->scr.npairs || c->scr.nsc)) substep_start(w, c, h, n);
     if (c->set.anchored_friction) tt__anchors_begin(w, c, n, h); /* before pre-stabilisation moves the starts */
-    if (c->scr.npairs) tt__contacts_prestab(w, c, n);
-    /* stacking weighs the sweeps' and the velocity pass's pairs, not pre-stabilisation's */
+    /* stacking weighs pre-stabilisation's pairs too: unweighted, it left a
+     * collapsed pile's old overlap to the weighted sweeps, whose push is
+     * speed (a column of 2 000 circles thrown from 274 m to 538 m) */
     if (c->scr.batched) tt__contacts_stack(w, c);
+    if (c->scr.npairs) tt__contacts_prestab(w, c, n);
     c->quiet_last = c->scr.npairs == 0 && c->scr.nsc == 0;
     if (!c->quiet_last) c->clear_ok = false; /* the sweeps will push: moves the displacements do not see */
     if (c->scr.npairs > c->pair_peak) c->pair_peak = c->scr.npairs;

@@ -18,8 +18,9 @@
  * along −g as a share of the radii sum (0 side by side, 1 one on top of the
  * other), for the sweeps and the pair's velocity pass alike (the same
  * weights in both, else the pass hands the upper's push back as speed).
- * The weights are this entry's, from the positions after
- * pre-stabilisation, fixed for the substep; scalar code and the lanes read
+ * The weights are this entry's, from the predicted positions, fixed for the
+ * substep, pre-stabilisation's sweeps included (contact_detect.c); scalar
+ * code and the lanes read
  * the same ka, kb, so the bits are the same. Not momentum-conserving between
  * the two (the lower one is heavier for this pair only), as in the papers.
  * Entries with a particle that leans on a shape (lc) go lane by lane.
