@@ -55,6 +55,14 @@ void ts_scene_free(ts_scene *s)
     s->body_count = s->body_cap = s->joint_count = s->joint_cap = 0;
 }
 
+double ts_scene_highest(const ts_scene *s)
+{
+    double top = 0.0;
+    for (uint32_t i = 0; i < s->body_count; i++)
+        if (s->bodies[i].dynamic && s->bodies[i].position.y > top) top = s->bodies[i].position.y;
+    return top;
+}
+
 bool ts_scene_copy(ts_scene *dst, const ts_scene *src)
 {
     *dst = *src;

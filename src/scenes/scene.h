@@ -71,6 +71,8 @@ ts_body ts_box(bool dynamic, tt_vec2 at, double half_w, double half_h, double an
 /* An empty scene: gravity (0, −10), dt 1/60, 60 steps. */
 void ts_scene_init(ts_scene *s, const char *name);
 void ts_scene_free(ts_scene *s);
+/* The highest centre of a dynamic body, m (0 when there is none): where a fall in the scene starts from at most. */
+double ts_scene_highest(const ts_scene *s);
 /* A deep copy of src into dst (initialised here); false on no memory. */
 bool ts_scene_copy(ts_scene *dst, const ts_scene *src);
 /* Adds a copy; returns its index, or −1 on bad input or no memory (why in *why when not NULL). */

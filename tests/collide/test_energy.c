@@ -111,10 +111,7 @@ static void pour_at(uint32_t n, double width, uint32_t sweeps, int steps, pour_r
     ts_tether t;
     const char *why = NULL;
     ENSURE(ts_tether_build(&s, &set, &t, &why) == TT_OK);
-    double top = 0.0;
-    for (uint32_t i = 0; i < s.body_count; i++)
-        if (s.bodies[i].dynamic) top = fmax(top, s.bodies[i].position.y);
-    const double g = -s.gravity.y;
+    const double top = ts_scene_highest(&s), g = -s.gravity.y;
     r.bound = sqrt(2.0 * g * top);
     double e = total_energy(t.world, t.circles, t.circle_count, g);
     for (int k = 0; k < steps; k++) {

@@ -182,9 +182,7 @@ TEST(stacking_undoes_a_collapsed_column_without_throwing_it)
     ts_tether t;
     const char *why = NULL;
     ENSURE(ts_tether_build(&sc, &set, &t, &why) == TT_OK);
-    double top = 0.0;
-    for (uint32_t i = 0; i < sc.body_count; i++)
-        if (sc.bodies[i].dynamic) top = fmax(top, sc.bodies[i].position.y);
+    const double top = ts_scene_highest(&sc);
     tt_collision_settings cs;
     tt_world_get_collision(t.world, &cs);
     cs.stacking = 2.0;
