@@ -113,6 +113,50 @@ TEST(anchored_friction_holds_a_pyramid_of_circles_and_only_with_friction)
     ENSURE(none > 5.0);
 }
 
+/* The velocity pass reads each pair's anchor after the table has kept
+ * the touching pairs (anchored_unrub: whether a pair at its bound slipped):
+ * it must read the pair's own, not the next touching pair's, which keeping
+ * wrote over it wherever a pair before it did not touch. Two pairs, one a
+ * hair out of touch (in reach: listed, no push), one resting; after a
+ * step each unit still holds where its own pair began. */
+TEST(anchored_friction_reads_each_pairs_own_anchor_after_the_sweeps)
+{
+    sweeps = 1; /* the pairs are the units, in the list's order */
+    int checked = 0;
+    for (int flip = 0; flip < 2; flip++) { /* either pair first in the list */
+        tt_world *w = world(true, 0.6);
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = 0.5;
+        const double xo = flip ? 5.0 : -5.0, gap = 1.02, rest = 0.999;
+        pd.pinned = true;
+        pd.position = (tt_vec2){xo, 0.0};
+        tt_particle_create(w, &pd);
+        pd.position = (tt_vec2){0.0, 0.0};
+        tt_particle_create(w, &pd);
+        pd.pinned = false;
+        pd.position = (tt_vec2){xo, gap};
+        tt_particle_create(w, &pd);
+        pd.position = (tt_vec2){0.0, rest};
+        tt_particle_create(w, &pd);
+        ENSURE(tt_world_step(w, 1.0 / 60) == TT_OK);
+        const tt__collide *c = tt__collide_peek(w);
+        ENSURE(c && c->scr.anc.on && !c->scr.batched && c->scr.npairs == 2);
+        for (uint32_t k = 0; k < 2; k++) {
+            uint32_t a, b;
+            double lam;
+            ENSURE(tt__anc_unit(c, k, &a, &b, &lam));
+            const bool far = a % 2 == 0; /* slots 0, 2: the pair out of touch */
+            ENSURE(far == (lam == 0.0));
+            ENSURE(fabs(fabs(c->scr.anc.rxy[2 * k + 1]) - (far ? gap : rest)) < 1e-12);
+            ENSURE(c->scr.anc.rxy[2 * k] == 0.0);
+            checked += far && k == 0;
+        }
+        tt_world_destroy(w);
+    }
+    ENSURE(checked == 1); /* the case that was wrong: the pair out of touch first */
+    sweeps = 8;
+}
+
 /* Anchored friction in the sweeps' vector lanes and the velocity pass's,
  * and in scalar code: the same bits. A pyramid with circles dropped on it
  * from 12 m (impacts, slipping, pairs that stick), with the world's
