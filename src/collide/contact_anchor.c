@@ -115,10 +115,10 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
         return;
     }
     const uint32_t nu = tt__anc_units(c);
-    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap;
+    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap, c6 = s->anc.cap;
     if (!tt__grow((void **)&s->anc.rxy, &c1, nu + 1, 2 * sizeof *s->anc.rxy) || !tt__grow((void **)&s->anc.lt, &c2, nu + 1, sizeof *s->anc.lt) ||
         !tt__grow((void **)&s->anc.mu, &c3, nu + 1, sizeof *s->anc.mu) || !tt__grow((void **)&s->anc.key, &c4, nu + 1, sizeof *s->anc.key) ||
-        !tt__grow((void **)&s->anc.slow, &c5, nu + 1, sizeof *s->anc.slow) ||
+        !tt__grow((void **)&s->anc.slow, &c5, nu + 1, sizeof *s->anc.slow) || !tt__grow((void **)&s->anc.kxy, &c6, nu + 1, 2 * sizeof *s->anc.kxy) ||
         !tt__grow((void **)&s->anc.bucket, &s->anc.bcap, n + 2, sizeof *s->anc.bucket)) {
         s->anc.cap = 0; /* some grew: the next substep grows all again */
         tt__step_oom(w, "anchored friction");
@@ -188,7 +188,10 @@ static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const ui
 /* End, before the velocity pass: the touching pairs' anchors, kept where
  * the pair held (slow, and its friction within the static bound), else
  * where the pair is now. Written pair by pair into the scratch (entry m
- * over pair k ≥ m, read already), then sorted into the table. */
+ * over pair k ≥ m, read already), then sorted into the table. Not over
+ * the substep's anchors (rxy): the velocity pass reads them after this
+ * (anchored_unrub), and read there a later pair's anchor wherever a pair
+ * before it had not touched. */
 void tt__anchors_keep(tt_world *w, tt__collide *c)
 {
     tt__collide_scratch *s = &c->scr;
@@ -196,7 +199,8 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
     const uint32_t n = w->ppool.count, nu = tt__anc_units(c);
     if (!s->anc.on || t->cap < nu || s->anc.bcap < n + 2 || s->anc.cap <= nu) return;
     uint64_t *key = s->anc.key;
-    double *rxy = s->anc.rxy;
+    const double *rxy = s->anc.rxy;
+    double *kxy = s->anc.kxy;
     uint32_t m = 0;
     for (uint32_t k = 0; k < nu; k++) {
         uint32_t a, b;
@@ -208,12 +212,12 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
             y = w->py[a] - w->py[b];
         }
         key[m] = tt__pair_key(a, b);
-        rxy[2 * (size_t)m] = a < b ? x : -x;
-        rxy[2 * (size_t)m + 1] = a < b ? y : -y;
+        kxy[2 * (size_t)m] = a < b ? x : -x;
+        kxy[2 * (size_t)m + 1] = a < b ? y : -y;
         m++;
     }
     t->n = m;
-    sort_entries(t, s->anc.bucket, n, key, rxy);
+    sort_entries(t, s->anc.bucket, n, key, kxy);
     index_all(t);
 }
 

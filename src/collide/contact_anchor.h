@@ -29,7 +29,8 @@ enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
  * pairs, else a pair): its anchor (rxy: x, y of a − b), friction so far
  * (lt), whether it is slow (slower than thr before the sweeps: its friction
  * is anchored) and then its static friction (mu, else 0); at the end the
- * touching pairs' keys before sorting (key) and the sort's counts (bucket,
+ * touching pairs' keys and anchors before sorting (key, kxy: apart from
+ * rxy, which the velocity pass reads after) and the sort's counts (bucket,
  * one per particle + 2). */
 typedef struct tt__anchor_scratch {
     bool on;              /* the setting applies this substep */
@@ -38,8 +39,9 @@ typedef struct tt__anchor_scratch {
     double h;             /* the substep, s */
     double *rxy, *lt, *mu;
     uint64_t *key;
+    double *kxy;
     uint8_t *slow;
-    uint32_t cap;         /* units of rxy (two each), lt, mu, key, slow */
+    uint32_t cap;         /* units of rxy and kxy (two each), lt, mu, key, slow */
     uint32_t *bucket, bcap;
 } tt__anchor_scratch;
 
