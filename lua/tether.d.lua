@@ -765,6 +765,7 @@ function world:composite_count() end
 ---@field restitution_threshold? number m/s
 ---@field stacking? number mass scaling by height for piles, ≥ 0 (0 = off; 2 for deep piles)
 ---@field anchored_friction? boolean particle pairs' static friction held across substeps: piles and stacks of circles stand (default false)
+---@field warm_start? number with anchored friction, 0…1: the share of a resting pair's last normal correction pushed before the sweeps, so a pile rests under 1 % at few sweeps (default 0 = off; 0.75 for piles)
 ---@field events? ("begin"|"persist"|"end")[]
 
 ---@class tether.ray_hit

@@ -97,6 +97,12 @@ typedef struct tt_collision_settings {
                                    ///< With stacking 2 the pour rests from every start tried. About 1.5–1.7× the step
                                    ///< time of a pile.
                                    ///< A pile settling can gain energy (docs/collisions.md). Default false
+    double warm_start;             ///< with anchored friction: 0…1, the share of a resting pair's normal correction of
+                                   ///< its last substep that is applied before the sweeps, so a pile's weight is held
+                                   ///< from the first sweep and the sweeps only correct what changed (resting pairs
+                                   ///< only: slower than the restitution threshold). With stacking 2 and 0.85 the
+                                   ///< 10 000-circle pour rests under 1 % overlap at 1 × 6 (docs/collisions.md "Warm
+                                   ///< start"). Default 0 = off
 } tt_collision_settings;
 
 /// One contact event, delivered after the step (see tt_world_get_contact_events).

@@ -25,6 +25,7 @@ tt_result tt_world_set_collision(tt_world *w, const tt_collision_settings *s)
     if (!tt__in_range(s->restitution_threshold, -TT_MAX_VALUE, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: restitution_threshold must be finite (< 0 = auto)", fn);
     if (s->events & ~7u) return tt__fail(w, TT_EINVAL, "%s: events must be a set of TT_EVENT_BEGIN|PERSIST|END, got 0x%x", fn, s->events);
     if (!tt__in_range(s->stacking, 0.0, TT_MAX_VALUE)) return tt__fail(w, TT_EINVAL, "%s: stacking must be in [0, %g], got %g", fn, TT_MAX_VALUE, s->stacking);
+    if (!tt__in_range(s->warm_start, 0.0, 1.0)) return tt__fail(w, TT_EINVAL, "%s: warm_start must be in [0, 1], got %g", fn, s->warm_start);
     tt__collide *c = tt__collide_get(w, true, fn);
     if (!c) return TT_ENOMEM;
     c->set = *s;
@@ -32,6 +33,7 @@ tt_result tt_world_set_collision(tt_world *w, const tt_collision_settings *s)
     c->set.restitution_threshold = s->restitution_threshold < 0.0 ? -1.0 : s->restitution_threshold;
     if (!s->events) c->nprev = 0;
     if (!s->anchored_friction) tt__anchors_clear(&c->anc);
+    if (s->warm_start == 0.0) tt__anchors_cool(&c->anc); /* kept only while on: a world saved without it is the same */
     return TT_OK;
 }
 

@@ -337,6 +337,10 @@ void tt__contacts_prestab(tt_world *w, tt__collide *c, uint32_t n);
  * weights for the sweeps and the velocity pass, and which particles lean
  * on a shape. After pre-stabilisation, in begin. */
 void tt__contacts_stack(tt_world *w, tt__collide *c);
+/* Warm start (tt_collision_settings.warm_start, contact_warm.c): units
+ * [u0, u1)' resting pairs pushed by a share of their last substep's normal
+ * correction, on positions L; the largest push. Before the first sweep. */
+double tt__contacts_warm(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t u0, uint32_t u1);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);
 void tt__contacts_stopped(tt_world *w, void *self, uint32_t i);

@@ -83,13 +83,13 @@ static bool table_room(tt__anchors *t, uint32_t cap, uint32_t np)
 
 void tt__anchors_free(tt__anchors *t)
 {
-    free(t->key); free(t->rx); free(t->ry); free(t->first);
+    free(t->key); free(t->rx); free(t->ry); free(t->lm); free(t->first);
     *t = (tt__anchors){0};
 }
 
 size_t tt__anchors_bytes(const tt__anchors *t)
 {
-    return (size_t)t->cap * (sizeof *t->key + 2 * sizeof(double)) + (size_t)t->fcap * sizeof *t->first;
+    return (size_t)t->cap * (sizeof *t->key + 3 * sizeof(double)) + (size_t)t->fcap * sizeof *t->first;
 }
 
 void tt__anchors_clear(tt__anchors *t)
@@ -115,10 +115,12 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
         return;
     }
     const uint32_t nu = tt__anc_units(c);
-    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap, c6 = s->anc.cap;
+    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap, c6 = s->anc.cap, c7 = s->anc.cap,
+             c8 = s->anc.cap;
     if (!tt__grow((void **)&s->anc.rxy, &c1, nu + 1, 2 * sizeof *s->anc.rxy) || !tt__grow((void **)&s->anc.lt, &c2, nu + 1, sizeof *s->anc.lt) ||
         !tt__grow((void **)&s->anc.mu, &c3, nu + 1, sizeof *s->anc.mu) || !tt__grow((void **)&s->anc.key, &c4, nu + 1, sizeof *s->anc.key) ||
         !tt__grow((void **)&s->anc.slow, &c5, nu + 1, sizeof *s->anc.slow) || !tt__grow((void **)&s->anc.kxy, &c6, nu + 1, 2 * sizeof *s->anc.kxy) ||
+        !tt__grow((void **)&s->anc.klm, &c7, nu + 1, sizeof *s->anc.klm) || !tt__grow((void **)&s->anc.wl, &c8, nu + 1, sizeof *s->anc.wl) ||
         !tt__grow((void **)&s->anc.bucket, &s->anc.bcap, n + 2, sizeof *s->anc.bucket)) {
         s->anc.cap = 0; /* some grew: the next substep grows all again */
         tt__step_oom(w, "anchored friction");
@@ -131,7 +133,7 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
     for (uint32_t k = 0; k < nu; k++) {
         uint32_t a, b;
         double lam, *r = s->anc.rxy + 2 * (size_t)k;
-        s->anc.lt[k] = 0.0;
+        s->anc.lt[k] = s->anc.wl[k] = 0.0;
         if (!tt__anc_unit(c, k, &a, &b, &lam)) { /* a batch's padding */
             s->anc.slow[k] = 0;
             s->anc.mu[k] = r[0] = r[1] = 0.0;
@@ -147,6 +149,7 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
         } else { /* stored lower minus higher */
             r[0] = a < b ? c->anc.rx[e] : -c->anc.rx[e];
             r[1] = a < b ? c->anc.ry[e] : -c->anc.ry[e];
+            s->anc.wl[k] = c->anc.lm[e];
         }
     }
     if (s->batched) tt__batches_anchor(&s->bat, s->anc.rxy, s->anc.lt, s->anc.mu);
@@ -159,7 +162,7 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
 
 /* Sorts entries [0, n) by key: counting sort by the lower slot (below
  * nb), then insertion within each slot's few. */
-static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const uint64_t *key, const double *rxy)
+static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const uint64_t *key, const double *rxy, const double *lm)
 {
     memset(bucket, 0, (size_t)(nb + 1) * sizeof *bucket);
     for (uint32_t e = 0; e < t->n; e++) bucket[(key[e] >> 32) + 1]++;
@@ -169,29 +172,31 @@ static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const ui
         t->key[to] = key[e];
         t->rx[to] = rxy[2 * (size_t)e];
         t->ry[to] = rxy[2 * (size_t)e + 1];
+        t->lm[to] = lm[e];
     }
     for (uint32_t e = 1; e < t->n; e++) {
         const uint64_t k = t->key[e];
-        const double x = t->rx[e], y = t->ry[e];
+        const double x = t->rx[e], y = t->ry[e], l = t->lm[e];
         uint32_t j = e;
         for (; j > 0 && t->key[j - 1] > k; j--) {
             t->key[j] = t->key[j - 1];
             t->rx[j] = t->rx[j - 1];
             t->ry[j] = t->ry[j - 1];
+            t->lm[j] = t->lm[j - 1];
         }
         t->key[j] = k;
         t->rx[j] = x;
         t->ry[j] = y;
+        t->lm[j] = l;
     }
 }
 
 /* End, before the velocity pass: the touching pairs' anchors, kept where
  * the pair held (slow, and its friction within the static bound), else
- * where the pair is now. Written pair by pair into the scratch (entry m
- * over pair k ≥ m, read already), then sorted into the table. Not over
- * the substep's anchors (rxy): the velocity pass reads them after this
- * (anchored_unrub), and read there a later pair's anchor wherever a pair
- * before it had not touched. */
+ * where the pair is now. Written pair by pair into the scratch, then
+ * sorted into the table. Not over the substep's anchors (rxy): the
+ * velocity pass reads them after this (anchored_unrub), and read there a
+ * later pair's anchor wherever a pair before it had not touched. */
 void tt__anchors_keep(tt_world *w, tt__collide *c)
 {
     tt__collide_scratch *s = &c->scr;
@@ -200,7 +205,8 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
     if (!s->anc.on || t->cap < nu || s->anc.bcap < n + 2 || s->anc.cap <= nu) return;
     uint64_t *key = s->anc.key;
     const double *rxy = s->anc.rxy;
-    double *kxy = s->anc.kxy;
+    double *kxy = s->anc.kxy, *klm = s->anc.klm;
+    const bool warm = c->set.warm_start > 0.0;
     uint32_t m = 0;
     for (uint32_t k = 0; k < nu; k++) {
         uint32_t a, b;
@@ -214,10 +220,11 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
         key[m] = tt__pair_key(a, b);
         kxy[2 * (size_t)m] = a < b ? x : -x;
         kxy[2 * (size_t)m + 1] = a < b ? y : -y;
+        klm[m] = warm ? lam : 0.0;
         m++;
     }
     t->n = m;
-    sort_entries(t, s->anc.bucket, n, key, kxy);
+    sort_entries(t, s->anc.bucket, n, key, kxy, klm);
     index_all(t);
 }
 
@@ -230,6 +237,7 @@ void tt__anchors_drop(tt__anchors *t, uint32_t i)
         t->key[m] = t->key[e];
         t->rx[m] = t->rx[e];
         t->ry[m] = t->ry[e];
+        t->lm[m] = t->lm[e];
         m++;
     }
     if (m == t->n) return;
@@ -241,11 +249,12 @@ void tt__anchors_drop(tt__anchors *t, uint32_t i)
 bool tt__anchors_room(tt__anchors *t, uint32_t n)
 {
     if (t->cap >= n) return true;
-    uint32_t c1 = t->cap, c2 = t->cap, c3 = t->cap;
+    uint32_t c1 = t->cap, c2 = t->cap, c3 = t->cap, c4 = t->cap;
     if (!tt__grow((void **)&t->key, &c1, n, sizeof *t->key) || !tt__grow((void **)&t->rx, &c2, n, sizeof *t->rx) ||
-        !tt__grow((void **)&t->ry, &c3, n, sizeof *t->ry))
+        !tt__grow((void **)&t->ry, &c3, n, sizeof *t->ry) || !tt__grow((void **)&t->lm, &c4, n, sizeof *t->lm))
         return false;
-    t->cap = c1 < c2 ? (c1 < c3 ? c1 : c3) : (c2 < c3 ? c2 : c3);
+    const uint32_t c12 = c1 < c2 ? c1 : c2, c34 = c3 < c4 ? c3 : c4;
+    t->cap = c12 < c34 ? c12 : c34;
     return true;
 }
 
@@ -258,6 +267,7 @@ bool tt__anchors_copy(tt__anchors *to, const tt__anchors *from)
         memcpy(to->key, from->key, (size_t)from->n * sizeof *to->key);
         memcpy(to->rx, from->rx, (size_t)from->n * sizeof *to->rx);
         memcpy(to->ry, from->ry, (size_t)from->n * sizeof *to->ry);
+        memcpy(to->lm, from->lm, (size_t)from->n * sizeof *to->lm);
     }
     return true;
 }
@@ -296,8 +306,33 @@ bool tt__anchors_load(tt__anchors *t, tt__source *s, uint32_t n)
         t->key[e] = key;
         t->rx[e] = x;
         t->ry[e] = y;
+        t->lm[e] = 0.0; /* warm_start's section, when there is one, follows */
     }
     t->n = m;
     index_all(t);
     return true;
+}
+
+void tt__anchors_save_warm(const tt__anchors *t, double warm, tt__sink *s)
+{
+    tt__put_u32(s, TT__ID('W', 'A', 'R', 'M'));
+    tt__put_f64(s, warm);
+    tt__put_u32(s, t->n);
+    for (uint32_t e = 0; e < t->n; e++) tt__put_f64(s, t->lm[e]);
+}
+
+bool tt__anchors_load_warm(tt__anchors *t, tt__source *s, double *warm)
+{
+    *warm = tt__get_num(s, 0.0, 1.0, "warm start");
+    const uint32_t m = tt__get_count(s, 8, "warm start's corrections");
+    if (s->failed) return false;
+    if (*warm == 0.0) return tt__src_fail(s, "warm start 0 written out");
+    if (m != t->n) return tt__src_fail(s, "warm start: %u corrections for %u anchors", m, t->n);
+    for (uint32_t e = 0; e < m; e++) t->lm[e] = tt__get_num(s, 0.0, TT_MAX_VALUE, "warm start's correction");
+    return !s->failed;
+}
+
+void tt__anchors_cool(tt__anchors *t)
+{
+    for (uint32_t e = 0; e < t->n; e++) t->lm[e] = 0.0;
 }

@@ -16,6 +16,7 @@ struct tt__source;
 typedef struct tt__anchors {
     uint64_t *key;        /* lower slot << 32 | higher slot, ascending */
     double *rx, *ry;      /* the lower particle's position less the higher one's where the pair stuck */
+    double *lm;           /* the pair's normal correction in that substep, m, with warm_start on (else 0) */
     uint32_t n, cap;
     uint32_t *first;      /* the entries whose lower slot is p: [first[p], first[p + 1]), p + 1 < nfirst */
     uint32_t nfirst, fcap;
@@ -29,9 +30,10 @@ enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
  * pairs, else a pair): its anchor (rxy: x, y of a − b), friction so far
  * (lt), whether it is slow (slower than thr before the sweeps: its friction
  * is anchored) and then its static friction (mu, else 0); at the end the
- * touching pairs' keys and anchors before sorting (key, kxy: apart from
- * rxy, which the velocity pass reads after) and the sort's counts (bucket,
- * one per particle + 2). */
+ * touching pairs' keys, anchors and normal corrections before sorting (key,
+ * kxy: apart from rxy, which the velocity pass reads after; klm) and the
+ * sort's counts (bucket, one per particle + 2). wl: the normal correction
+ * the pair had in the last substep (warm start, contact_warm.c), else 0. */
 typedef struct tt__anchor_scratch {
     bool on;              /* the setting applies this substep */
     uint8_t pass;         /* TT__PASS_* */
@@ -39,9 +41,9 @@ typedef struct tt__anchor_scratch {
     double h;             /* the substep, s */
     double *rxy, *lt, *mu;
     uint64_t *key;
-    double *kxy;
+    double *kxy, *klm, *wl;
     uint8_t *slow;
-    uint32_t cap;         /* units of rxy and kxy (two each), lt, mu, key, slow */
+    uint32_t cap;         /* units of rxy and kxy (two each), lt, mu, key, klm, wl, slow */
     uint32_t *bucket, bcap;
 } tt__anchor_scratch;
 
@@ -59,5 +61,12 @@ size_t tt__anchors_bytes(const tt__anchors *t);
  * follows the id, each pair of slots below n. */
 void tt__anchors_save(const tt__anchors *t, struct tt__sink *s);
 bool tt__anchors_load(tt__anchors *t, struct tt__source *s, uint32_t n);
+/* warm_start's section: its id, the setting, then each entry's normal
+ * correction (the table's count, 0 without anchors). load reads what
+ * follows the id into the table just loaded (or none); false on a bad one. */
+void tt__anchors_save_warm(const tt__anchors *t, double warm, struct tt__sink *s);
+bool tt__anchors_load_warm(tt__anchors *t, struct tt__source *s, double *warm);
+/* Every entry's normal correction to 0 (warm start switched off). */
+void tt__anchors_cool(tt__anchors *t);
 
 #endif

@@ -156,10 +156,7 @@ void tt__batches_anchor(tt__batches *B, const double *rxy, double *lt, const dou
     B->amu = mu;
 }
 
-/* Direction (x, y) of particle i's share of a push, less what would take
- * it into a shape it leans on; wedged between two, nothing. Whether any was
- * taken. */
-static bool held(const tt__batches *B, uint32_t i, double *x, double *y)
+bool tt__batches_held(const tt__batches *B, uint32_t i, double *x, double *y)
 {
     const uint8_t m = B->lc[i];
     if (m == 0) return false;
@@ -194,7 +191,7 @@ static bool lean_push(const tt__batches *B, uint32_t k, double *X, double *Y, si
     double dx = X[a] - X[b], dy = Y[a] - Y[b], t;
     if (!tt__pair_push(i, j, B->rs[k], ia + ib, &dx, &dy, pen, &t)) return false;
     double ax = dx, ay = dy, bx = -dx, by = -dy;
-    const bool ha = held(B, i, &ax, &ay), hb = held(B, j, &bx, &by);
+    const bool ha = tt__batches_held(B, i, &ax, &ay), hb = tt__batches_held(B, j, &bx, &by);
     if (ha || hb) {
         /* a moves by (ax, ay)·t·ia, b by (bx, by)·t·ib; the distance grows by t·wd/d */
         const double wd = ia * (ax * dx + ay * dy) - ib * (bx * dx + by * dy);

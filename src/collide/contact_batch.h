@@ -44,6 +44,11 @@ typedef struct tt__batches {
 #define TT__SOLO_LEAN 2
 #define TT__SOLO_PREV 4
 
+/* Direction (x, y) of particle i's share of a push, less what would take
+ * it into a shape it leans on (stacking's hold, lc and ln); wedged between
+ * two, nothing. Whether any was taken. */
+bool tt__batches_held(const tt__batches *B, uint32_t i, double *x, double *y);
+
 #ifdef TT_SIMD_X86
 /* Pair form (a ymm holding x, y of lanes 0 and 2, or of 1 and 3):
  * a per-lane vector's lanes 0, 2 and 1, 3 spread to it, and the per-lane

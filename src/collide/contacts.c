@@ -53,7 +53,7 @@ static bool idle(const tt_world *w, const void *self)
     return !s->particles && s->broadphase == d.broadphase && s->cell_size == d.cell_size &&
            s->restitution == d.restitution && s->friction_static == d.friction_static &&
            s->friction_kinetic == d.friction_kinetic && s->restitution_threshold == d.restitution_threshold &&
-           s->events == d.events && s->stacking == d.stacking && s->anchored_friction == d.anchored_friction && c->spool.count == 0 && c->excl.used == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
+           s->events == d.events && s->stacking == d.stacking && s->anchored_friction == d.anchored_friction && s->warm_start == d.warm_start && c->spool.count == 0 && c->excl.used == 0 && !c->mat && !c->bullet && c->nprev == 0 &&
            c->nevents == 0 && !c->terr;
 }
 
@@ -79,7 +79,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     b += (size_t)c->scr.runs_cap * sizeof *c->scr.runs + c->scr.near_cap;
     b += ((size_t)c->scr.reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
     b += (size_t)c->scr.undo.cap * 2 * sizeof(double);
-    b += tt__anchors_bytes(&c->anc) + tt__anchors_bytes(&c->scr.undo.anc) + (size_t)c->scr.anc.cap * (7 * sizeof(double) + 1) +
+    b += tt__anchors_bytes(&c->anc) + tt__anchors_bytes(&c->scr.undo.anc) + (size_t)c->scr.anc.cap * (9 * sizeof(double) + 1) +
          (size_t)c->scr.anc.bcap * sizeof(uint32_t);
     return b + tt__terrains_bytes(c->terr);
 }
@@ -98,7 +98,7 @@ void tt__contacts_scratch_free(tt_world *w, void *self)
     free(s->rec);
     free(s->undo.sx0); free(s->undo.sy0);
     tt__anchors_free(&s->undo.anc);
-    free(s->anc.rxy); free(s->anc.lt); free(s->anc.mu); free(s->anc.key); free(s->anc.kxy); free(s->anc.slow); free(s->anc.bucket);
+    free(s->anc.rxy); free(s->anc.lt); free(s->anc.mu); free(s->anc.key); free(s->anc.kxy); free(s->anc.klm); free(s->anc.wl); free(s->anc.slow); free(s->anc.bucket);
     *s = (tt__collide_scratch){0};
     s->bat.simd = simd;
     s->grid.epoch = UINT64_MAX; /* no grid: a query builds its own */
@@ -287,7 +287,8 @@ void tt__contacts_save(const tt_world *w, const void *self, tt__sink *s)
         tt__put_u32(s, TT__ID('S', 'T', 'A', 'K'));
         tt__put_f64(s, set->stacking);
     }
-    if (set->anchored_friction) tt__anchors_save(&c->anc, s); /* last, only when on: likewise */
+    if (set->anchored_friction) tt__anchors_save(&c->anc, s); /* only when on: likewise */
+    if (set->warm_start != 0.0) tt__anchors_save_warm(&c->anc, set->warm_start, s); /* last, only when on: likewise */
 }
 
 /* A record (record: its kind is not set yet, 0) or a published event. */
@@ -456,8 +457,9 @@ static bool no_terrain_records(const tt__collide *c, tt__source *s)
 }
 
 /* What may follow the records, each only when there is one: the terrains,
- * then the stacking setting, then anchored friction's anchors (a stream of
- * a world without any is the same as before they existed). */
+ * then the stacking setting, then anchored friction's anchors, then the
+ * warm start (a stream of a world without any is the same as before they
+ * existed). */
 static bool load_tail(tt_world *w, tt__collide *c, tt__source *s)
 {
     bool terrains = false;
@@ -477,6 +479,10 @@ static bool load_tail(tt_world *w, tt__collide *c, tt__source *s)
     if (id == TT__ID('A', 'N', 'C', 'H')) {
         c->set.anchored_friction = true;
         if (!tt__anchors_load(&c->anc, s, w->ppool.count)) return false;
+        id = s->at < s->len ? tt__get_u32(s) : 0;
+    }
+    if (id == TT__ID('W', 'A', 'R', 'M')) {
+        if (!tt__anchors_load_warm(&c->anc, s, &c->set.warm_start)) return false;
         id = 0;
     }
     if (id) return tt__src_fail(s, "collisions: unknown section");

@@ -268,6 +268,7 @@ static const tl_opt collision_opts[] = {
     TL_OPT_NUM(tt_collision_settings, "restitution_threshold", restitution_threshold, &TL_R_NONNEG),
     TL_OPT_NUM(tt_collision_settings, "stacking", stacking, &TL_R_NONNEG),
     TL_OPT_FLAG(tt_collision_settings, "anchored_friction", anchored_friction),
+    TL_OPT_NUM(tt_collision_settings, "warm_start", warm_start, &TL_R_UNIT),
     TL_OPT_BYHAND("events"),
     TL_OPT_END,
 };
@@ -311,7 +312,7 @@ static int w_collision(lua_State *L)
     tt_world *w = tl_check_world(L, 1);
     tt_collision_settings s;
     tl_check_result(L, w, tt_world_get_collision(w, &s));
-    lua_createtable(L, 0, 11);
+    lua_createtable(L, 0, 12);
     lua_pushboolean(L, s.particles); lua_setfield(L, -2, "particles");
     lua_pushstring(L, broadphases[s.broadphase == TT_BROADPHASE_BRUTE]); lua_setfield(L, -2, "broadphase");
     lua_pushnumber(L, s.cell_size); lua_setfield(L, -2, "cell_size");
@@ -321,6 +322,7 @@ static int w_collision(lua_State *L)
     lua_pushnumber(L, s.restitution_threshold); lua_setfield(L, -2, "restitution_threshold");
     lua_pushnumber(L, s.stacking); lua_setfield(L, -2, "stacking");
     lua_pushboolean(L, s.anchored_friction); lua_setfield(L, -2, "anchored_friction");
+    lua_pushnumber(L, s.warm_start); lua_setfield(L, -2, "warm_start");
     lua_createtable(L, 3, 0);
     int k = 0;
     for (int j = 0; j < 3; j++)

@@ -213,6 +213,14 @@ static unsigned char *save(const tt_world *w, size_t *n)
 
 static uint32_t anchors(const tt_world *w) { return tt__collide_peek(w)->anc.n; }
 
+static tt_result set_warm(tt_world *w, double warm)
+{
+    tt_collision_settings cs;
+    tt_world_get_collision(w, &cs);
+    cs.warm_start = warm;
+    return tt_world_set_collision(w, &cs);
+}
+
 /* The anchors are in the stream (24 bytes each and a header of 8), a world
  * loaded from it goes on as the original, a removed particle takes its
  * anchors with it, and turning the setting off drops them all. */
@@ -267,9 +275,10 @@ TEST(anchors_are_saved_loaded_and_dropped_with_their_particle)
 TEST(out_of_memory_in_an_anchored_step_leaves_the_world_as_it_was)
 {
     int refusals = 0;
-    for (long k = 0, at = 0; at <= 20; k++) {
+    for (long k = 0, at = 0, warm = 0; warm < 2; k++) { /* without, then with warm start (its corrections put back too) */
         tt_particle pa[37], pb[37];
         tt_world *a = pyramid(true, 0.3, 8, pa), *b = pyramid(true, 0.3, 8, pb);
+        if (warm) set_warm(a, 0.75), set_warm(b, 0.75);
         tt_particle_def pd = tt_particle_def_default();
         pd.radius = 0.45;
         pd.position = (tt_vec2){-2.4, 4.0};
@@ -296,6 +305,7 @@ TEST(out_of_memory_in_an_anchored_step_leaves_the_world_as_it_was)
         tt_world_destroy(a);
         tt_world_destroy(b);
         if (!refused) k = -1, at += 20; /* the step made no more allocations: the next step */
+        if (at > 20) at = 0, warm++;
     }
     printf("    %d allocations refused in turn, each failed its step whole\n", refusals);
     ENSURE(refusals > 0);
@@ -354,11 +364,71 @@ TEST(a_stream_with_bad_anchors_is_refused)
     free(c);
 }
 
+/* Warm start's corrections, in the anchors' table: checked, in the stream
+ * (a section of 16 bytes and 8 an anchor, only while on), read back (a
+ * world loaded goes on as the original; loaded with the corrections
+ * zeroed, it does not), refused when bad, and dropped when it is turned
+ * off. */
+TEST(warm_start_is_checked_saved_and_loaded)
+{
+    tt_particle ps[36];
+    tt_world *w = pyramid(true, 0.3, 8, ps);
+    const uint64_t h0 = tt_world_hash(w);
+    const double bad[] = {NAN, INFINITY, -0.1, 1.5};
+    for (int k = 0; k < 4; k++) {
+        ENSURE(set_warm(w, bad[k]) == TT_EINVAL);
+        ENSURE(tt_world_hash(w) == h0);
+    }
+    ENSURE_OK(set_warm(w, 0.75));
+    for (int s = 0; s < 30; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    size_t n, off;
+    unsigned char *b = save(w, &n), *c = malloc(n);
+    ENSURE(b && c);
+    const uint32_t na = anchors(w), id = TT__ID('W', 'A', 'R', 'M');
+    ENSURE(na > 50);
+    size_t at = 0; /* the corrections: after the id, the setting and the count */
+    for (size_t i = 32; i + 16 <= n && !at; i++)
+        if (!memcmp(b + i, &id, 4) && !memcmp(b + i + 12, &na, 4)) at = i + 16;
+    ENSURE(at > 0);
+    tt_world *v = tt_world_load(b, n);
+    memcpy(c, b, n);
+    memset(c + at, 0, 8 * (size_t)na); /* every correction +0: a stream as valid */
+    reseal(c, n);
+    tt_world *z = tt_world_load(c, n);
+    ENSURE(v && z && tt_world_hash(v) == tt_world_hash(w));
+    for (int s = 0; s < 60; s++) {
+        ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        ENSURE_OK(tt_world_step(v, 1.0 / 60));
+        ENSURE_OK(tt_world_step(z, 1.0 / 60));
+    }
+    ENSURE(tt_world_hash(v) == tt_world_hash(w));
+    ENSURE(tt_world_hash(z) != tt_world_hash(w));
+    for (int kind = 0; kind < 3; kind++) { /* a correction below 0, not finite; the setting 0 */
+        memcpy(c, b, n);
+        const double x = kind == 0 ? -1e-3 : kind == 1 ? NAN : 0.0;
+        memcpy(c + (kind == 2 ? at - 12 : at), &x, 8);
+        reseal(c, n);
+        ENSURE(tt_world_load(c, n) == NULL);
+    }
+    free(save(w, &n));
+    ENSURE_OK(set_warm(w, 0.0));
+    free(save(w, &off));
+    ENSURE(n == off + 16 + 8 * (size_t)anchors(w));
+    const tt__anchors *t = &tt__collide_peek(w)->anc;
+    for (uint32_t e = 0; e < t->n; e++) ENSURE(t->lm[e] == 0.0);
+    tt_world_destroy(z);
+    tt_world_destroy(v);
+    tt_world_destroy(w);
+    free(b);
+    free(c);
+}
+
 /* Extremes: μ = 100, radii 0, 1e-6 and 0.3 mixed, masses 1 and 1e4 side
  * by side, the heap 1e7 m from the origin in the corner of a floor and a
- * wall, steps of 1e-5, 1/60 and 0.1 s, without stacking and with 10 (whose
+ * wall, steps of 1e-5, 1/60 and 0.1 s, without stacking, with 10 (whose
  * pushes keep a particle off the shapes it leans on, and move one wedged
- * in the corner not at all): every position and velocity stays finite
+ * in the corner not at all), and with 10 and the whole of the last
+ * substep's corrections first (warm start 1): every position and velocity stays finite
  * and, up to 1/60 s, no circle ends under the floor by more than its
  * radius. (At 0.1 s the points and the 1e-6 m circles fall through the
  * floor 1 m thick, a metre a step, with or without anchors: they are not
@@ -366,11 +436,12 @@ TEST(a_stream_with_bad_anchors_is_refused)
 TEST(anchored_friction_extremes_stay_finite)
 {
     const double dts[] = {1e-5, 1.0 / 60, 0.1}, far = 1e7;
-    for (int k = 0; k < 6; k++) {
+    for (int k = 0; k < 9; k++) {
         tt_world *w = world(true, 100.0);
         tt_collision_settings cs;
         tt_world_get_collision(w, &cs);
         cs.stacking = k < 3 ? 0.0 : 10.0;
+        cs.warm_start = k < 6 ? 0.0 : 1.0;
         ENSURE_OK(tt_world_set_collision(w, &cs));
         tt_shape_def sd = tt_shape_def_default();
         sd.type = TT_SHAPE_AABB;

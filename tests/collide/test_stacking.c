@@ -5,6 +5,7 @@
 #include "test.h"
 #include "collide/collide_internal.h"
 #include "scenes/scene.h"
+#include "small_pour.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -98,43 +99,6 @@ TEST(stacking_holds_a_hundred_rows_at_rest_within_one_percent)
     free(ps);
 }
 
-/* 1 000 circles poured into a box 20 m wide (the reference pour's scene,
- * smaller), jittered by ±0.05 m with seed, 1 × 8, stacking 2, with or
- * without anchored friction: the deepest overlap (fraction of a radius) and
- * KE (J/kg) at 15 s. */
-static bool small_pour(uint64_t seed, bool anchored, uint32_t iterations, double *deepest_at_end, double *ke)
-{
-    ts_scene sc;
-    ts_scene_pour(&sc, 1000, 20.0);
-    ts_tether_settings set = ts_tether_settings_default();
-    set.substeps = 1;
-    set.iterations = iterations;
-    ts_tether t;
-    const char *why = NULL;
-    bool ok = ts_tether_build(&sc, &set, &t, &why) == TT_OK && ts_tether_jitter(&t, seed, 0.05) == TT_OK;
-    tt_collision_settings cs;
-    tt_world_get_collision(t.world, &cs);
-    cs.anchored_friction = anchored;
-    cs.stacking = 2.0;
-    ok = ok && tt_world_set_collision(t.world, &cs) == TT_OK;
-    for (int s = 0; ok && s < 900; s++) ok = tt_world_step(t.world, sc.dt) == TT_OK;
-    double *xy = malloc(2 * sizeof *xy * t.circle_count), r = 0.0;
-    ok = ok && xy && tt_particles_get_positions(t.world, t.circles, t.circle_count, xy) == TT_OK &&
-         tt_particle_get_radius(t.world, t.circles[0], &r) == TT_OK;
-    if (ok) {
-        ts_pile p;
-        ts_pile_measure(xy, t.circle_count, r, &p);
-        *deepest_at_end = p.max_overlap;
-        *ke = ts_tether_kinetic_per_kg(&t);
-        printf("    start %d, 1 x %u%s: deepest overlap %.2f %% of a radius, mean %.3f %%; KE %.1e J/kg at 15 s\n", (int)seed,
-               iterations, anchored ? ", anchored friction" : "", 100 * p.max_overlap, 100 * p.mean_overlap, *ke);
-    }
-    free(xy);
-    ts_tether_free(&t);
-    ts_scene_free(&sc);
-    return ok;
-}
-
 /* The small pours from starts 1 and 2 at 1 × iterations, with or without
  * anchored friction: at 15 s no two circles more than deepest (a share of
  * a radius) into each other, and KE at most ke_max. */
@@ -143,7 +107,7 @@ static void small_pours(bool anchored, uint32_t iterations, double deepest, doub
     if (getenv("TT_MEMCHECK")) return; /* two 15 s pours: minutes under valgrind */
     for (uint64_t seed = 1; seed <= 2; seed++) {
         double deep, ke;
-        ENSURE(small_pour(seed, anchored, iterations, &deep, &ke));
+        ENSURE(small_pour(seed, anchored, iterations, 0.0, &deep, &ke));
         ENSURE(deep <= deepest);
         ENSURE(ke <= ke_max);
     }
@@ -207,9 +171,10 @@ TEST(stacking_undoes_a_collapsed_column_without_throwing_it)
 /* Stacking's weights in the sweeps and the velocity pass, in vector lanes
  * and in scalar code: the same bits; with anchored friction too (its
  * friction in the lanes beside the weighted pushes, the pushes of particles
- * against the walls in scalar code). A stack 30 rows deep with circles
- * dropped on it from 20 m (impacts, sliding, a pile that settles). */
-static uint64_t stacking_run(tt__simd_mode mode, bool anchored)
+ * against the walls in scalar code), and with its warm start. A stack 30
+ * rows deep with circles dropped on it from 20 m (impacts, sliding, a pile
+ * that settles). */
+static uint64_t stacking_run(tt__simd_mode mode, bool anchored, double warm)
 {
     tt_particle ps[400];
     uint32_t n;
@@ -221,6 +186,7 @@ static uint64_t stacking_run(tt__simd_mode mode, bool anchored)
     tt_collision_settings cs;
     tt_world_get_collision(w, &cs);
     cs.anchored_friction = anchored;
+    cs.warm_start = warm;
     if (tt_world_set_collision(w, &cs) != TT_OK) {
         tt_world_destroy(w);
         return 0;
@@ -239,18 +205,20 @@ static uint64_t stacking_run(tt__simd_mode mode, bool anchored)
 
 TEST(stacking_is_bit_identical_in_vector_lanes_and_scalar_code)
 {
-    for (int anchored = 0; anchored < 2; anchored++) {
-        const uint64_t ref = stacking_run(TT__SIMD_SCALAR, anchored);
+    for (int anchored = 0; anchored < 3; anchored++) { /* 2: anchored with warm start */
+        const double warm = anchored == 2 ? 0.75 : 0.0;
+        const uint64_t ref = stacking_run(TT__SIMD_SCALAR, anchored, warm);
         ENSURE(ref != 0);
         const tt__simd_mode modes[] = {TT__SIMD_AUTO, TT__SIMD_AVX2, TT__SIMD_AVX512};
         int ran = 0;
         for (int m = 0; m < 3; m++) {
-            const uint64_t h = stacking_run(modes[m], anchored);
+            const uint64_t h = stacking_run(modes[m], anchored, warm);
             if (h == 0) continue; /* not in this build or on this processor */
             ENSURE(h == ref);
             ran++;
         }
-        printf("    stacking%s: %d vector kernel(s) give the scalar code's bits\n", anchored ? " with anchored friction" : "", ran);
+        printf("    stacking%s%s: %d vector kernel(s) give the scalar code's bits\n", anchored ? " with anchored friction" : "",
+               warm > 0.0 ? " and warm start" : "", ran);
     }
 }
 

@@ -358,7 +358,7 @@ local OPTIONS = {
   set_collision = { arg = 2, fields = { particles = "bool", cell_size = "nonneg", restitution = "unit",
                                         friction = "nonneg", friction_static = "nonneg", friction_kinetic = "nonneg",
                                         restitution_threshold = "nonneg", stacking = "nonneg",
-                                        anchored_friction = "bool" } },
+                                        anchored_friction = "bool", warm_start = "unit" } },
 }
 
 local function good_args(spec)

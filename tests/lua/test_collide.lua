@@ -73,6 +73,18 @@ T.test("anchored friction is a collision setting, off by default", function()
   T.checkerror("set_collision: bad option 'anchored_friction' (boolean expected, got number)", w.set_collision, w, { anchored_friction = 1 })
 end)
 
+T.test("warm start is a collision setting, off by default, a share in [0, 1]", function()
+  local w = tether.world()
+  w:set_collision()
+  T.eq(w:collision().warm_start, 0, "off")
+  w:set_collision { anchored_friction = true, warm_start = 0.75 }
+  T.eq(w:collision().warm_start, 0.75, "set")
+  w:set_collision { stacking = 2 }
+  T.eq(w:collision().warm_start, 0.75, "kept when unset")
+  T.checkerror("set_collision: bad option 'warm_start' (number in [0, 1] expected, got 1.5)", w.set_collision, w, { warm_start = 1.5 })
+  T.eq(w:collision().warm_start, 0.75, "a refused call changes nothing")
+end)
+
 -- A pyramid of ten rows of circles (radius 0.5, the bottom row 1.02 m
 -- apart, μ = 0.3) on a floor, 10 s at 1 × 8. These particles do not turn,
 -- so only friction between them keeps the rows from sliding apart. Box2D
