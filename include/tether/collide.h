@@ -87,8 +87,8 @@ typedef struct tt_collision_settings {
                                    ///< particle weighs 1 + stacking·u times its mass, u (0…1) how far the pair's normal
                                    ///< points along −gravity (Gauss-Seidel with iterations ≥ 2 only); with anchored
                                    ///< friction, a particle within reach of a shape is pushed by its pairs only along
-                                   ///< the shape (together at 1 × 12 the 10 000-circle pour rests under 1 % from every
-                                   ///< start tried); 2 holds the
+                                   ///< the shape (together, with warm_start 0.75, at 1 × 4 the 10 000-circle pour rests
+                                   ///< under 1 % from every start tried); 2 holds the
                                    ///< 10 000-circle pour under 1 % overlap at 1 × 8 (docs/collisions.md); default 0 = off
     bool anchored_friction;        ///< static friction between particles held from substep to substep: a pair that does
                                    ///< not slip keeps the relative position it stuck at, so piles and stacks of circles
@@ -100,8 +100,8 @@ typedef struct tt_collision_settings {
     double warm_start;             ///< with anchored friction: 0…1, the share of a resting pair's normal correction of
                                    ///< its last substep that is applied before the sweeps, so a pile's weight is held
                                    ///< from the first sweep and the sweeps only correct what changed (resting pairs
-                                   ///< only: slower than the restitution threshold). With stacking 2 and 0.85 the
-                                   ///< 10 000-circle pour rests under 1 % overlap at 1 × 6 (docs/collisions.md "Warm
+                                   ///< only: slower than the restitution threshold). With stacking 2 and 0.75 the
+                                   ///< 10 000-circle pour rests under 1 % overlap at 1 × 4 (docs/collisions.md "Warm
                                    ///< start"). Default 0 = off
 } tt_collision_settings;
 
