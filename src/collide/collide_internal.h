@@ -339,7 +339,8 @@ void tt__contacts_prestab(tt_world *w, tt__collide *c, uint32_t n);
 void tt__contacts_stack(tt_world *w, tt__collide *c);
 /* Warm start (tt_collision_settings.warm_start, contact_warm.c): units
  * [u0, u1)' resting pairs pushed by a share of their last substep's normal
- * correction, on positions L; the largest push. Before the first sweep. */
+ * correction, on positions L; the largest push. In the first sweep, before
+ * any pair's push. */
 double tt__contacts_warm(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t u0, uint32_t u1);
 void tt__contacts_sweeps_done(tt_world *w, void *self);
 void tt__contacts_end(tt_world *w, void *self, double h);

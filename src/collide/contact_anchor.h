@@ -39,6 +39,7 @@ typedef struct tt__anchor_scratch {
     uint8_t pass;         /* TT__PASS_* */
     double thr;           /* pairs slower than this, m/s, hold to their anchor */
     double h;             /* the substep, s */
+    double warm;          /* the warm start's largest push this substep, m */
     double *rxy, *lt, *mu;
     uint64_t *key;
     double *kxy, *klm, *wl;

@@ -193,9 +193,12 @@ double tt__contacts_relax(tt_world *w, void *self, const tt__block *blk)
     const uint32_t np = pair_units(c), p1 = blk->u1 < np ? blk->u1 : np;
     double err = 0.0;
     const uint8_t pass = c->scr.anc.pass;
-    /* the warm start's pushes count as this sweep's error: they moved particles (the guard looks) */
-    if (blk->first && pass == TT__PASS_ALL && c->scr.anc.on && c->set.warm_start > 0.0 && blk->u0 < p1)
-        err = tt__contacts_warm(w, c, L, blk->u0, p1);
+    /* the warm start: every pair, in the substep's first block, before any block sweeps (the
+     * same bits for any split into blocks); its pushes count as the first sweep's error in
+     * every block: they moved particles (the guard looks) */
+    if (blk->first && blk->u0 == 0)
+        c->scr.anc.warm = pass == TT__PASS_ALL && c->scr.anc.on && c->set.warm_start > 0.0 && np ? tt__contacts_warm(w, c, L, 0, np) : 0.0;
+    if (blk->first && pass == TT__PASS_ALL) err = c->scr.anc.warm;
     if (blk->u0 < p1 && pass != TT__PASS_SHAPES) {
         c->scr.bat.rub = c->scr.anc.on ? (pass == TT__PASS_FRICTION ? 2 : 1) : 0;
         const double e = c->scr.batched ? tt__batches_sweep(&c->scr.bat, L, blk->u0, p1) : tt__pairs_sweep(w, c, L, blk->u0, p1, 1.0);

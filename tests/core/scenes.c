@@ -356,8 +356,8 @@ static void drive_roll(scene *sc, uint64_t s)
 /* A pyramid of eight rows of circles (radius 0.5, the bottom row 1.02 m
  * apart, μ = 0.3) on a floor, held by anchored friction
  * (collide/contact_anchor.c); sleeping off, so the anchors are worked every
- * step. The driver removes one circle of the third row and drops a ball on
- * the top (drive_pyramid). */
+ * step. The driver turns the warm start on (contact_warm.c), removes one
+ * circle of the third row and drops a ball on the top (drive_pyramid). */
 static bool build_pyramid(scene *sc)
 {
     tt_world *w = sc->w;
@@ -380,10 +380,17 @@ static bool build_pyramid(scene *sc)
     return sc->s[0].gen && sc->p[7].gen;
 }
 
-/* Step 60: a circle of the third row goes (sc->p[4], the 21st); step
- * 200: a ball of 3 kg lands on the top. */
+/* Step 30: warm start 0.75 (its corrections then in the stream); step 60:
+ * a circle of the third row goes (sc->p[4], the 21st, its anchors with
+ * it); step 200: a ball of 3 kg lands on the top. */
 static void drive_pyramid(scene *sc, uint64_t s)
 {
+    if (s == 30) {
+        tt_collision_settings cs;
+        tt_world_get_collision(sc->w, &cs);
+        cs.warm_start = 0.75;
+        tt_world_set_collision(sc->w, &cs);
+    }
     if (s == 60) tt_particle_destroy(sc->w, sc->p[4]);
     if (s != 200) return;
     tt_particle_def pd = tt_particle_def_default();

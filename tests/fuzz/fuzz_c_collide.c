@@ -218,10 +218,11 @@ static void c_world_set_collision(fz *f)
     s.events = fz_chance(f, 90) ? fz_below(f, 8) : (uint32_t)fz_rand(f);
     s.stacking = fz_chance(f, 60) ? 0.0 : fz_chance(f, 95) ? fz_real(f, 0, 10) : fz_real(f, -1, 1e13);
     s.anchored_friction = fz_chance(f, 40);
+    s.warm_start = fz_chance(f, 50) ? 0.0 : fz_chance(f, 95) ? fz_real(f, 0, 1) : fz_real(f, -1, 2);
     fz_log(f, "tt_world_set_collision(%s, &(tt_collision_settings){particles %d, broadphase %d, cell %s, material %s %s "
-              "%s, threshold %s, events %#x, stacking %s, anchored %d})", fz_wn(f, w), s.particles, (int)s.broadphase, fz_d(s.cell_size),
-           fz_d(s.restitution), fz_d(s.friction_static), fz_d(s.friction_kinetic), fz_d(s.restitution_threshold),
-           s.events, fz_d(s.stacking), s.anchored_friction);
+              "%s, threshold %s, events %#x, stacking %s, anchored %d, warm %s})", fz_wn(f, w), s.particles, (int)s.broadphase,
+           fz_d(s.cell_size), fz_d(s.restitution), fz_d(s.friction_static), fz_d(s.friction_kinetic), fz_d(s.restitution_threshold),
+           s.events, fz_d(s.stacking), s.anchored_friction, fz_d(s.warm_start));
     FZ_HIT(f, tt_world_set_collision);
     fz_res(f, tt_world_set_collision(w, fz_chance(f, 2) ? NULL : &s));
 }
