@@ -13,16 +13,17 @@
  *
  * Measured on the reference pour (the pour and 10 jittered starts, stacking
  * 2 and anchored friction, docs/collisions.md "Warm start"): the whole
- * correction (share 1) throws the pile about (KE about 1 J/kg at 20 s);
- * 0.85 of it, slow pairs only, rests under 1 % at 1 × 6 where 1 × 12
- * without it reached 1.25 %; 0.95 stopped some starts resting (jitter).
+ * correction (share 1) of every pair throws the pile about (KE about 1
+ * J/kg at 20 s); 0.75 of it, resting pairs only, rests every start under
+ * 1 % at 1 × 4, where 1 × 12 without it reached 1.25 %; 0.85 left one
+ * start moving at 1 × 6, 0.95 several at 1 × 4 (jitter).
  * Only pairs slower than the restitution threshold (anchored friction's
  * slow pairs): a landing's corrections are impacts, not weight. Only pairs
  * that overlap now, pushed along their own line as the sweeps push, by the
  * sweeps' weights (stacking's too); a particle leaning on a shape only
- * along it (stacking's hold, lean_push: the shape takes the rest). Left
+ * along it (stacking's hold, lean_push: the shape takes the rest; left
  * out, those entries left the layers by the walls to the sweeps, and two
- * starts of 11 still moved at 20 s at 1 × 6 (KE 1.5e-4, 2.2e-4 J/kg).
+ * starts of 11 still moved at 20 s at 1 × 6 with 0.85: 1.5e-4, 2.2e-4 J/kg).
  *
  * The corrections are kept in anchored friction's table (contact_anchor.c)
  * only while the setting is on, so a world without it saves, loads and
