@@ -40,7 +40,9 @@ static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, doub
 {
     double nx = w->px[up] - w->px[lo], ny = w->py[up] - w->py[lo];
     const double d2 = nx * nx + ny * ny;
-    if (!(d2 > 0.0) || w->inv_mass[up] == 0.0) return;
+    /* a step can leave a position not finite here (the guard stops that particle after this
+     * pass): an infinite one made its partner's normal, and so its velocity, NaN */
+    if (!(d2 > 0.0 && d2 < INFINITY) || w->inv_mass[up] == 0.0) return;
     const double id = 1.0 / sqrt(d2);
     nx *= id;
     ny *= id;
@@ -61,6 +63,15 @@ static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, doub
 
 /* Height along −gravity of particle i. */
 static inline double height(const tt_world *w, double gx, double gy, uint32_t i) { return -(w->px[i] * gx + w->py[i] * gy); }
+
+/* The band of height h: below nb by construction where h is finite; a
+ * height that is not (a position the guard will stop) goes in the top
+ * band, where taking it as an integer was undefined (the C API fuzzer). */
+static inline uint32_t band_of(double h, double hmin, double scale, uint32_t nb)
+{
+    const double f = (h - hmin) * scale;
+    return f < nb ? (uint32_t)f : nb - 1;
+}
 
 void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
 {
@@ -105,8 +116,8 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
     const double scale = hmax > hmin ? (nb - 1) / (hmax - hmin) * (1.0 - 1e-12) : 0.0;
     uint32_t *start = c->scr.lift_start, *order = c->scr.lift_order;
     for (uint32_t k = 0; k <= nb; k++) start[k] = 0;
-    for (uint32_t k = 0; k < nt; k++) start[(uint32_t)((c->scr.lift[k].h - hmin) * scale) + 1]++;
+    for (uint32_t k = 0; k < nt; k++) start[band_of(c->scr.lift[k].h, hmin, scale, nb) + 1]++;
     for (uint32_t k = 0; k < nb; k++) start[k + 1] += start[k];
-    for (uint32_t k = 0; k < nt; k++) order[start[(uint32_t)((c->scr.lift[k].h - hmin) * scale)]++] = k;
+    for (uint32_t k = 0; k < nt; k++) order[start[band_of(c->scr.lift[k].h, hmin, scale, nb)]++] = k;
     for (uint32_t k = 0; k < nt; k++) lift_one(w, c, c->scr.lift[order[k]].lo, c->scr.lift[order[k]].up, thr);
 }
