@@ -4,6 +4,7 @@
 #include "test.h"
 #include "collide/collide_internal.h"
 
+#include <math.h>
 #include <string.h>
 
 static tt__collide *with_shape(tt_world *w, const tt_shape_def *d)
@@ -144,4 +145,48 @@ TEST(rays_against_primitives)
     ENSURE(tt__ray_vs_circle(0, 0, 10, 0, 5, 0, 1, 1.0, &t, &nx, &ny));
     ENSURE_NEAR(t, 0.4, 1e-15);
     tt_world_destroy(w);
+}
+
+/* Shapes whose edges are too short to measure: a box of half extents
+ * 1e-300 (its edges' squares underflow to 0), the same box 1e6 m out (its
+ * corners round to one point), a zero-size aabb. Their edge normals were
+ * 0/0 and x/0: a circle touching one was pushed to NaN and infinity, and
+ * the step reported an infinite error (the C API fuzzer, seed 1796410988).
+ * Each is the point (or segment) it is: the circle is pushed out to its
+ * radius, every figure finite. */
+TEST(shapes_with_edges_too_short_to_measure_push_out_as_points)
+{
+    const double at[] = {0.0, 1e6, 0.0};
+    for (int k = 0; k < 3; k++) {
+        tt_world_def wd = tt_world_def_default();
+        wd.gravity = (tt_vec2){0, 0};
+        tt_world *w = tt_world_create(&wd);
+        ENSURE(w != NULL);
+        tt_collision_settings cs = tt_collision_settings_default();
+        ENSURE_OK(tt_world_set_collision(w, &cs));
+        tt_shape_def sd = tt_shape_def_default();
+        if (k < 2) {
+            sd.type = TT_SHAPE_BOX;
+            sd.position = (tt_vec2){at[k], 0};
+            sd.half_extents = (tt_vec2){1e-300, 1e-300};
+        } else {
+            sd.type = TT_SHAPE_AABB;
+            sd.a = sd.b = (tt_vec2){0, 0};
+        }
+        ENSURE(tt_shape_create(w, &sd).gen != 0);
+        tt_particle_def pd = tt_particle_def_default();
+        pd.radius = 0.5;
+        pd.position = (tt_vec2){at[k] + 0.1, 0.3};
+        tt_particle p = tt_particle_create(w, &pd);
+        for (int s = 0; s < 10; s++) ENSURE_OK(tt_world_step(w, 1.0 / 60));
+        tt_vec2 x, v;
+        tt_particle_get_position(w, p, &x);
+        tt_particle_get_velocity(w, p, &v);
+        tt_stats st;
+        ENSURE_OK(tt_world_get_stats(w, &st));
+        ENSURE(isfinite(x.x) && isfinite(x.y) && isfinite(v.x) && isfinite(v.y) && isfinite(st.max_error));
+        ENSURE(hypot(x.x - at[k], x.y) >= 0.5 - 1e-9);
+        ENSURE(st.diverged == 0);
+        tt_world_destroy(w);
+    }
 }
