@@ -42,9 +42,40 @@ static bool add_capsule(tt__collide *c, uint32_t shape, tt_vec2 a, tt_vec2 b, do
     return true;
 }
 
+/* The length of edge (ex, ey), 0 only when it has none: where its squares
+ * underflow (a box of half extents 1e-300) it is measured scaled by 2^600,
+ * exactly, so every other edge gets the same bits as before. */
+static double edge_length(double *ex, double *ey)
+{
+    const double l = sqrt(*ex * *ex + *ey * *ey);
+    if (l >= 0x1p-500) return l;
+    *ex *= 0x1p600;
+    *ey *= 0x1p600;
+    return sqrt(*ex * *ex + *ey * *ey);
+}
+
+/* A polygon whose corners meet (a tiny box far out, a zero-size aabb) has
+ * an edge with no direction: it is the segment between its two corners
+ * furthest apart (a point when they all meet), a capsule of radius 0. */
+static bool add_collapsed(tt__collide *c, uint32_t shape, const tt_vec2 *pts, uint32_t n)
+{
+    uint32_t i0 = 0, j0 = 0;
+    double best = -1.0;
+    for (uint32_t i = 0; i < n; i++)
+        for (uint32_t j = i + 1; j < n; j++) {
+            const double dx = pts[j].x - pts[i].x, dy = pts[j].y - pts[i].y, d = dx * dx + dy * dy;
+            if (d > best) best = d, i0 = i, j0 = j;
+        }
+    return add_capsule(c, shape, pts[i0], pts[j0], 0.0);
+}
+
 /* A convex polygon from world points, turned counter-clockwise, with outward normals. */
 static bool add_poly(tt__collide *c, uint32_t shape, const tt_vec2 *pts, uint32_t n)
 {
+    for (uint32_t k = 0; k < n; k++) {
+        double ex = pts[(k + 1) % n].x - pts[k].x, ey = pts[(k + 1) % n].y - pts[k].y;
+        if (!(edge_length(&ex, &ey) > 0.0)) return add_collapsed(c, shape, pts, n);
+    }
     if (!tt__grow((void **)&c->verts, &c->vertcap, c->nvert + n, sizeof *c->verts)) return false;
     if (!tt__grow((void **)&c->norms, &c->normcap, c->vertcap, sizeof *c->norms)) return false;
     double area = 0.0;
@@ -60,7 +91,8 @@ static bool add_poly(tt__collide *c, uint32_t shape, const tt_vec2 *pts, uint32_
     p->loy = p->hiy = v[0].y;
     for (uint32_t k = 0; k < n; k++) {
         tt_vec2 a = v[k], b = v[(k + 1) % n];
-        double ex = b.x - a.x, ey = b.y - a.y, l = sqrt(ex * ex + ey * ey);
+        double ex = b.x - a.x, ey = b.y - a.y;
+        const double l = edge_length(&ex, &ey);
         c->norms[c->nvert + k] = (tt_vec2){ey / l, -ex / l};
         p->lox = fmin(p->lox, a.x); p->hix = fmax(p->hix, a.x);
         p->loy = fmin(p->loy, a.y); p->hiy = fmax(p->hiy, a.y);
