@@ -69,33 +69,34 @@ static bool add_collapsed(tt__collide *c, uint32_t shape, const tt_vec2 *pts, ui
     return add_capsule(c, shape, pts[i0], pts[j0], 0.0);
 }
 
-/* A convex polygon from world points, turned counter-clockwise, with outward normals. */
+/* A convex polygon from world points, turned counter-clockwise, with
+ * outward normals. The corners and normals are written past the last
+ * polygon's first (room nobody reads until nvert grows), so a polygon with
+ * an edge of no length goes to add_collapsed before any primitive is made. */
 static bool add_poly(tt__collide *c, uint32_t shape, const tt_vec2 *pts, uint32_t n)
 {
-    for (uint32_t k = 0; k < n; k++) {
-        double ex = pts[(k + 1) % n].x - pts[k].x, ey = pts[(k + 1) % n].y - pts[k].y;
-        if (!(edge_length(&ex, &ey) > 0.0)) return add_collapsed(c, shape, pts, n);
-    }
     if (!tt__grow((void **)&c->verts, &c->vertcap, c->nvert + n, sizeof *c->verts)) return false;
     if (!tt__grow((void **)&c->norms, &c->normcap, c->vertcap, sizeof *c->norms)) return false;
     double area = 0.0;
     for (uint32_t k = 0; k < n; k++) area += pts[k].x * pts[(k + 1) % n].y - pts[(k + 1) % n].x * pts[k].y;
+    tt_vec2 *v = c->verts + c->nvert, *nrm = c->norms + c->nvert;
+    for (uint32_t k = 0; k < n; k++) v[k] = pts[area >= 0.0 ? k : n - 1 - k];
+    for (uint32_t k = 0; k < n; k++) {
+        double ex = v[(k + 1) % n].x - v[k].x, ey = v[(k + 1) % n].y - v[k].y;
+        const double l = edge_length(&ex, &ey);
+        if (!(l > 0.0)) return add_collapsed(c, shape, pts, n);
+        nrm[k] = (tt_vec2){ey / l, -ex / l};
+    }
     tt__prim *p = new_prim(c, shape);
     if (!p) return false;
     p->kind = TT__PRIM_POLY;
     p->v0 = c->nvert;
     p->nv = n;
-    tt_vec2 *v = c->verts + c->nvert;
-    for (uint32_t k = 0; k < n; k++) v[k] = pts[area >= 0.0 ? k : n - 1 - k];
     p->lox = p->hix = v[0].x;
     p->loy = p->hiy = v[0].y;
     for (uint32_t k = 0; k < n; k++) {
-        tt_vec2 a = v[k], b = v[(k + 1) % n];
-        double ex = b.x - a.x, ey = b.y - a.y;
-        const double l = edge_length(&ex, &ey);
-        c->norms[c->nvert + k] = (tt_vec2){ey / l, -ex / l};
-        p->lox = fmin(p->lox, a.x); p->hix = fmax(p->hix, a.x);
-        p->loy = fmin(p->loy, a.y); p->hiy = fmax(p->hiy, a.y);
+        p->lox = fmin(p->lox, v[k].x); p->hix = fmax(p->hix, v[k].x);
+        p->loy = fmin(p->loy, v[k].y); p->hiy = fmax(p->hiy, v[k].y);
     }
     c->nvert += n;
     return true;
