@@ -121,8 +121,8 @@ static void small_pours(bool anchored, uint32_t iterations, double deepest, doub
  * 1.06 and 0.99 % (0.52–1.06 % on starts 1–8). */
 TEST(stacking_with_anchored_friction_keeps_the_layers_by_the_walls_apart) { small_pours(true, 8, 0.015, 1e-4); }
 
-/* At 1 × 12, the setting docs/collisions.md gives for piles under 1 %
- * (`make bench pourstarts`): the same pours at rest under 1 %, 0.37 and
+/* At 1 × 12, what piles under 1 % needed before the warm start
+ * (test_warm.c: 1 × 4 with it): the same pours at rest under 1 %, 0.37 and
  * 0.72 % (0.37–0.88 % on starts 1–8). */
 TEST(stacking_with_anchored_friction_at_1x12_rests_under_one_percent) { small_pours(true, 12, 0.01, 1e-4); }
 
