@@ -51,7 +51,7 @@ static uint32_t find(const tt__anchors *t, uint64_t key)
     const uint32_t lo = (uint32_t)(key >> 32);
     if (t->nfirst == 0 || lo >= t->nfirst - 1) return UINT32_MAX;
     for (uint32_t e = t->first[lo]; e < t->first[lo + 1]; e++)
-        if (t->key[e] == key) return e;
+        if (t->e[e].key == key) return e;
     return UINT32_MAX;
 }
 
@@ -62,12 +62,12 @@ static void index_all(tt__anchors *t)
 {
     t->nfirst = 0;
     if (t->n == 0) return;
-    const uint64_t nf = (t->key[t->n - 1] >> 32) + 2;
+    const uint64_t nf = (t->e[t->n - 1].key >> 32) + 2;
     if (nf > t->fcap) return;
     uint32_t e = 0;
     for (uint32_t p = 0; p + 1 < nf; p++) {
         t->first[p] = e;
-        while (e < t->n && (t->key[e] >> 32) == p) e++;
+        while (e < t->n && (t->e[e].key >> 32) == p) e++;
     }
     t->first[nf - 1] = t->n;
     t->nfirst = (uint32_t)nf;
@@ -83,13 +83,13 @@ static bool table_room(tt__anchors *t, uint32_t cap, uint32_t np)
 
 void tt__anchors_free(tt__anchors *t)
 {
-    free(t->key); free(t->rx); free(t->ry); free(t->lm); free(t->first);
+    free(t->e); free(t->first);
     *t = (tt__anchors){0};
 }
 
 size_t tt__anchors_bytes(const tt__anchors *t)
 {
-    return (size_t)t->cap * (sizeof *t->key + 3 * sizeof(double)) + (size_t)t->fcap * sizeof *t->first;
+    return (size_t)t->cap * sizeof *t->e + (size_t)t->fcap * sizeof *t->first;
 }
 
 void tt__anchors_clear(tt__anchors *t)
@@ -115,12 +115,10 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
         return;
     }
     const uint32_t nu = tt__anc_units(c);
-    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap, c6 = s->anc.cap, c7 = s->anc.cap,
-             c8 = s->anc.cap;
+    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap, c6 = s->anc.cap;
     if (!tt__grow((void **)&s->anc.rxy, &c1, nu + 1, 2 * sizeof *s->anc.rxy) || !tt__grow((void **)&s->anc.lt, &c2, nu + 1, sizeof *s->anc.lt) ||
-        !tt__grow((void **)&s->anc.mu, &c3, nu + 1, sizeof *s->anc.mu) || !tt__grow((void **)&s->anc.key, &c4, nu + 1, sizeof *s->anc.key) ||
-        !tt__grow((void **)&s->anc.slow, &c5, nu + 1, sizeof *s->anc.slow) || !tt__grow((void **)&s->anc.kxy, &c6, nu + 1, 2 * sizeof *s->anc.kxy) ||
-        !tt__grow((void **)&s->anc.klm, &c7, nu + 1, sizeof *s->anc.klm) || !tt__grow((void **)&s->anc.wl, &c8, nu + 1, sizeof *s->anc.wl) ||
+        !tt__grow((void **)&s->anc.mu, &c3, nu + 1, sizeof *s->anc.mu) || !tt__grow((void **)&s->anc.kept, &c4, nu + 1, sizeof *s->anc.kept) ||
+        !tt__grow((void **)&s->anc.slow, &c5, nu + 1, sizeof *s->anc.slow) || !tt__grow((void **)&s->anc.wl, &c6, nu + 1, sizeof *s->anc.wl) ||
         !tt__grow((void **)&s->anc.bucket, &s->anc.bcap, n + 2, sizeof *s->anc.bucket)) {
         s->anc.cap = 0; /* some grew: the next substep grows all again */
         tt__step_oom(w, "anchored friction");
@@ -147,9 +145,10 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
             r[0] = sx[a] - sx[b];
             r[1] = sy[a] - sy[b];
         } else { /* stored lower minus higher */
-            r[0] = a < b ? c->anc.rx[e] : -c->anc.rx[e];
-            r[1] = a < b ? c->anc.ry[e] : -c->anc.ry[e];
-            s->anc.wl[k] = c->anc.lm[e];
+            const tt__anchor *en = &c->anc.e[e];
+            r[0] = a < b ? en->rx : -en->rx;
+            r[1] = a < b ? en->ry : -en->ry;
+            s->anc.wl[k] = en->lm;
         }
     }
     if (s->batched) tt__batches_anchor(&s->bat, s->anc.rxy, s->anc.lt, s->anc.mu);
@@ -160,34 +159,19 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
     }
 }
 
-/* Sorts entries [0, n) by key: counting sort by the lower slot (below
- * nb), then insertion within each slot's few. */
-static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const uint64_t *key, const double *rxy, const double *lm)
+/* Sorts the n entries of from into t by key: counting sort by the lower
+ * slot (below nb), then insertion within each slot's few. */
+static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const tt__anchor *from)
 {
     memset(bucket, 0, (size_t)(nb + 1) * sizeof *bucket);
-    for (uint32_t e = 0; e < t->n; e++) bucket[(key[e] >> 32) + 1]++;
+    for (uint32_t e = 0; e < t->n; e++) bucket[(from[e].key >> 32) + 1]++;
     for (uint32_t i = 0; i < nb; i++) bucket[i + 1] += bucket[i];
-    for (uint32_t e = 0; e < t->n; e++) {
-        const uint32_t to = bucket[key[e] >> 32]++;
-        t->key[to] = key[e];
-        t->rx[to] = rxy[2 * (size_t)e];
-        t->ry[to] = rxy[2 * (size_t)e + 1];
-        t->lm[to] = lm[e];
-    }
+    for (uint32_t e = 0; e < t->n; e++) t->e[bucket[from[e].key >> 32]++] = from[e];
     for (uint32_t e = 1; e < t->n; e++) {
-        const uint64_t k = t->key[e];
-        const double x = t->rx[e], y = t->ry[e], l = t->lm[e];
+        const tt__anchor x = t->e[e];
         uint32_t j = e;
-        for (; j > 0 && t->key[j - 1] > k; j--) {
-            t->key[j] = t->key[j - 1];
-            t->rx[j] = t->rx[j - 1];
-            t->ry[j] = t->ry[j - 1];
-            t->lm[j] = t->lm[j - 1];
-        }
-        t->key[j] = k;
-        t->rx[j] = x;
-        t->ry[j] = y;
-        t->lm[j] = l;
+        for (; j > 0 && t->e[j - 1].key > x.key; j--) t->e[j] = t->e[j - 1];
+        t->e[j] = x;
     }
 }
 
@@ -203,9 +187,8 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
     tt__anchors *t = &c->anc;
     const uint32_t n = w->ppool.count, nu = tt__anc_units(c);
     if (!s->anc.on || t->cap < nu || s->anc.bcap < n + 2 || s->anc.cap <= nu) return;
-    uint64_t *key = s->anc.key;
     const double *rxy = s->anc.rxy;
-    double *kxy = s->anc.kxy, *klm = s->anc.klm;
+    tt__anchor *kept = s->anc.kept;
     const bool warm = c->set.warm_start > 0.0;
     uint32_t m = 0;
     for (uint32_t k = 0; k < nu; k++) {
@@ -217,14 +200,10 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
             x = w->px[a] - w->px[b];
             y = w->py[a] - w->py[b];
         }
-        key[m] = tt__pair_key(a, b);
-        kxy[2 * (size_t)m] = a < b ? x : -x;
-        kxy[2 * (size_t)m + 1] = a < b ? y : -y;
-        klm[m] = warm ? lam : 0.0;
-        m++;
+        kept[m++] = (tt__anchor){tt__pair_key(a, b), a < b ? x : -x, a < b ? y : -y, warm ? lam : 0.0};
     }
     t->n = m;
-    sort_entries(t, s->anc.bucket, n, key, kxy, klm);
+    sort_entries(t, s->anc.bucket, n, kept);
     index_all(t);
 }
 
@@ -233,12 +212,8 @@ void tt__anchors_drop(tt__anchors *t, uint32_t i)
 {
     uint32_t m = 0;
     for (uint32_t e = 0; e < t->n; e++) {
-        if ((uint32_t)(t->key[e] >> 32) == i || (uint32_t)t->key[e] == i) continue;
-        t->key[m] = t->key[e];
-        t->rx[m] = t->rx[e];
-        t->ry[m] = t->ry[e];
-        t->lm[m] = t->lm[e];
-        m++;
+        if ((uint32_t)(t->e[e].key >> 32) == i || (uint32_t)t->e[e].key == i) continue;
+        t->e[m++] = t->e[e];
     }
     if (m == t->n) return;
     t->n = m;
@@ -249,13 +224,7 @@ void tt__anchors_drop(tt__anchors *t, uint32_t i)
 bool tt__anchors_room(tt__anchors *t, uint32_t n)
 {
     if (t->cap >= n) return true;
-    uint32_t c1 = t->cap, c2 = t->cap, c3 = t->cap, c4 = t->cap;
-    if (!tt__grow((void **)&t->key, &c1, n, sizeof *t->key) || !tt__grow((void **)&t->rx, &c2, n, sizeof *t->rx) ||
-        !tt__grow((void **)&t->ry, &c3, n, sizeof *t->ry) || !tt__grow((void **)&t->lm, &c4, n, sizeof *t->lm))
-        return false;
-    const uint32_t c12 = c1 < c2 ? c1 : c2, c34 = c3 < c4 ? c3 : c4;
-    t->cap = c12 < c34 ? c12 : c34;
-    return true;
+    return tt__grow((void **)&t->e, &t->cap, n, sizeof *t->e);
 }
 
 /* Copies the entries of from into to (whose index is not kept up); false on no memory. */
@@ -263,12 +232,7 @@ bool tt__anchors_copy(tt__anchors *to, const tt__anchors *from)
 {
     if (!tt__anchors_room(to, from->n)) return false;
     to->n = from->n;
-    if (from->n) {
-        memcpy(to->key, from->key, (size_t)from->n * sizeof *to->key);
-        memcpy(to->rx, from->rx, (size_t)from->n * sizeof *to->rx);
-        memcpy(to->ry, from->ry, (size_t)from->n * sizeof *to->ry);
-        memcpy(to->lm, from->lm, (size_t)from->n * sizeof *to->lm);
-    }
+    if (from->n) memcpy(to->e, from->e, (size_t)from->n * sizeof *to->e);
     return true;
 }
 
@@ -285,9 +249,9 @@ void tt__anchors_save(const tt__anchors *t, tt__sink *s)
     tt__put_u32(s, TT__ID('A', 'N', 'C', 'H'));
     tt__put_u32(s, t->n);
     for (uint32_t e = 0; e < t->n; e++) {
-        tt__put_u64(s, t->key[e]);
-        tt__put_f64(s, t->rx[e]);
-        tt__put_f64(s, t->ry[e]);
+        tt__put_u64(s, t->e[e].key);
+        tt__put_f64(s, t->e[e].rx);
+        tt__put_f64(s, t->e[e].ry);
     }
 }
 
@@ -302,11 +266,8 @@ bool tt__anchors_load(tt__anchors *t, tt__source *s, uint32_t n)
         const uint64_t key = tt__get_u64(s);
         const double x = tt__get_num(s, -1e300, 1e300, "anchor"), y = tt__get_num(s, -1e300, 1e300, "anchor");
         const uint32_t lo = (uint32_t)(key >> 32), hi = (uint32_t)key;
-        if (s->failed || !(lo < hi && hi < n) || (e && t->key[e - 1] >= key)) return tt__src_fail(s, "anchor %u", e);
-        t->key[e] = key;
-        t->rx[e] = x;
-        t->ry[e] = y;
-        t->lm[e] = 0.0; /* warm_start's section, when there is one, follows */
+        if (s->failed || !(lo < hi && hi < n) || (e && t->e[e - 1].key >= key)) return tt__src_fail(s, "anchor %u", e);
+        t->e[e] = (tt__anchor){key, x, y, 0.0}; /* warm_start's section, when there is one, follows */
     }
     t->n = m;
     index_all(t);
@@ -318,7 +279,7 @@ void tt__anchors_save_warm(const tt__anchors *t, double warm, tt__sink *s)
     tt__put_u32(s, TT__ID('W', 'A', 'R', 'M'));
     tt__put_f64(s, warm);
     tt__put_u32(s, t->n);
-    for (uint32_t e = 0; e < t->n; e++) tt__put_f64(s, t->lm[e]);
+    for (uint32_t e = 0; e < t->n; e++) tt__put_f64(s, t->e[e].lm);
 }
 
 bool tt__anchors_load_warm(tt__anchors *t, tt__source *s, double *warm)
@@ -328,11 +289,11 @@ bool tt__anchors_load_warm(tt__anchors *t, tt__source *s, double *warm)
     if (s->failed) return false;
     if (*warm == 0.0) return tt__src_fail(s, "warm start 0 written out");
     if (m != t->n) return tt__src_fail(s, "warm start: %u corrections for %u anchors", m, t->n);
-    for (uint32_t e = 0; e < m; e++) t->lm[e] = tt__get_num(s, 0.0, TT_MAX_VALUE, "warm start's correction");
+    for (uint32_t e = 0; e < m; e++) t->e[e].lm = tt__get_num(s, 0.0, TT_MAX_VALUE, "warm start's correction");
     return !s->failed;
 }
 
 void tt__anchors_cool(tt__anchors *t)
 {
-    for (uint32_t e = 0; e < t->n; e++) t->lm[e] = 0.0;
+    for (uint32_t e = 0; e < t->n; e++) t->e[e].lm = 0.0;
 }

@@ -12,11 +12,19 @@
 struct tt__sink;
 struct tt__source;
 
+/* One pair's entry, kept whole: the lookup, the sort, a removed
+ * particle's compaction and the undo's copy each move one record. (As four
+ * arrays it ran no slower: the reference pour at 1 × 4 took the same time,
+ * with the same bits.) */
+typedef struct tt__anchor {
+    uint64_t key;         /* lower slot << 32 | higher slot */
+    double rx, ry;        /* the lower particle's position less the higher one's where the pair stuck */
+    double lm;            /* the pair's normal correction in that substep, m, with warm_start on (else 0) */
+} tt__anchor;
+
 /* Where each pair that touched at the end of the last substep stuck, sorted by key. */
 typedef struct tt__anchors {
-    uint64_t *key;        /* lower slot << 32 | higher slot, ascending */
-    double *rx, *ry;      /* the lower particle's position less the higher one's where the pair stuck */
-    double *lm;           /* the pair's normal correction in that substep, m, with warm_start on (else 0) */
+    tt__anchor *e;        /* ascending by key */
     uint32_t n, cap;
     uint32_t *first;      /* the entries whose lower slot is p: [first[p], first[p + 1]), p + 1 < nfirst */
     uint32_t nfirst, fcap;
@@ -30,9 +38,8 @@ enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
  * pairs, else a pair): its anchor (rxy: x, y of a − b), friction so far
  * (lt), whether it is slow (slower than thr before the sweeps: its friction
  * is anchored) and then its static friction (mu, else 0); at the end the
- * touching pairs' keys, anchors and normal corrections before sorting (key,
- * kxy: apart from rxy, which the velocity pass reads after; klm) and the
- * sort's counts (bucket, one per particle + 2). wl: the normal correction
+ * touching pairs' entries before sorting (kept: apart from rxy, which the
+ * velocity pass reads after) and the sort's counts (bucket, one per particle + 2). wl: the normal correction
  * the pair had in the last substep (warm start, contact_warm.c), else 0. */
 typedef struct tt__anchor_scratch {
     bool on;              /* the setting applies this substep */
@@ -40,11 +47,10 @@ typedef struct tt__anchor_scratch {
     double thr;           /* pairs slower than this, m/s, hold to their anchor */
     double h;             /* the substep, s */
     double warm;          /* the warm start's largest push this substep, m */
-    double *rxy, *lt, *mu;
-    uint64_t *key;
-    double *kxy, *klm, *wl;
+    double *rxy, *lt, *mu, *wl;
+    tt__anchor *kept;
     uint8_t *slow;
-    uint32_t cap;         /* units of rxy and kxy (two each), lt, mu, key, klm, wl, slow */
+    uint32_t cap;         /* units of rxy (two each), lt, mu, wl, kept, slow */
     uint32_t *bucket, bcap;
 } tt__anchor_scratch;
 

@@ -98,7 +98,7 @@ void tt__contacts_scratch_free(tt_world *w, void *self)
     free(s->rec);
     free(s->undo.sx0); free(s->undo.sy0);
     tt__anchors_free(&s->undo.anc);
-    free(s->anc.rxy); free(s->anc.lt); free(s->anc.mu); free(s->anc.key); free(s->anc.kxy); free(s->anc.klm); free(s->anc.wl); free(s->anc.slow); free(s->anc.bucket);
+    free(s->anc.rxy); free(s->anc.lt); free(s->anc.mu); free(s->anc.kept); free(s->anc.wl); free(s->anc.slow); free(s->anc.bucket);
     *s = (tt__collide_scratch){0};
     s->bat.simd = simd;
     s->grid.epoch = UINT64_MAX; /* no grid: a query builds its own */

@@ -248,7 +248,7 @@ TEST(anchors_are_saved_loaded_and_dropped_with_their_particle)
     ENSURE_OK(tt_particle_destroy(v, ps[10]));
     const tt__anchors *t = &tt__collide_peek(w)->anc;
     ENSURE(t->n < before);
-    for (uint32_t e = 0; e < t->n; e++) ENSURE((uint32_t)(t->key[e] >> 32) != gone && (uint32_t)t->key[e] != gone);
+    for (uint32_t e = 0; e < t->n; e++) ENSURE((uint32_t)(t->e[e].key >> 32) != gone && (uint32_t)t->e[e].key != gone);
     for (int s = 0; s < 60; s++) {
         ENSURE_OK(tt_world_step(w, 1.0 / 60));
         ENSURE_OK(tt_world_step(v, 1.0 / 60));
@@ -415,7 +415,7 @@ TEST(warm_start_is_checked_saved_and_loaded)
     free(save(w, &off));
     ENSURE(n == off + 16 + 8 * (size_t)anchors(w));
     const tt__anchors *t = &tt__collide_peek(w)->anc;
-    for (uint32_t e = 0; e < t->n; e++) ENSURE(t->lm[e] == 0.0);
+    for (uint32_t e = 0; e < t->n; e++) ENSURE(t->e[e].lm == 0.0);
     tt_world_destroy(z);
     tt_world_destroy(v);
     tt_world_destroy(w);
