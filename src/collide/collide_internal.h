@@ -172,6 +172,8 @@ typedef struct tt__collide_scratch {
     tt__lift *lift;       /* the bottom-up velocity pass's scratch: touched pairs, band starts, their order */
     uint32_t *lift_start, *lift_order;
     uint32_t lift_cap;    /* of all three */
+    uint32_t *touch;      /* the units (batch entries, else pairs) that touched in the sweeps, ascending (end) */
+    uint32_t ntouch, touch_cap;
     /* contacts of the current substep */
     tt__pair *pairs;
     uint32_t npairs, paircap;

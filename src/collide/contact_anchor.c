@@ -191,10 +191,11 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
     tt__anchor *kept = s->anc.kept;
     const bool warm = c->set.warm_start > 0.0;
     uint32_t m = 0;
-    for (uint32_t k = 0; k < nu; k++) {
+    for (uint32_t i = 0; i < s->ntouch; i++) {
+        const uint32_t k = s->touch[i];
         uint32_t a, b;
         double lam;
-        if (!tt__anc_unit(c, k, &a, &b, &lam) || !(lam > 0.0)) continue;
+        (void)tt__anc_unit(c, k, &a, &b, &lam);
         double x = rxy[2 * (size_t)k], y = rxy[2 * (size_t)k + 1];
         if (!s->anc.slow[k] || fabs(s->anc.lt[k]) >= 0.999 * s->anc.mu[k] * lam) {
             x = w->px[a] - w->px[b];

@@ -35,19 +35,6 @@
  * reserved with the pairs), which is free by the end of the substep. */
 #include "collide_internal.h"
 
-/* Touched pair k's particles into *a, *b; false when it did not touch. */
-static inline bool touched(const tt__collide *c, uint32_t k, uint32_t *a, uint32_t *b)
-{
-    if (c->scr.batched) {
-        if (!(c->scr.bat.lam[k] > 0.0)) return false;
-        *a = c->scr.bat.a[k], *b = c->scr.bat.b[k];
-    } else {
-        if (!(c->scr.pairs[k].lambda > 0.0f)) return false;
-        *a = c->scr.pairs[k].a, *b = c->scr.pairs[k].b;
-    }
-    return true;
-}
-
 static inline double speed2(const tt__collide *c, uint32_t i) { return c->scr.vx0[i] * c->scr.vx0[i] + c->scr.vy0[i] * c->scr.vy0[i]; }
 
 /* Particle i slowed along its velocity to speed² at most *s2, once: *s2
@@ -64,16 +51,25 @@ static void slow_to(tt_world *w, uint32_t i, double *s2)
     tt__add_velocity(w, i, v.x * f, v.y * f);
 }
 
+/* Unit k's particles. */
+static inline void unit(const tt__collide *c, uint32_t k, uint32_t *a, uint32_t *b)
+{
+    if (c->scr.batched) *a = c->scr.bat.a[k], *b = c->scr.bat.b[k];
+    else *a = c->scr.pairs[k].a, *b = c->scr.pairs[k].b;
+}
+
 void tt__contacts_cap(tt_world *w, tt__collide *c)
 {
-    const uint32_t m = c->scr.batched ? c->scr.bat.n : c->scr.npairs;
+    const uint32_t m = c->scr.ntouch, *touch = c->scr.touch;
     if (m == 0 || c->scr.pcap < w->ppool.count) return;
     double *top = c->scr.px0; /* each touched particle's bound, speed² */
     uint32_t a, b;
-    for (uint32_t k = 0; k < m; k++)
-        if (touched(c, k, &a, &b)) top[a] = top[b] = 0.0;
-    for (uint32_t k = 0; k < m; k++) {
-        if (!touched(c, k, &a, &b)) continue;
+    for (uint32_t t = 0; t < m; t++) {
+        unit(c, touch[t], &a, &b);
+        top[a] = top[b] = 0.0;
+    }
+    for (uint32_t t = 0; t < m; t++) {
+        unit(c, touch[t], &a, &b);
         const double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0);
         const double sa = speed2(c, a), sb = speed2(c, b);
         const double s = ea > 0.0 || eb > 0.0 ? INFINITY : sa > sb ? sa : sb;
@@ -82,8 +78,8 @@ void tt__contacts_cap(tt_world *w, tt__collide *c)
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)
         if (c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) top[c->scr.sc[k].a] = INFINITY;
-    for (uint32_t k = 0; k < m; k++) {
-        if (!touched(c, k, &a, &b)) continue;
+    for (uint32_t t = 0; t < m; t++) {
+        unit(c, touch[t], &a, &b);
         slow_to(w, a, &top[a]);
         slow_to(w, b, &top[b]);
     }

@@ -32,7 +32,7 @@
  * speed vn0: a bounce after an impact, else no more than it had. */
 static inline double allowed(double vn0, double e, double thr)
 {
-    const double bounce = -e * vn0, kept = vn0 > 0.0 ? vn0 : 0.0;
+    const double bounce = -e * vn0, kept = tt__max(vn0, 0.0);
     return vn0 < -thr ? bounce : kept;
 }
 
@@ -50,14 +50,11 @@ static void lift_one(tt_world *w, tt__collide *c, uint32_t lo, uint32_t up, doub
     const double un = vu.x * nx + vu.y * ny, ln = vl.x * nx + vl.y * ny;
     const double vn0 = (c->scr.vx0[up] - c->scr.vx0[lo]) * nx + (c->scr.vy0[up] - c->scr.vy0[lo]) * ny;
     const double ea = tt__mat(c, up, 0), eb = tt__mat(c, lo, 0);
-    double cap = ln + allowed(vn0, ea > eb ? ea : eb, thr);
-    cap = 0.0 > cap ? 0.0 : cap;                /* a lower one falling away does not pull the upper one down */
-    const double floor = ln < 0.0 ? ln : 0.0;   /* nor does one rising push it up: it only stops its approach */
-    /* un above cap: cap; else un, or floor where un is under it. Written as a
-     * min and a max of two variables (cap ≥ 0 ≥ floor: the same bits, NaN
-     * and signed zeros included), which compile without branches. */
-    const double above = floor > un ? floor : un;
-    const double to = cap < above ? cap : above;
+    const double cap = tt__max(0.0, ln + allowed(vn0, tt__max(ea, eb), thr)); /* a lower one falling away does not pull the upper one down */
+    const double floor = tt__min(ln, 0.0); /* nor does one rising push it up: it only stops its approach */
+    /* un above cap: cap; else un, or floor where un is under it: a min and a
+     * max (cap ≥ 0 ≥ floor: the same bits, NaN and signed zeros included) */
+    const double to = tt__min(cap, tt__max(floor, un));
     if (to != un) tt__add_velocity(w, up, (to - un) * nx, (to - un) * ny);
 }
 
@@ -79,7 +76,6 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
     if (!(gl > 0.0)) return; /* no up */
     const double gx = w->gravity.x / gl, gy = w->gravity.y / gl;
     const bool bat = c->scr.batched;
-    const uint32_t m = bat ? c->scr.bat.n : c->scr.npairs;
     /* the touched pairs, lower particle first, and the bands' extent */
     uint32_t nt = 0;
     double hmin = INFINITY, hmax = -INFINITY, rsum = 0.0;
@@ -93,16 +89,12 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
         tt__step_oom(w, "the bottom-up velocity pass");
         return;
     }
-    for (uint32_t k = 0; k < m; k++) {
+    for (uint32_t t = 0; t < c->scr.ntouch; t++) {
+        const uint32_t k = c->scr.touch[t];
         uint32_t a, b;
         double rs;
-        if (bat) {
-            if (!(c->scr.bat.lam[k] > 0.0)) continue;
-            a = c->scr.bat.a[k], b = c->scr.bat.b[k], rs = c->scr.bat.rs[k];
-        } else {
-            if (!(c->scr.pairs[k].lambda > 0.0f)) continue;
-            a = c->scr.pairs[k].a, b = c->scr.pairs[k].b, rs = c->scr.pairs[k].rs;
-        }
+        if (bat) a = c->scr.bat.a[k], b = c->scr.bat.b[k], rs = c->scr.bat.rs[k];
+        else a = c->scr.pairs[k].a, b = c->scr.pairs[k].b, rs = c->scr.pairs[k].rs;
         const double ha = height(w, gx, gy, a), hb = height(w, gx, gy, b), hl = ha < hb ? ha : hb;
         c->scr.lift[nt++] = (tt__lift){ha <= hb ? a : b, ha <= hb ? b : a, hl};
         hmin = hl < hmin ? hl : hmin;

@@ -508,9 +508,44 @@ static void shape_end(tt_world *w, tt__collide *c, const tt__scontact *s, double
     }
 }
 
+/* The units that touched in the sweeps, into c->scr.touch: the passes
+ * after the sweeps (anchors' keep, unrub, the pair pass, the lift, the
+ * speed cap) walk them without a branch a unit on whether it touched. A
+ * third of the reference pour's units did not, in no order a branch
+ * predicts; walking the list, the pour at 1 × 4 ran 8 % faster (3.76–3.90
+ * against 4.01–4.31 ms/step, alternated), with the same bits. Room as the
+ * pair list's (none grows in a step with no pairs to find: contact_undo.c's
+ * bound). */
+static bool list_touched(tt_world *w, tt__collide *c)
+{
+    tt__collide_scratch *s = &c->scr;
+    const uint32_t m = s->batched ? s->bat.n : s->npairs;
+    s->ntouch = 0;
+    if (m == 0) return true;
+    if (!tt__grow((void **)&s->touch, &s->touch_cap, (s->batched ? s->bat.cap : s->paircap) + 1, sizeof *s->touch)) {
+        tt__step_oom(w, "the velocity pass");
+        return false;
+    }
+    uint32_t n = 0;
+    if (s->batched) {
+        for (uint32_t k = 0; k < m; k++) {
+            s->touch[n] = k;
+            n += s->bat.lam[k] > 0.0 && s->bat.a[k] < s->bat.np;
+        }
+    } else {
+        for (uint32_t k = 0; k < m; k++) {
+            s->touch[n] = k;
+            n += s->pairs[k].lambda > 0.0f;
+        }
+    }
+    s->ntouch = n;
+    return true;
+}
+
 void tt__contacts_end(tt_world *w, void *self, double h)
 {
     tt__collide *c = self;
+    if (!list_touched(w, c)) return; /* the step is undone */
     tt__anchors_keep(w, c);
     const double g = sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y);
     const double thr = c->set.restitution_threshold >= 0.0 ? c->set.restitution_threshold : 2.0 * g * h;
@@ -527,19 +562,19 @@ void tt__contacts_end(tt_world *w, void *self, double h)
         const tt__respond_in in = {c->scr.vx0, c->scr.vy0, c->set.restitution, c->set.friction_static, c->set.friction_kinetic, thr, h,
                                    c->mat ? c : NULL, c->scr.anc.on ? c->scr.anc.slow : NULL};
         pair_ctx pc = {w, c, h, thr, sp};
-        for (uint32_t k = 0; c->scr.anc.on && k < B->n; k++) anchored_unrub(w, c, k, h); /* all before the lanes take the positions */
+        for (uint32_t t = 0; c->scr.anc.on && t < c->scr.ntouch; t++) anchored_unrub(w, c, c->scr.touch[t], h); /* all before the lanes take the positions */
         if (!(w->integrator == TT_VERLET && !events && !sp && tt__batches_respond(w, B, &in, pair_one, &pc)))
-            for (uint32_t k = 0; k < B->n; k++)
-                if (B->lam[k] > 0.0)
-                    pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp, anchored_pair(c, k));
-    } else {
-        for (uint32_t k = 0; k < c->scr.npairs; k++)
-            if (c->scr.pairs[k].lambda > 0.0f) {
-                const uint32_t a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
-                const bool rubbed = anchored_pair(c, k);
-                if (rubbed) anchored_unrub(w, c, k, h);
-                pair_end(w, c, a, b, inv[a], inv[b], c->scr.pairs[k].lambda, h, thr, events, sp, rubbed);
+            for (uint32_t t = 0; t < c->scr.ntouch; t++) {
+                const uint32_t k = c->scr.touch[t];
+                pair_end(w, c, B->a[k], B->b[k], B->ka[k], B->kb[k], B->lam[k], h, thr, events, sp, anchored_pair(c, k));
             }
+    } else {
+        for (uint32_t t = 0; t < c->scr.ntouch; t++) {
+            const uint32_t k = c->scr.touch[t], a = c->scr.pairs[k].a, b = c->scr.pairs[k].b;
+            const bool rubbed = anchored_pair(c, k);
+            if (rubbed) anchored_unrub(w, c, k, h);
+            pair_end(w, c, a, b, inv[a], inv[b], c->scr.pairs[k].lambda, h, thr, events, sp, rubbed);
+        }
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)
         if ((c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) && inv[c->scr.sc[k].a] != 0.0) shape_end(w, c, &c->scr.sc[k], h, thr, events, sp);

@@ -73,6 +73,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     size_t b = sizeof *c + tt__shapes_bytes(c) + tt__grid_bytes(&c->scr.grid);
     b += ((size_t)c->scr.vcap + c->scap + c->scr.gcap + c->scr.pcap) * 2 * sizeof(double);
     b += (size_t)c->scr.lift_cap * (sizeof(tt__lift) + 2 * sizeof(uint32_t)) + (size_t)c->scr.roll_cap * sizeof *c->scr.roll;
+    b += (size_t)c->scr.touch_cap * sizeof *c->scr.touch;
     b += (size_t)c->matcap * 3 * sizeof(float) + (size_t)c->bulletcap * (1 + sizeof(int32_t));
     b += tt__pair_set_bytes(&c->excl);
     b += (size_t)c->scr.paircap * sizeof(tt__pair) + (size_t)c->scr.sccap * sizeof(tt__scontact) + tt__batches_bytes(&c->scr.bat);
@@ -92,7 +93,7 @@ void tt__contacts_scratch_free(tt_world *w, void *self)
     const uint8_t simd = s->bat.simd; /* the pair sweep's mode is a setting (tests force it), not scratch */
     tt__grid_free(&s->grid);
     free(s->vx0); free(s->vy0); free(s->gx0); free(s->gy0); free(s->px0); free(s->py0);
-    free(s->lift); free(s->lift_start); free(s->lift_order); free(s->roll);
+    free(s->lift); free(s->lift_start); free(s->lift_order); free(s->touch); free(s->roll);
     free(s->pairs); free(s->sc); free(s->runs); free(s->near);
     tt__batches_free(&s->bat);
     free(s->rec);
