@@ -276,6 +276,8 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr);
 /* Then each particle in a touched pair slowed to the largest pre-sweep speed
  * of itself and its touched partners (contact_cap.c). */
 void tt__contacts_cap(tt_world *w, tt__collide *c);
+/* The units that touched, into scr.touch (contact_touched.c); false on no memory (the step is undone). */
+bool tt__contacts_touched(tt_world *w, tt__collide *c);
 
 /* Moves particle i by (dx, dy) after the sweeps, its velocity with it. */
 static inline void tt__contact_shift(tt_world *w, uint32_t i, double dx, double dy, double h)
