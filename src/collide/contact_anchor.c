@@ -50,9 +50,9 @@ static uint32_t find(const tt__anchors *t, uint64_t key)
 {
     const uint32_t lo = (uint32_t)(key >> 32);
     if (t->nfirst == 0 || lo >= t->nfirst - 1) return UINT32_MAX;
-    for (uint32_t e = t->first[lo]; e < t->first[lo + 1]; e++)
-        if (t->e[e].key == key) return e;
-    return UINT32_MAX;
+    uint32_t at = UINT32_MAX;
+    for (uint32_t e = t->first[lo]; e < t->first[lo + 1]; e++) at = t->e[e].key == key ? e : at;
+    return at;
 }
 
 /* The index of the sorted entries. Room keeps fcap above every lower slot
@@ -115,10 +115,11 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
         return;
     }
     const uint32_t nu = tt__anc_units(c);
-    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap, c6 = s->anc.cap;
+    uint32_t c1 = s->anc.cap, c2 = s->anc.cap, c3 = s->anc.cap, c4 = s->anc.cap, c5 = s->anc.cap, c6 = s->anc.cap, c7 = s->anc.cap;
     if (!tt__grow((void **)&s->anc.rxy, &c1, nu + 1, 2 * sizeof *s->anc.rxy) || !tt__grow((void **)&s->anc.lt, &c2, nu + 1, sizeof *s->anc.lt) ||
         !tt__grow((void **)&s->anc.mu, &c3, nu + 1, sizeof *s->anc.mu) || !tt__grow((void **)&s->anc.kept, &c4, nu + 1, sizeof *s->anc.kept) ||
         !tt__grow((void **)&s->anc.slow, &c5, nu + 1, sizeof *s->anc.slow) || !tt__grow((void **)&s->anc.wl, &c6, nu + 1, sizeof *s->anc.wl) ||
+        !tt__grow((void **)&s->anc.resting, &c7, nu + 1, sizeof *s->anc.resting) ||
         !tt__grow((void **)&s->anc.bucket, &s->anc.bcap, n + 2, sizeof *s->anc.bucket)) {
         s->anc.cap = 0; /* some grew: the next substep grows all again */
         tt__step_oom(w, "anchored friction");
@@ -128,6 +129,7 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
     s->anc.cap = c1;
     const double *sx = w->integrator == TT_VERLET ? w->qx : c->sx0, *sy = w->integrator == TT_VERLET ? w->qy : c->sy0;
     const double thr2 = s->anc.thr * s->anc.thr;
+    uint32_t nr = 0;
     for (uint32_t k = 0; k < nu; k++) {
         uint32_t a, b;
         double lam, *r = s->anc.rxy + 2 * (size_t)k;
@@ -150,7 +152,10 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
             r[1] = a < b ? en->ry : -en->ry;
             s->anc.wl[k] = en->lm;
         }
+        s->anc.resting[nr] = k;
+        nr += s->anc.slow[k] && s->anc.wl[k] > 0.0;
     }
+    s->anc.nresting = nr;
     if (s->batched) tt__batches_anchor(&s->bat, s->anc.rxy, s->anc.lt, s->anc.mu);
     tt__anchors_clear(&c->anc);
     if (!table_room(&c->anc, nu, n)) {

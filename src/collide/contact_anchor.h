@@ -50,7 +50,9 @@ typedef struct tt__anchor_scratch {
     double *rxy, *lt, *mu, *wl;
     tt__anchor *kept;
     uint8_t *slow;
-    uint32_t cap;         /* units of rxy (two each), lt, mu, wl, kept, slow */
+    uint32_t *resting;    /* the slow units with a correction in the last substep (wl > 0), ascending: the warm start's */
+    uint32_t nresting;
+    uint32_t cap;         /* units of rxy (two each), lt, mu, wl, kept, slow, resting */
     uint32_t *bucket, bcap;
 } tt__anchor_scratch;
 

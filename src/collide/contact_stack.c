@@ -37,10 +37,11 @@ static bool weigh(tt__batches *B, const double *px, const double *py, tt_vec2 g,
         const uint32_t a = B->a[e], b = B->b[e];
         if (a < B->np && B->rs[e] > 0.0) {
             const double u = ((px[b] - px[a]) * ux + (py[b] - py[a]) * uy) / B->rs[e]; /* b's height over a's */
-            const double v = u < 0.0 ? (u < -1.0 ? 1.0 : -u) : (u > 1.0 ? 1.0 : u);
-            const double s = 1.0 / (1.0 + k * v);
-            if (u > 0.0) sa *= s;
-            else sb *= s;
+            /* |u| up to 1, and the scale on the lower one, without branches: u's sign goes
+             * either way entry after entry (the same bits, but a NaN's sign) */
+            const double s = 1.0 / (1.0 + k * tt__min(1.0, fabs(u)));
+            sa *= tt__pick(u > 0.0, s, 1.0);
+            sb *= tt__pick(u > 0.0, 1.0, s);
         }
         B->sa[e] = sa;
         B->sb[e] = sb;

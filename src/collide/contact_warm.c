@@ -49,13 +49,17 @@ static inline bool share(double dx, double dy, double rs, double push, double ia
 double tt__contacts_warm(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t u0, uint32_t u1)
 {
     const double f = c->set.warm_start, *wl = c->scr.anc.wl;
-    const uint8_t *slow = c->scr.anc.slow;
+    /* the slow units with a correction (anchors' begin lists them: a test a unit here went either way
+     * unit after unit), ascending */
+    const uint32_t *rest = c->scr.anc.resting, nrest = c->scr.anc.nresting;
     double *X = L->x, *Y = L->y, most = 0.0, ca, cb;
     const size_t st = L->st;
     if (c->scr.batched) {
         tt__batches *B = &c->scr.bat;
-        for (uint32_t k = 4 * u0; k < 4 * u1; k++) {
-            if (!slow[k] || !(wl[k] > 0.0)) continue; /* padding is never slow */
+        for (uint32_t r = 0; r < nrest; r++) {
+            const uint32_t k = rest[r];
+            if (k < 4 * u0) continue;
+            if (k >= 4 * u1) break;
             const uint32_t i = B->a[k], j = B->b[k];
             const size_t a = i * st, b = j * st;
             const double dx = X[a] - X[b], dy = Y[a] - Y[b], push = f * wl[k];
@@ -74,8 +78,10 @@ double tt__contacts_warm(tt_world *w, tt__collide *c, const tt__lay *L, uint32_t
         }
         return most;
     }
-    for (uint32_t k = u0; k < u1 && k < c->scr.npairs; k++) {
-        if (!slow[k] || !(wl[k] > 0.0)) continue;
+    for (uint32_t r = 0; r < nrest; r++) {
+        const uint32_t k = rest[r];
+        if (k < u0) continue;
+        if (k >= u1 || k >= c->scr.npairs) break;
         tt__pair *p = &c->scr.pairs[k];
         const double dx = X[p->a * st] - X[p->b * st], dy = Y[p->a * st] - Y[p->b * st], push = f * wl[k];
         if (!share(dx, dy, p->rs, push, w->inv_mass[p->a], w->inv_mass[p->b], &ca, &cb)) continue;

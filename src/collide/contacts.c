@@ -80,7 +80,7 @@ size_t tt__contacts_memory(const tt_world *w, const void *self)
     b += (size_t)c->scr.runs_cap * sizeof *c->scr.runs + c->scr.near_cap;
     b += ((size_t)c->scr.reccap + c->prevcap) * sizeof(tt__record) + (size_t)c->evcap * sizeof(tt_contact_event);
     b += (size_t)c->scr.undo.cap * 2 * sizeof(double);
-    b += tt__anchors_bytes(&c->anc) + tt__anchors_bytes(&c->scr.undo.anc) + (size_t)c->scr.anc.cap * (9 * sizeof(double) + 1) +
+    b += tt__anchors_bytes(&c->anc) + tt__anchors_bytes(&c->scr.undo.anc) + (size_t)c->scr.anc.cap * (9 * sizeof(double) + 1 + sizeof(uint32_t)) +
          (size_t)c->scr.anc.bcap * sizeof(uint32_t);
     return b + tt__terrains_bytes(c->terr);
 }
@@ -99,7 +99,7 @@ void tt__contacts_scratch_free(tt_world *w, void *self)
     free(s->rec);
     free(s->undo.sx0); free(s->undo.sy0);
     tt__anchors_free(&s->undo.anc);
-    free(s->anc.rxy); free(s->anc.lt); free(s->anc.mu); free(s->anc.kept); free(s->anc.wl); free(s->anc.slow); free(s->anc.bucket);
+    free(s->anc.rxy); free(s->anc.lt); free(s->anc.mu); free(s->anc.kept); free(s->anc.wl); free(s->anc.resting); free(s->anc.slow); free(s->anc.bucket);
     *s = (tt__collide_scratch){0};
     s->bat.simd = simd;
     s->grid.epoch = UINT64_MAX; /* no grid: a query builds its own */

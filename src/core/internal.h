@@ -333,6 +333,16 @@ static inline double tt__min(double a, double b)
     return a < b ? a : b;
 #endif
 }
+/* c ? a : b, without a branch (as tt__max). */
+static inline double tt__pick(bool c, double a, double b)
+{
+#ifdef __SSE2__
+    const __m128d m = _mm_castsi128_pd(_mm_set1_epi64x(-(long long)c));
+    return _mm_cvtsd_f64(_mm_or_pd(_mm_and_pd(m, _mm_set_sd(a)), _mm_andnot_pd(m, _mm_set_sd(b))));
+#else
+    return c ? a : b;
+#endif
+}
 double tt__now_ms(void);
 /* *p grown to hold need elements of elem bytes (doubling, at least 16):
  * false, and *p and *cap as they were, when memory runs out. */
