@@ -37,12 +37,9 @@
 
 static inline double speed2(const tt__collide *c, uint32_t i) { return c->scr.vx0[i] * c->scr.vx0[i] + c->scr.vy0[i] * c->scr.vy0[i]; }
 
-/* Particle i slowed along its velocity to speed² at most *s2, once: *s2
- * then marks it done. */
-static void slow_to(tt_world *w, uint32_t i, double *s2)
+/* Particle i slowed along its velocity to speed² at most lim. */
+static void slow_to(tt_world *w, uint32_t i, double lim)
 {
-    const double lim = *s2;
-    *s2 = INFINITY;
     if (w->inv_mass[i] == 0.0 || !(lim < INFINITY)) return;
     const tt_vec2 v = tt__velocity(w, i);
     const double v2 = v.x * v.x + v.y * v.y;
@@ -58,12 +55,17 @@ static inline void unit(const tt__collide *c, uint32_t k, uint32_t *a, uint32_t 
     else *a = c->scr.pairs[k].a, *b = c->scr.pairs[k].b;
 }
 
+/* The bounds by the touched pairs, then each particle slowed to its own:
+ * particle by particle in slot order (each reads and writes only its own
+ * velocity, so the order changes nothing), where visiting each from its
+ * pairs went to every particle about seven times, at random. */
 void tt__contacts_cap(tt_world *w, tt__collide *c)
 {
-    const uint32_t m = c->scr.ntouch, *touch = c->scr.touch;
-    if (m == 0 || c->scr.pcap < w->ppool.count) return;
-    double *top = c->scr.px0; /* each touched particle's bound, speed² */
+    const uint32_t m = c->scr.ntouch, *touch = c->scr.touch, n = w->ppool.count;
+    if (m == 0 || c->scr.pcap < n) return;
+    double *top = c->scr.px0; /* each particle's bound, speed²: none (∞) where it touched nothing */
     uint32_t a, b;
+    for (uint32_t i = 0; i < n; i++) top[i] = INFINITY;
     for (uint32_t t = 0; t < m; t++) {
         unit(c, touch[t], &a, &b);
         top[a] = top[b] = 0.0;
@@ -78,9 +80,5 @@ void tt__contacts_cap(tt_world *w, tt__collide *c)
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)
         if (c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) top[c->scr.sc[k].a] = INFINITY;
-    for (uint32_t t = 0; t < m; t++) {
-        unit(c, touch[t], &a, &b);
-        slow_to(w, a, &top[a]);
-        slow_to(w, b, &top[b]);
-    }
+    for (uint32_t i = 0; i < n; i++) slow_to(w, i, top[i]);
 }
