@@ -197,15 +197,14 @@ static bool entry_materials(tt__batches *B, const tt__collide *c)
     if (!tt__grow((void **)&B->me, &B->me_cap, B->cap, 3 * sizeof *B->me)) return false;
     double *E = B->me, *S = B->me + B->cap, *K = B->me + 2 * (size_t)B->cap;
     for (uint32_t k = 0; k < B->n; k++) {
-        const uint32_t a = B->a[k], b = B->b[k];
-        if (!(B->lam[k] > 0.0) || a >= B->np) {
-            E[k] = S[k] = K[k] = 0.0;
-            continue;
-        }
+        /* every entry worked out (padding as particle 0's pair) and the live ones' picked: a third
+         * of the entries did not touch, in no order a branch predicts */
+        const bool live = B->lam[k] > 0.0 && B->a[k] < B->np;
+        const uint32_t a = live ? B->a[k] : 0, b = live ? B->b[k] : 0;
         const double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0);
-        E[k] = ea > eb ? ea : eb;
-        S[k] = sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1));
-        K[k] = sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2));
+        E[k] = tt__pick(live, tt__max(ea, eb), 0.0);
+        S[k] = tt__pick(live, sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1)), 0.0);
+        K[k] = tt__pick(live, sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)), 0.0);
     }
     return true;
 }
