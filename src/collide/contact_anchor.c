@@ -165,12 +165,25 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
 }
 
 /* Sorts the n entries of from into t by key: counting sort by the lower
- * slot (below nb), then insertion within each slot's few. */
+ * slot (below nb), then insertion within each slot's few. The counts'
+ * starts are the index (as index_all makes it, without walking the table
+ * again). */
 static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const tt__anchor *from)
 {
     memset(bucket, 0, (size_t)(nb + 1) * sizeof *bucket);
-    for (uint32_t e = 0; e < t->n; e++) bucket[(from[e].key >> 32) + 1]++;
+    uint32_t top = 0; /* the highest lower slot */
+    for (uint32_t e = 0; e < t->n; e++) {
+        const uint32_t lo = (uint32_t)(from[e].key >> 32);
+        bucket[lo + 1]++;
+        top = lo > top ? lo : top;
+    }
     for (uint32_t i = 0; i < nb; i++) bucket[i + 1] += bucket[i];
+    const uint64_t nf = (uint64_t)top + 2;
+    t->nfirst = 0;
+    if (t->n && nf <= t->fcap && nf <= (uint64_t)nb + 1) {
+        memcpy(t->first, bucket, nf * sizeof *t->first);
+        t->nfirst = (uint32_t)nf;
+    }
     for (uint32_t e = 0; e < t->n; e++) t->e[bucket[from[e].key >> 32]++] = from[e];
     for (uint32_t e = 1; e < t->n; e++) {
         const tt__anchor x = t->e[e];
@@ -210,7 +223,6 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
     }
     t->n = m;
     sort_entries(t, s->anc.bucket, n, kept);
-    index_all(t);
 }
 
 /* A removed particle's anchors go (its slot may be reused). */
