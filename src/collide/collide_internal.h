@@ -381,7 +381,10 @@ void tt__anchors_keep(tt_world *w, tt__collide *c);
  * (bit 63 set, the shape slot in bits 32..62). */
 static inline uint64_t tt__pair_key(uint32_t a, uint32_t b)
 {
-    return a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
+    /* the lower slot picked, the higher one its complement: no branch (which of a pair is the lower
+     * goes either way pair after pair) */
+    const uint32_t lo = a < b ? a : b, hi = a ^ b ^ lo;
+    return ((uint64_t)lo << 32) | hi;
 }
 static inline uint64_t tt__shape_key(uint32_t shape, uint32_t a) { return (1ull << 63) | ((uint64_t)shape << 32) | a; }
 /* Records one contact of the substep for the step's events (contact_events.c). */

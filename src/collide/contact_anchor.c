@@ -36,6 +36,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+enum { PAD = 4 }; /* find's fixed scan, and the sentinels past the last entry (seal) */
+
 bool tt__anchors_on(const tt_world *w, const tt__collide *c)
 {
     return c->set.anchored_friction && c->set.particles && w->order == TT_GAUSS_SEIDEL &&
@@ -50,9 +52,27 @@ static uint32_t find(const tt__anchors *t, uint64_t key)
 {
     const uint32_t lo = (uint32_t)(key >> 32);
     if (t->nfirst == 0 || lo >= t->nfirst - 1) return UINT32_MAX;
+    const uint32_t e0 = t->first[lo], e1 = t->first[lo + 1];
     uint32_t at = UINT32_MAX;
-    for (uint32_t e = t->first[lo]; e < t->first[lo + 1]; e++) at = t->e[e].key == key ? e : at;
+    /* a slot's few entries scanned a fixed PAD at a time, picking without a branch: how many a
+     * slot has goes either way pair after pair. Past the slot the next slots' entries (another
+     * lower slot) and the table's sentinels (seal) never match */
+    if (e1 - e0 <= PAD) {
+        for (uint32_t e = e0; e < e0 + PAD; e++) at = t->e[e].key == key ? e : at;
+        return at;
+    }
+    for (uint32_t e = e0; e < e1; e++) at = t->e[e].key == key ? e : at;
     return at;
+}
+
+/* The PAD entries past the last: keys no pair has (its two slots would be
+ * equal), for find's fixed scan. False, and no index, where there is no
+ * room for them (room keeps it: never, but then nothing is found). */
+static bool seal(tt__anchors *t)
+{
+    if (t->cap < t->n || t->cap - t->n < PAD) return false;
+    for (uint32_t e = t->n; e < t->n + PAD; e++) t->e[e] = (tt__anchor){UINT64_MAX, 0.0, 0.0, 0.0};
+    return true;
 }
 
 /* The index of the sorted entries. Room keeps fcap above every lower slot
@@ -61,7 +81,7 @@ static uint32_t find(const tt__anchors *t, uint64_t key)
 static void index_all(tt__anchors *t)
 {
     t->nfirst = 0;
-    if (t->n == 0) return;
+    if (t->n == 0 || !seal(t)) return;
     const uint64_t nf = (t->e[t->n - 1].key >> 32) + 2;
     if (nf > t->fcap) return;
     uint32_t e = 0;
@@ -153,7 +173,7 @@ void tt__anchors_begin(tt_world *w, tt__collide *c, uint32_t n, double h)
             s->anc.wl[k] = en->lm;
         }
         s->anc.resting[nr] = k;
-        nr += s->anc.slow[k] && s->anc.wl[k] > 0.0;
+        nr += s->anc.slow[k] & (s->anc.wl[k] > 0.0); /* &, not &&: no branch */
     }
     s->anc.nresting = nr;
     if (s->batched) tt__batches_anchor(&s->bat, s->anc.rxy, s->anc.lt, s->anc.mu);
@@ -180,7 +200,7 @@ static void sort_entries(tt__anchors *t, uint32_t *bucket, uint32_t nb, const tt
     for (uint32_t i = 0; i < nb; i++) bucket[i + 1] += bucket[i];
     const uint64_t nf = (uint64_t)top + 2;
     t->nfirst = 0;
-    if (t->n && nf <= t->fcap && nf <= (uint64_t)nb + 1) {
+    if (t->n && nf <= t->fcap && nf <= (uint64_t)nb + 1 && seal(t)) {
         memcpy(t->first, bucket, nf * sizeof *t->first);
         t->nfirst = (uint32_t)nf;
     }
@@ -219,7 +239,7 @@ void tt__anchors_keep(tt_world *w, tt__collide *c)
             x = w->px[a] - w->px[b];
             y = w->py[a] - w->py[b];
         }
-        kept[m++] = (tt__anchor){tt__pair_key(a, b), a < b ? x : -x, a < b ? y : -y, warm ? lam : 0.0};
+        kept[m++] = (tt__anchor){tt__pair_key(a, b), tt__pick(a < b, x, -x), tt__pick(a < b, y, -y), warm ? lam : 0.0};
     }
     t->n = m;
     sort_entries(t, s->anc.bucket, n, kept);
@@ -238,9 +258,11 @@ void tt__anchors_drop(tt__anchors *t, uint32_t i)
     index_all(t);
 }
 
-/* Room for n entries (not their index); false on no memory. */
+/* Room for n entries and the sentinels past them (not their index); false on no memory. */
 bool tt__anchors_room(tt__anchors *t, uint32_t n)
 {
+    if (n > UINT32_MAX - PAD) return false;
+    n += PAD; /* and the sentinels */
     if (t->cap >= n) return true;
     return tt__grow((void **)&t->e, &t->cap, n, sizeof *t->e);
 }

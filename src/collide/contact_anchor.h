@@ -58,7 +58,7 @@ typedef struct tt__anchor_scratch {
 
 void tt__anchors_clear(tt__anchors *t);
 void tt__anchors_drop(tt__anchors *t, uint32_t i);
-/* Room for n entries (not their index); false on no memory. */
+/* Room for n entries and the sentinels past them (not their index); false on no memory. */
 bool tt__anchors_room(tt__anchors *t, uint32_t n);
 /* The entries of from into to (its index not kept up: the undo's copy); false on no memory. */
 bool tt__anchors_copy(tt__anchors *to, const tt__anchors *from);

@@ -199,7 +199,7 @@ static bool entry_materials(tt__batches *B, const tt__collide *c)
     for (uint32_t k = 0; k < B->n; k++) {
         /* every entry worked out (padding as particle 0's pair) and the live ones' picked: a third
          * of the entries did not touch, in no order a branch predicts */
-        const bool live = B->lam[k] > 0.0 && B->a[k] < B->np;
+        const bool live = (B->lam[k] > 0.0) & (B->a[k] < B->np); /* &, not &&: no branch */
         const uint32_t a = live ? B->a[k] : 0, b = live ? B->b[k] : 0;
         const double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0);
         E[k] = tt__pick(live, tt__max(ea, eb), 0.0);

@@ -95,8 +95,9 @@ void tt__contacts_lift(tt_world *w, tt__collide *c, double thr)
         double rs;
         if (bat) a = c->scr.bat.a[k], b = c->scr.bat.b[k], rs = c->scr.bat.rs[k];
         else a = c->scr.pairs[k].a, b = c->scr.pairs[k].b, rs = c->scr.pairs[k].rs;
-        const double ha = height(w, gx, gy, a), hb = height(w, gx, gy, b), hl = ha < hb ? ha : hb;
-        c->scr.lift[nt++] = (tt__lift){ha <= hb ? a : b, ha <= hb ? b : a, hl};
+        const double ha = height(w, gx, gy, a), hb = height(w, gx, gy, b), hl = tt__min(ha, hb);
+        const uint32_t lo = ha <= hb ? a : b; /* the upper one its complement: which is lower goes either way */
+        c->scr.lift[nt++] = (tt__lift){lo, a ^ b ^ lo, hl};
         hmin = hl < hmin ? hl : hmin;
         hmax = hl > hmax ? hl : hmax;
         rsum += rs;

@@ -23,7 +23,7 @@ bool tt__contacts_touched(tt_world *w, tt__collide *c)
     if (s->batched) {
         for (uint32_t k = 0; k < m; k++) {
             s->touch[n] = k;
-            n += s->bat.lam[k] > 0.0 && s->bat.a[k] < s->bat.np;
+            n += (s->bat.lam[k] > 0.0) & (s->bat.a[k] < s->bat.np); /* &, not &&: no branch */
         }
     } else {
         for (uint32_t k = 0; k < m; k++) {

@@ -313,7 +313,9 @@ TT_AVX2 TT_INLINE bool range_avx2(tt_world *w, tt__collide *c, emit *e, const tt
         __m256d lim = _mm256_mul_pd(_mm256_mul_pd(rs, rs), f);
         __m256d m = _mm256_and_pd(_mm256_cmp_pd(d2, lim, _CMP_NGE_UQ), _mm256_cmp_pd(rs, zero, _CMP_NEQ_UQ));
         unsigned bits = (unsigned)_mm256_movemask_pd(m);
-        if (j1 - j < 4) bits &= (1u << (j1 - j)) - 1u;
+        /* the last group's lanes past j1 masked off: min(j1 − j, 4) in bit operations, no branch */
+        const uint32_t left = j1 - j, lanes = left ^ ((4u ^ left) & -(uint32_t)(left > 4u));
+        bits &= (1u << lanes) - 1u;
         while (bits) {
             uint32_t jj = j + (uint32_t)__builtin_ctz(bits);
             bits &= bits - 1;
