@@ -335,6 +335,9 @@ static void anchored_unrub(tt_world *w, tt__collide *c, uint32_t k, double h)
     uint32_t a, b;
     double lam;
     if (!tt__anc_unit(c, k, &a, &b, &lam) || !c->scr.anc.slow[k] || !(lam > 0.0)) return;
+    /* unrub's own test of the bound first: a pile at rest has almost no pair at it, and the rest
+     * (positions, a root, the pair's kinetic friction) is then not needed */
+    if (!(fabs(c->scr.anc.lt[k]) >= 0.999 * c->scr.anc.mu[k] * lam)) return;
     const double ia = w->inv_mass[a], ib = w->inv_mass[b], ws = ia + ib;
     const double ex = w->px[a] - w->px[b], ey = w->py[a] - w->py[b], d = sqrt(ex * ex + ey * ey);
     if (!(d > 0.0) || ws == 0.0) return;
