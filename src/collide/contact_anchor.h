@@ -39,8 +39,9 @@ enum { TT__PASS_ALL = 0, TT__PASS_FRICTION = 1, TT__PASS_SHAPES = 2 };
  * (lt), whether it is slow (slower than thr before the sweeps: its friction
  * is anchored) and then its static friction (mu, else 0); at the end the
  * touching pairs' entries before sorting (kept: apart from rxy, which the
- * velocity pass reads after) and the sort's counts (bucket, one per particle + 2). wl: the normal correction
- * the pair had in the last substep (warm start, contact_warm.c), else 0. */
+ * velocity pass reads after) and the sort's counts (bucket, one per
+ * particle + 2). wl: the normal correction the pair had in the last
+ * substep (warm start, contact_warm.c), else 0. */
 typedef struct tt__anchor_scratch {
     bool on;              /* the setting applies this substep */
     uint8_t pass;         /* TT__PASS_* */

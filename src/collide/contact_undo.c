@@ -50,7 +50,9 @@ bool tt__contacts_points_only(const tt_world *w, tt__collide *c, uint32_t n)
  * - particles that turn list their contacts' friction (contact_roll.c):
  *   room for as many as the lists above have room for;
  * - the bottom-up pass (pairs on) grows to the pair list's room + 1, which
- *   cannot grow in such a step: it must have that room already;
+ *   cannot grow in such a step: it must have that room already; the
+ *   velocity pass's list of touched pairs (contact_touched.c) grows only
+ *   when there are pairs;
  * - events (records grow per contact), bullets' sweeps and terrains have no
  *   such bound: they keep the copies.
  * The other groups make room for all they can need before the step (the
