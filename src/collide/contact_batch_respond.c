@@ -3,6 +3,8 @@
  * lane the same arithmetic in the same order, so the bits are the same. */
 #include "collide_internal.h"
 
+#include <string.h>
+
 #ifdef TT_SIMD_X86
 #define LO TT__LO
 #define HI TT__HI
@@ -190,21 +192,22 @@ TT_AVX512 static void respond_avx512(tt_world *w, tt__batches *B, const tt__resp
 }
 #endif
 
-/* Each live entry's materials as pair_end takes them (the larger
- * restitution, the geometric means of the frictions), into B->me. */
+/* Each touched entry's materials as pair_end takes them (the larger
+ * restitution, the geometric means of the frictions), into B->me. Only
+ * those: the lanes of the others are masked out of every result, so what
+ * an earlier step left there (finite: the array is zeroed when it grows)
+ * changes nothing, and a third of the entries cost nothing here. */
 static bool entry_materials(tt__batches *B, const tt__collide *c)
 {
+    const uint32_t had = B->me_cap;
     if (!tt__grow((void **)&B->me, &B->me_cap, B->cap, 3 * sizeof *B->me)) return false;
+    if (B->me_cap != had) memset(B->me, 0, (size_t)B->me_cap * 3 * sizeof *B->me);
     double *E = B->me, *S = B->me + B->cap, *K = B->me + 2 * (size_t)B->cap;
-    for (uint32_t k = 0; k < B->n; k++) {
-        /* every entry worked out (padding as particle 0's pair) and the live ones' picked: a third
-         * of the entries did not touch, in no order a branch predicts */
-        const bool live = (B->lam[k] > 0.0) & (B->a[k] < B->np); /* &, not &&: no branch */
-        const uint32_t a = live ? B->a[k] : 0, b = live ? B->b[k] : 0;
-        const double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0);
-        E[k] = tt__pick(live, tt__max(ea, eb), 0.0);
-        S[k] = tt__pick(live, sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1)), 0.0);
-        K[k] = tt__pick(live, sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2)), 0.0);
+    for (uint32_t t = 0; t < c->scr.ntouch; t++) {
+        const uint32_t k = c->scr.touch[t], a = B->a[k], b = B->b[k];
+        E[k] = tt__max(tt__mat(c, a, 0), tt__mat(c, b, 0));
+        S[k] = sqrt(tt__mat(c, a, 1) * tt__mat(c, b, 1));
+        K[k] = sqrt(tt__mat(c, a, 2) * tt__mat(c, b, 2));
     }
     return true;
 }
