@@ -48,30 +48,29 @@ static void slow_to(tt_world *w, uint32_t i, double lim)
     tt__add_velocity(w, i, v.x * f, v.y * f);
 }
 
-/* Unit k's particles. */
-static inline void unit(const tt__collide *c, uint32_t k, uint32_t *a, uint32_t *b)
-{
-    if (c->scr.batched) *a = c->scr.bat.a[k], *b = c->scr.bat.b[k];
-    else *a = c->scr.pairs[k].a, *b = c->scr.pairs[k].b;
-}
-
-/* The bounds by the touched pairs, then each particle slowed to its own:
- * particle by particle in slot order (each reads and writes only its own
- * velocity, so the order changes nothing), where visiting each from its
- * pairs went to every particle about seven times, at random. */
+/* The bounds by the touched pairs, then each particle slowed to its own,
+ * once (each reads and writes only its own velocity, so the order changes
+ * nothing). Where the touched pairs are many for the particles, particle
+ * by particle in slot order: visiting each from its pairs went to every
+ * particle about seven times, at random. Where they are few (a large world
+ * with a few contacts awake), from the pairs, each particle marked done:
+ * a walk over every particle would make such a world pay for all of them. */
 void tt__contacts_cap(tt_world *w, tt__collide *c)
 {
     const uint32_t m = c->scr.ntouch, *touch = c->scr.touch, n = w->ppool.count;
     if (m == 0 || c->scr.pcap < n) return;
-    double *top = c->scr.px0; /* each particle's bound, speed²: none (∞) where it touched nothing */
+    const bool dense = 2 * (uint64_t)m >= n;
+    double *top = c->scr.px0; /* each touched particle's bound, speed² (dense: ∞ where it touched nothing) */
     uint32_t a, b;
-    for (uint32_t i = 0; i < n; i++) top[i] = INFINITY;
+    double lam;
+    if (dense)
+        for (uint32_t i = 0; i < n; i++) top[i] = INFINITY;
     for (uint32_t t = 0; t < m; t++) {
-        unit(c, touch[t], &a, &b);
+        (void)tt__anc_unit(c, touch[t], &a, &b, &lam);
         top[a] = top[b] = 0.0;
     }
     for (uint32_t t = 0; t < m; t++) {
-        unit(c, touch[t], &a, &b);
+        (void)tt__anc_unit(c, touch[t], &a, &b, &lam);
         const double ea = tt__mat(c, a, 0), eb = tt__mat(c, b, 0);
         const double sa = speed2(c, a), sb = speed2(c, b);
         const double s = ea > 0.0 || eb > 0.0 ? INFINITY : sa > sb ? sa : sb;
@@ -80,5 +79,15 @@ void tt__contacts_cap(tt_world *w, tt__collide *c)
     }
     for (uint32_t k = 0; k < c->scr.nsc; k++)
         if (c->scr.sc[k].lambda > 0.0 || c->scr.sc[k].ccd) top[c->scr.sc[k].a] = INFINITY;
-    for (uint32_t i = 0; i < n; i++) slow_to(w, i, top[i]);
+    if (dense) {
+        for (uint32_t i = 0; i < n; i++) slow_to(w, i, top[i]);
+        return;
+    }
+    for (uint32_t t = 0; t < m; t++) {
+        (void)tt__anc_unit(c, touch[t], &a, &b, &lam);
+        slow_to(w, a, top[a]);
+        top[a] = INFINITY; /* done */
+        slow_to(w, b, top[b]);
+        top[b] = INFINITY;
+    }
 }
