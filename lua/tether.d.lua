@@ -49,6 +49,8 @@ local tether = {}
 ---@field dt_hint? number the step you expect to use, s, in [1e-9, 10]; default 1/60
 ---@field capacity? integer particles to reserve up front, 0..16777216; default 0
 ---@field substeps? integer substeps per step, 1..1000; default 1
+---@field max_travel? number substeps by speed: a step runs more substeps (up to max_substeps) where a particle would move more than max_travel radii in one, in [0, 1e12]; default 0 = off
+---@field max_substeps? integer the most substeps max_travel may ask for, 1..1000; default 8
 ---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6
 ---@field solver? tether.solver_name default "gauss_seidel"
@@ -286,6 +288,7 @@ function tether.quit() end
 ---@field force_evaluations integer force evaluations in the last step
 ---@field diverged integer particles stopped in the last step because |x| or |v| ran away
 ---@field iterations integer relaxation sweeps in the last step
+---@field substeps integer substeps the last step ran (more than the setting where max_travel asked); 0 before the first step
 ---@field max_error number largest constraint error left after the last step, m
 ---@field sleeping integer particles asleep now (0 while sleeping is off)
 ---@field stages tether.stage_times
@@ -526,6 +529,15 @@ function world:substeps() end
 
 ---@param n integer substeps per step, 1..1000
 function world:set_substeps(n) end
+
+---Substeps by speed: max_travel in radii per substep (0: off) and the most substeps it may ask for.
+---@return number max_travel
+---@return integer max_substeps
+function world:travel() end
+
+---@param max_travel number radii a particle may move in one substep, in [0, 1e12]; 0 switches it off
+---@param max_substeps? integer the most substeps it may ask for, 1..1000; default: the world's (8 when never set)
+function world:set_travel(max_travel, max_substeps) end
 
 ---@return integer most relaxation sweeps per substep
 function world:iterations() end

@@ -29,6 +29,11 @@ typedef struct tt_world_def {
     uint32_t capacity;        ///< particles to reserve up front; default 0 (grows on demand)
     uint32_t max_particles;   ///< hard limit on live + removed-slot particles, ≤ 2^24 (the handle budget); default 2^24 = 16 777 216
     uint32_t substeps;        ///< each step runs this many substeps of dt/substeps; default 1; 1…1000
+    double max_travel;        ///< 0 (default): every step runs `substeps`. Else a step runs more substeps, up to
+                              ///< max_substeps, where a particle would move more than max_travel times its radius
+                              ///< in one (its speed as the step begins, plus gravity's over the step): a scene pays
+                              ///< for substeps only while something is fast (a pour landing, a shot). 0…TT_MAX_VALUE
+    uint32_t max_substeps;    ///< the most substeps max_travel may ask for; default 8; 1…1000 (below `substeps`: `substeps`)
     uint32_t iterations;      ///< most relaxation sweeps per substep; default 10; 1…10 000
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
     tt_solver_order order;    ///< default TT_GAUSS_SEIDEL
@@ -70,6 +75,7 @@ typedef struct tt_stats {
     uint32_t force_evaluations;          ///< force evaluations in the last step (1 Euler…4 RK4; 0 when nothing but gravity)
     uint32_t diverged;                   ///< particles stopped in the last step because |x| or |v| passed TT_DIVERGED
     uint32_t iterations;                 ///< relaxation sweeps run in the last step (all substeps)
+    uint32_t substeps;                   ///< substeps the last step ran (more than the setting where max_travel asked); 0 before the first
     double max_error;                    ///< largest constraint/contact error left after the last sweep, m (0 if none)
     uint32_t sleeping;                   ///< particles asleep now (0 while sleeping is off)
 } tt_stats;
@@ -138,6 +144,12 @@ TT_API double tt_world_get_fixed_point(const tt_world *w);
 /// Substeps per step (1…1000): at equal cost, more substeps beat more iterations.
 TT_API tt_result tt_world_set_substeps(tt_world *w, uint32_t substeps);
 TT_API uint32_t tt_world_get_substeps(const tt_world *w);
+/// Substeps by speed (tt_world_def.max_travel): max_travel in radii per substep
+/// (finite, ≥ 0; 0 switches it off), max_substeps 1…1000. Not in a world that
+/// runs backwards (tt_world_reverse refuses it: the count follows the speed).
+TT_API tt_result tt_world_set_travel(tt_world *w, double max_travel, uint32_t max_substeps);
+/// max_travel (0: off); max_substeps (may be NULL) gets the cap.
+TT_API double tt_world_get_travel(const tt_world *w, uint32_t *max_substeps);
 /// Most relaxation sweeps per substep (1…10 000).
 TT_API tt_result tt_world_set_iterations(tt_world *w, uint32_t iterations);
 TT_API uint32_t tt_world_get_iterations(const tt_world *w);

@@ -136,7 +136,7 @@ tt__pair_plan tt__pairs_skip(tt_world *w, tt__collide *c, uint32_t n)
     }
     if (c->clear_ok && w->epoch == c->clear_epoch) {
         if (c->step_clear && c->step_at == w->stats.steps) { /* tt__pairs_plan_step: the step is clear */
-            if (w->scr.substep + 1 == w->substeps) c->clear_used = c->step_used;
+            if (w->scr.substep + 1 == w->scr.nsub) c->clear_used = c->step_used;
             return TT__PAIRS_NONE;
         }
         c->clear_used += spread(w, n);
@@ -178,7 +178,7 @@ void tt__pairs_plan_step(tt_world *w, tt__collide *c, uint32_t n)
         return;
     const span s = measure(w, n);
     if (s.nan || n == 0) return;
-    const uint32_t steps = w->substeps;
+    const uint32_t steps = w->scr.nsub;
     const double gx = w->gravity.x * h * h, gy = w->gravity.y * h * h; /* as the integrator rounds it */
     /* |d| ≤ a + 1 all step, |x| ≤ xm, so x − x_old, + G and x + d round by at most err a substep
      * (u·(|d| + |d + G| + |x + d|), with room); err·steps < 1 keeps the 1 m assumed */

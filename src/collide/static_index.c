@@ -263,14 +263,14 @@ void tt__shapes_place_moved(const tt_world *w, tt__collide *c)
     if (!c->any_moved) return;
     const uint32_t n = c->nprim, nv = c->nvert;
     /* the end of substep k of m lies (k + 1)/m along the path; the last ends exactly where the script said */
-    const double f = (double)(w->scr.substep + 1) / (double)w->substeps;
+    const double f = (double)(w->scr.substep + 1) / (double)w->scr.nsub;
     for (uint32_t i = 0; i < c->spool.count; i++) {
         tt__shape *s = &c->shapes[i];
         if (!s->alive || !s->moved) continue;
         const tt_vec2 to = s->def.position;
         const double ang0 = w->scr.substep == 0 ? s->from_angle : s->ang1;
         s->at0 = w->scr.substep == 0 ? s->from : s->at1;
-        if (w->scr.substep + 1 >= w->substeps) {
+        if (w->scr.substep + 1 >= w->scr.nsub) {
             s->at1 = to;
             s->ang1 = s->def.angle;
         } else {

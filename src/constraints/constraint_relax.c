@@ -140,7 +140,7 @@ static void plan(const tt__cgroup *g, tt__mover *m, double dt)
 
 void tt__targets_substep(tt_world *w, tt__cgroup *g, double h)
 {
-    const uint32_t s = w->scr.substep, n = w->substeps;
+    const uint32_t s = w->scr.substep, n = w->scr.nsub;
     const bool last = s + 1 == n;
     const double f = (double)(s + 1) / n;
     for (uint32_t k = g->nmoving; k-- > 0;) { /* backwards: an arrived one is swapped out */

@@ -210,7 +210,8 @@ typedef struct tt__world_scratch {
     uint64_t packs;       /* rows packed or unpacked since the world was made: what tests count */
     uint32_t *ends, ends_cap; /* integrate.c: the springs' ends, when few particles feel a force */
     const char *step_oom; /* what memory was refused inside the step (tt__step_oom), NULL: none */
-    uint32_t substep;     /* the substep tt_world_step is in, 0…substeps − 1: groups' begin hooks read it */
+    uint32_t substep;     /* the substep tt_world_step is in, 0…nsub − 1: groups' begin hooks read it */
+    uint32_t nsub;        /* the substeps of the step being run: w->substeps, or more by travel.c */
     double step_h;        /* the substep length of the step being reserved and run (reserve hooks read it) */
     tt__undo undo;        /* the world as the step began (step_undo.c) */
 } tt__world_scratch;
@@ -250,6 +251,8 @@ struct tt_world {
 
     /* relaxation solver (solver.c) */
     uint32_t substeps, iterations;
+    double max_travel;    /* travel.c: radii a particle may move in a substep; 0: off */
+    uint32_t max_substeps;
     double tolerance;
     tt_solver_order order;
     uint32_t blocks;      /* debug: each group's sweep in this many blocks (0, 1: one); same results */
@@ -498,6 +501,8 @@ static inline void tt__interp_moved(tt_world *w, uint32_t i)
  * (q a power of two, so v/q and m·q are exact). */
 static inline double tt__fixed_snap(double q, double v) { return round(v / q) * q; }
 bool tt__fixed_quantum_ok(double q);
+/* travel.c: the substeps a step of dt runs (tt_world_def.max_travel). */
+uint32_t tt__travel_substeps(const tt_world *w, double dt);
 double tt__fixed_range(const tt_world *w);                /* 2^51·q: the largest |coordinate| */
 bool tt__fixed_in_range(const tt_world *w, tt_vec2 p);   /* true when off */
 tt_vec2 tt__fixed_snap_vec(const tt_world *w, tt_vec2 p); /* p when off */

@@ -16,6 +16,7 @@ static const char *irreversible(const tt_world *w)
 {
     if (w->integrator != TT_VERLET) return "the integrator (only 'verlet' keeps the previous position; this world uses another)";
     if (w->damping != 0.0) return "velocity damping (damping > 0)";
+    if (w->max_travel != 0.0) return "substeps by speed (max_travel > 0: a step backwards would start from other speeds)";
     if (tt_world_constraint_count(w) > 0) return "constraints (position corrections are not symmetric in time)";
     tt_collision_settings cs;
     if (tt_world_shape_count(w) > 0 || (tt_world_get_collision(w, &cs) == TT_OK && cs.particles))

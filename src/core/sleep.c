@@ -305,7 +305,7 @@ static void after_step(tt_world *w, void *self)
     wake_touched(w, s);
     if (!anything_holds(w)) return;
     bool ready = false;
-    tt__sleep_rest_held(w, s, w->dt_prev * w->substeps, &ready);
+    tt__sleep_rest_held(w, s, w->dt_prev * w->scr.nsub, &ready);
     if (ready) settle(w, s);
 }
 

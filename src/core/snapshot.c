@@ -25,6 +25,7 @@ enum { TT__SNAP_VERSION = 1, TT__SNAP_HEADER = 32 };
 static const char magic[4] = {'T', 'T', 'S', 'S'};
 #define ID_WORLD TT__ID('W', 'R', 'L', 'D')
 #define ID_FIXED TT__ID('F', 'X', 'P', 'T') /* inside WRLD, after the attractors: the fixed-point quantum */
+#define ID_TRAVEL TT__ID('T', 'R', 'V', 'L') /* inside WRLD, last: substeps by speed */
 
 /* ---- saving ---------------------------------------------------------------- */
 
@@ -146,6 +147,19 @@ static void save_fixed_point(const tt_world *w, tt__sink *s)
     tt__put_f64(s, w->fixed_point);
 }
 
+/* Written only where it says more than the settings do: substeps by speed
+ * on, or a last step that ran another count than the setting (changed since,
+ * or by speed before it was switched off). A world without it saves and
+ * hashes as before it existed. */
+static void save_travel(const tt_world *w, tt__sink *s)
+{
+    if (w->max_travel == 0.0 && (w->stats.substeps == 0 || w->stats.substeps == w->substeps)) return;
+    tt__put_u32(s, ID_TRAVEL);
+    tt__put_f64(s, w->max_travel);
+    tt__put_u32(s, w->max_substeps);
+    tt__put_u32(s, w->stats.substeps);
+}
+
 /* The body; false when a group cannot be saved (hashing skips it). */
 static bool save_body(const tt_world *w, tt__sink *s, const char **unsaveable)
 {
@@ -155,6 +169,7 @@ static bool save_body(const tt_world *w, tt__sink *s, const char **unsaveable)
     save_springs(w, s);
     save_attractors(w, s);
     save_fixed_point(w, s);
+    save_travel(w, s);
     tt__section_close(s, at);
     for (int g = 0; g < w->group_count; g++) {
         const tt__group_ops *ops = w->groups[g].ops;
@@ -353,21 +368,48 @@ static void load_attractor_slots(tt_world *w, tt__source *s, uint32_t tag)
     if (!s->failed && !w->attractors_used) tt__src_fail(s, "attractors saved but none in use");
 }
 
-/* What follows the springs: the attractors, then the fixed-point quantum, each only when saved. */
-static void load_extras(tt_world *w, tt__source *s, const tt__section *sec)
+static void load_fixed(tt_world *w, tt__source *s)
 {
-    if (s->failed || s->at >= sec->end) return; /* neither saved */
-    uint32_t tag = tt__get_u32(s);
-    if (tag != ID_FIXED) {
-        load_attractor_slots(w, s, tag);
-        if (s->failed || s->at >= sec->end) return;
-        tag = tt__get_u32(s);
-        if (tag != ID_FIXED) { tt__src_fail(s, "unknown field after the attractors"); return; }
-    }
     w->fixed_point = tt__get_num(s, 0x1p-60, 0x1p-1, "fixed-point quantum");
     if (!s->failed && !tt__fixed_quantum_ok(w->fixed_point)) tt__src_fail(s, "fixed-point quantum %g is not a power of two", w->fixed_point);
     if (!s->failed && !tt__fixed_loaded_ok(w))
         tt__src_fail(s, "a fixed-point world with a position off its lattice or range, or not integrated by 'verlet'");
+}
+
+static void load_travel(tt_world *w, tt__source *s)
+{
+    w->max_travel = tt__get_num(s, 0.0, TT_MAX_VALUE, "max_travel");
+    w->max_substeps = tt__get_u32(s);
+    w->stats.substeps = tt__get_u32(s);
+    if (s->failed) return;
+    if (w->max_substeps < 1 || w->max_substeps > TT_MAX_SUBSTEPS) tt__src_fail(s, "max_substeps %u", w->max_substeps);
+    else if (w->stats.substeps > TT_MAX_SUBSTEPS || (w->stats.substeps == 0) != (w->stats.steps == 0))
+        tt__src_fail(s, "the last step's substeps %u after %llu steps", w->stats.substeps, (unsigned long long)w->stats.steps);
+    else if (w->max_travel == 0.0 && (w->stats.substeps == 0 || w->stats.substeps == w->substeps))
+        tt__src_fail(s, "substeps by speed written out while off");
+}
+
+/* What follows the springs, each only when saved: the attractors, the
+ * fixed-point quantum, substeps by speed. */
+static void load_extras(tt_world *w, tt__source *s, const tt__section *sec)
+{
+    w->max_travel = 0.0; /* off, as tt_world_def_default, and the last step's count as the setting, unless saved */
+    w->max_substeps = 8;
+    w->stats.substeps = w->stats.steps ? w->substeps : 0;
+    if (s->failed || s->at >= sec->end) return; /* none saved */
+    uint32_t tag = tt__get_u32(s);
+    if (tag != ID_FIXED && tag != ID_TRAVEL) {
+        load_attractor_slots(w, s, tag);
+        if (s->failed || s->at >= sec->end) return;
+        tag = tt__get_u32(s);
+    }
+    if (tag == ID_FIXED) {
+        load_fixed(w, s);
+        if (s->failed || s->at >= sec->end) return;
+        tag = tt__get_u32(s);
+    }
+    if (tag != ID_TRAVEL) { tt__src_fail(s, "unknown field after the springs"); return; }
+    load_travel(w, s);
 }
 
 static void load_sections(tt_world *w, tt__source *s)

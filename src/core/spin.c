@@ -39,7 +39,7 @@ static bool reserve(tt_world *w, void *self) { return grow(self, w->pcap); }
 static void after_step(tt_world *w, void *self)
 {
     tt__spin *s = self;
-    const double dt = w->dt_prev * w->substeps;
+    const double dt = w->dt_prev * w->scr.nsub;
     const uint32_t n = w->ppool.count < s->cap ? w->ppool.count : s->cap;
     for (uint32_t i = 0; i < n; i++) {
         if (s->omega[i] == 0.0 || (w->flags[i] & (TT__PF_ALIVE | TT__PF_ASLEEP)) != TT__PF_ALIVE) continue;

@@ -53,6 +53,7 @@ tt_world_def tt_world_def_default(void)
     d.capacity = 0;
     d.max_particles = 1u << 24;
     d.substeps = 1;
+    d.max_substeps = 8;
     d.iterations = 10;
     d.tolerance = 1e-6;
     d.order = TT_GAUSS_SEIDEL;
@@ -80,6 +81,8 @@ tt_world *tt_world_create(const tt_world_def *def)
     if (check_dt(NULL, d.dt_hint, fn) != TT_OK) return NULL;
     if (d.max_particles == 0 || d.max_particles > TT_HANDLE_MAX_SLOTS) { tt__fail(NULL, TT_EINVAL, "%s: max_particles must be in [1, 2^24]", fn); return NULL; }
     if (d.substeps < 1 || d.substeps > TT_MAX_SUBSTEPS) { tt__fail(NULL, TT_EINVAL, "%s: substeps must be in [1, %d], got %u", fn, TT_MAX_SUBSTEPS, d.substeps); return NULL; }
+    if (!tt__in_range(d.max_travel, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: max_travel must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.max_travel); return NULL; }
+    if (d.max_substeps < 1 || d.max_substeps > TT_MAX_SUBSTEPS) { tt__fail(NULL, TT_EINVAL, "%s: max_substeps must be in [1, %d], got %u", fn, TT_MAX_SUBSTEPS, d.max_substeps); return NULL; }
     if (d.iterations < 1 || d.iterations > TT_MAX_ITERATIONS) { tt__fail(NULL, TT_EINVAL, "%s: iterations must be in [1, %d], got %u", fn, TT_MAX_ITERATIONS, d.iterations); return NULL; }
     if (!tt__in_range(d.tolerance, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: tolerance must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.tolerance); return NULL; }
     if (d.order != TT_GAUSS_SEIDEL && d.order != TT_JACOBI) { tt__fail(NULL, TT_EINVAL, "%s: unknown solver order %d", fn, (int)d.order); return NULL; }
@@ -104,6 +107,8 @@ tt_world *tt_world_create(const tt_world_def *def)
     w->dt_prev = d.dt_hint;
     w->max_particles = d.max_particles;
     w->substeps = d.substeps;
+    w->max_travel = d.max_travel;
+    w->max_substeps = d.max_substeps;
     w->iterations = d.iterations;
     w->tolerance = d.tolerance;
     w->order = d.order;
@@ -160,7 +165,8 @@ tt_result tt_world_step(tt_world *w, double dt)
     /* the world as the calls left it, before the step's own preparations touch it */
     if (w->journal) w->journal_hooks->before(w->journal, w);
     /* Everything the step's counts call for, before anything changes. */
-    const double h = w->scr.step_h = dt / w->substeps;
+    const uint32_t nsub = w->scr.nsub = tt__travel_substeps(w, dt);
+    const double h = w->scr.step_h = dt / nsub;
     if (!tt__integrate_reserve(w) || !tt__solver_reserve(w) || !tt__undo_reserve(w))
         return tt__fail(w, TT_ENOMEM, "tt_world_step: out of memory before the step; the world is as it was");
     w->scr.step_oom = NULL;
@@ -174,7 +180,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     w->stats.iterations = 0;
     w->stats.max_error = 0.0;
 
-    for (uint32_t s = 0; s < w->substeps; s++) {
+    for (uint32_t s = 0; s < nsub; s++) {
         w->scr.substep = s;
         tt__integrate(w, h); /* forces are evaluated inside, as often as the integrator needs */
         w->dt_prev = h;      /* from here on x − x_old spans h: velocity reads inside the solve are exact */
@@ -202,6 +208,7 @@ tt_result tt_world_step(tt_world *w, double dt)
     }
     w->stats.steps++;
     w->stats.time += dt;
+    w->stats.substeps = nsub;
     w->epoch++;
     w->stats.step_ms = tt__now_ms() - t0;
     if (w->journal) w->journal_hooks->after(w->journal, w, dt);
@@ -267,6 +274,24 @@ tt_result tt_world_set_substeps(tt_world *w, uint32_t substeps)
 }
 
 uint32_t tt_world_get_substeps(const tt_world *w) { return w ? w->substeps : 1; }
+
+tt_result tt_world_set_travel(tt_world *w, double max_travel, uint32_t max_substeps)
+{
+    TT_CHECK_WORLD(w, "tt_world_set_travel");
+    if (!tt__in_range(max_travel, 0.0, TT_MAX_VALUE))
+        return tt__fail(w, TT_EINVAL, "tt_world_set_travel: max_travel must be in [0, %g], got %g", TT_MAX_VALUE, max_travel);
+    if (max_substeps < 1 || max_substeps > TT_MAX_SUBSTEPS)
+        return tt__fail(w, TT_EINVAL, "tt_world_set_travel: max_substeps must be in [1, %d], got %u", TT_MAX_SUBSTEPS, max_substeps);
+    w->max_travel = max_travel;
+    w->max_substeps = max_substeps;
+    return TT_OK;
+}
+
+double tt_world_get_travel(const tt_world *w, uint32_t *max_substeps)
+{
+    if (max_substeps) *max_substeps = w ? w->max_substeps : 8;
+    return w ? w->max_travel : 0.0;
+}
 
 tt_result tt_world_set_iterations(tt_world *w, uint32_t iterations)
 {

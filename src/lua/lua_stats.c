@@ -31,7 +31,7 @@ static void setint(lua_State *L, const char *k, lua_Integer v)
 }
 
 /* w:stats() → {steps, time, particles, springs, step_ms, force_evaluations,
- *              diverged, iterations, max_error, stages = {...}} */
+ *              diverged, iterations, substeps, max_error, sleeping, stages = {...}} */
 static int w_stats(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
@@ -39,7 +39,7 @@ static int w_stats(lua_State *L)
     tt_stats s;
     memset(&s, 0, sizeof s);
     tl_check_result(L, w, tt_world_get_stats(w, &s));
-    lua_createtable(L, 0, 10);
+    lua_createtable(L, 0, 12);
     setint(L, "steps", (lua_Integer)s.steps);
     setnum(L, "time", s.time);
     setint(L, "particles", (lua_Integer)s.particles);
@@ -48,6 +48,7 @@ static int w_stats(lua_State *L)
     setint(L, "force_evaluations", (lua_Integer)s.force_evaluations);
     setint(L, "diverged", (lua_Integer)s.diverged);
     setint(L, "iterations", (lua_Integer)s.iterations);
+    setint(L, "substeps", (lua_Integer)s.substeps);
     setnum(L, "max_error", s.max_error);
     setint(L, "sleeping", (lua_Integer)s.sleeping);
     lua_createtable(L, 0, TT_STAGE_COUNT);

@@ -1,5 +1,5 @@
 /* tether — Lua world methods that step the world and read or change how it
- * steps: w:step, gravity, wind, damping, integrator, substeps, iterations,
+ * steps: w:step, gravity, wind, damping, integrator, substeps, travel, iterations,
  * tolerance, solver and point attractors (each a getter and a set_ setter). */
 #include "lua_common.h"
 
@@ -89,6 +89,27 @@ static int w_set_substeps(lua_State *L)
 {
     tt_world *w = tl_check_world(L, 1);
     tl_check_result(L, w, tt_world_set_substeps(w, (uint32_t)tl_checkinteger(L, 2, 1, TT_MAX_SUBSTEPS)));
+    return 0;
+}
+
+/* w:travel() → max_travel, max_substeps */
+static int w_travel(lua_State *L)
+{
+    uint32_t most = 0;
+    lua_pushnumber(L, tt_world_get_travel(tl_check_world(L, 1), &most));
+    lua_pushinteger(L, most);
+    return 2;
+}
+
+/* w:set_travel(max_travel [, max_substeps = the world's]) */
+static int w_set_travel(lua_State *L)
+{
+    tt_world *w = tl_check_world(L, 1);
+    uint32_t most = 0;
+    tt_world_get_travel(w, &most);
+    const double travel = tl_checknumber(L, 2, &TL_R_NONNEG);
+    most = (uint32_t)tl_optinteger(L, 3, 1, TT_MAX_SUBSTEPS, most);
+    tl_check_result(L, w, tt_world_set_travel(w, travel, most));
     return 0;
 }
 
@@ -196,6 +217,8 @@ static const luaL_Reg stepping_methods[] = {
     { "set_integrator", w_set_integrator },
     { "substeps", w_substeps },
     { "set_substeps", w_set_substeps },
+    { "travel", w_travel },
+    { "set_travel", w_set_travel },
     { "iterations", w_iterations },
     { "set_iterations", w_set_iterations },
     { "tolerance", w_tolerance },

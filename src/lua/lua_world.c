@@ -107,6 +107,8 @@ static const tl_opt world_opts[] = {
     TL_OPT_NUM(tt_world_def, "dt_hint", dt_hint, &TL_R_DT),
     TL_OPT_UINT(tt_world_def, "capacity", capacity, 0, TL_MAX_CAPACITY),
     TL_OPT_UINT(tt_world_def, "substeps", substeps, 1, TT_MAX_SUBSTEPS),
+    TL_OPT_NUM(tt_world_def, "max_travel", max_travel, &TL_R_NONNEG),
+    TL_OPT_UINT(tt_world_def, "max_substeps", max_substeps, 1, TT_MAX_SUBSTEPS),
     TL_OPT_UINT(tt_world_def, "iterations", iterations, 1, TT_MAX_ITERATIONS),
     TL_OPT_NUM(tt_world_def, "tolerance", tolerance, &TL_R_NONNEG),
     TL_OPT_CHOICE(tt_world_def, "solver", order, "solver", tl_solver_names),

@@ -191,7 +191,9 @@ static bool too_costly(fz *f, tt_world *w)
     tt_world_get_collision_stats(w, &cs);
     double n = tt_world_particle_count(w) + 2.0 * tt_world_constraint_count(w) + tt_world_spring_count(w) + 16.0 +
                4.0 * (cs.pair_contacts + cs.shape_contacts);
-    double cost = n * tt_world_get_substeps(w) * tt_world_get_iterations(w);
+    uint32_t most = 0, sub_n = tt_world_get_substeps(w);
+    if (tt_world_get_travel(w, &most) != 0.0 && most > sub_n) sub_n = most; /* what substeps by speed may ask */
+    double cost = n * sub_n * tt_world_get_iterations(w);
     if (cost < 4e5) return false;
     uint32_t v = 1 + fz_below(f, 12);
     bool sub = tt_world_get_substeps(w) > 8 && fz_chance(f, 50);
@@ -330,6 +332,26 @@ static void c_world_set_sleep(fz *f)
     fz_res(f, tt_world_set_sleep(w, on, speed, time));
 }
 
+static void c_world_set_travel(fz *f)
+{
+    tt_world *w = fz_world_pick(f);
+    double travel = fz_chance(f, 30) ? 0.0 : fz_chance(f, 10) ? fz_nasty(f) : fz_real(f, 0, 2);
+    uint32_t most = fz_chance(f, 5) ? 0 : fz_count(f, 1, 8);
+    fz_log(f, "tt_world_set_travel(%s, %s, %u)", fz_wn(f, w), fz_d(travel), most);
+    FZ_HIT(f, tt_world_set_travel);
+    fz_res(f, tt_world_set_travel(w, travel, most));
+}
+
+static void c_world_get_travel(fz *f)
+{
+    tt_world *w = fz_world_any(f); /* a getter: no failure channel (0 for NULL) */
+    uint32_t most = 0;
+    fz_log(f, "tt_world_get_travel(%s)", fz_wn(f, w));
+    FZ_HIT(f, tt_world_get_travel);
+    double travel = tt_world_get_travel(w, &most);
+    if (!(travel >= 0.0 && travel <= TT_MAX_VALUE) || most < 1 || most > TT_MAX_SUBSTEPS) fz_fail(f, "bad travel setting");
+}
+
 static void c_world_get_sleep(fz *f)
 {
     tt_world *w = fz_world_any(f); /* a getter: no failure channel (false for NULL) */
@@ -420,6 +442,8 @@ const fz_entry fz_world_entries[] = {
     { "tt_world_get_interpolation", c_tt_world_get_interpolation, 1 },
     { "tt_world_set_substeps", c_tt_world_set_substeps, 4 },
     { "tt_world_get_substeps", c_tt_world_get_substeps, 1 },
+    { "tt_world_set_travel", c_world_set_travel, 2 },
+    { "tt_world_get_travel", c_world_get_travel, 1 },
     { "tt_world_set_iterations", c_tt_world_set_iterations, 4 },
     { "tt_world_get_iterations", c_tt_world_get_iterations, 1 },
     { "tt_world_set_tolerance", c_world_set_tolerance, 2 },

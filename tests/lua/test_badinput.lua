@@ -124,6 +124,7 @@ K.nsteps = { good = function() return 2 end, optional = true,
 K.slot = { good = function() return 2 end, bad = integer_bad("[1, 8]", { 0, -1, 9, 1e300 }) }
 K.optnonneg = { good = function() return 0.5 end, optional = true, bad = K.nonneg.bad }
 K.substeps = { good = function() return 2 end, bad = integer_bad("[1, 1000]", { 0, -1, 1001, 1e300 }) }
+K.optsubsteps = { good = function() return 2 end, optional = true, bad = K.substeps.bad }
 K.iterations = { good = function() return 5 end, bad = integer_bad("[1, 10000]", { 0, -1, 10001, 1e300 }) }
 K.solver = { good = function() return "jacobi" end, bad = {
   { NIL, "string expected, got nil" }, { "x", "invalid solver 'x', expected one of: 'gauss_seidel', 'jacobi'" },
@@ -240,6 +241,8 @@ local METHODS = {
   { "set_integrator", "integrator" },
   { "substeps" },
   { "set_substeps", "substeps" },
+  { "travel" },
+  { "set_travel", "nonneg", "optsubsteps" },
   { "iterations" },
   { "set_iterations", "iterations" },
   { "tolerance" },

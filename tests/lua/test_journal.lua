@@ -57,6 +57,7 @@ local function session(w, seed, on_step)
     function() w:set_damping(num(0, 0.5)) end,
     function() w:set_integrator(pick { "verlet", "symplectic_euler", "leapfrog", "verlet" }) end,
     function() w:set_substeps(1 + math.floor(rand() * 3)) end,
+    function() w:set_travel(rand() < 0.5 and 0 or num(0.2, 1), 1 + math.floor(rand() * 4)) end,
     function() w:set_iterations(2 + math.floor(rand() * 8)) end,
     function() w:set_solver(pick { "gauss_seidel", "jacobi" }) end,
     function() w:set_sleep(rand() < 0.5) end,

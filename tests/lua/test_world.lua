@@ -81,6 +81,25 @@ T.test("particle read back", function()
   T.eq(w:count(), 3, "count")
 end)
 
+T.test("substeps by speed", function()
+  local w = tether.world { gravity = { 0, 0 }, max_travel = 0.5, max_substeps = 6, sleep = false }
+  local t, most = w:travel()
+  T.eq(t, 0.5, "max_travel"); T.eq(most, 6, "max_substeps")
+  T.eq(w:stats().substeps, 0, "no step yet")
+  w:particle(0, 0, { radius = 0.5, vy = 59 }) -- 0.98 m a step: 1.97 radii, 4 substeps of 0.5
+  w:step(1 / 60)
+  T.eq(w:stats().substeps, 4, "the count the speed asks")
+  w:set_travel(0.5, 3); w:step(1 / 60)
+  T.eq(w:stats().substeps, 3, "capped")
+  w:set_travel(0); w:step(1 / 60)
+  t, most = w:travel()
+  T.eq(t, 0, "off"); T.eq(most, 3, "the cap kept when left out")
+  T.eq(w:stats().substeps, 1, "off: the setting")
+  T.eq(tether.world():travel(), 0, "off by default")
+  T.checkerror("max_travel", tether.world, { max_travel = -1 })
+  T.checkerror("max_substeps", tether.world, { max_substeps = 0 })
+end)
+
 T.test("set/get round trips", function()
   local w = tether.world { integrator = "symplectic_euler" }
   local p = w:particle(0, 0)
