@@ -33,7 +33,7 @@ typedef struct tt_world_def {
                               ///< max_substeps, where a particle would move more than max_travel times its radius
                               ///< in one (its speed as the step begins, plus gravity's over the step): a scene pays
                               ///< for substeps only while something is fast (a pour landing, a shot). 0…TT_MAX_VALUE
-    uint32_t max_substeps;    ///< the most substeps max_travel may ask for; default 8; 1…1000 (below `substeps`: `substeps`)
+    uint32_t max_substeps;    ///< the most substeps max_travel may ask for; default 8; 1…1000 (0: 8; below `substeps`: `substeps`)
     uint32_t iterations;      ///< most relaxation sweeps per substep; default 10; 1…10 000
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
     tt_solver_order order;    ///< default TT_GAUSS_SEIDEL

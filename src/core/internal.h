@@ -501,7 +501,9 @@ static inline void tt__interp_moved(tt_world *w, uint32_t i)
  * (q a power of two, so v/q and m·q are exact). */
 static inline double tt__fixed_snap(double q, double v) { return round(v / q) * q; }
 bool tt__fixed_quantum_ok(double q);
-/* travel.c: the substeps a step of dt runs (tt_world_def.max_travel). */
+/* travel.c: the substeps a step of dt runs (tt_world_def.max_travel); the
+ * cap a world has unless told (tt_world_def.max_substeps 0 or unsaved). */
+#define TT__MAX_SUBSTEPS_DEFAULT 8u
 uint32_t tt__travel_substeps(const tt_world *w, double dt);
 double tt__fixed_range(const tt_world *w);                /* 2^51·q: the largest |coordinate| */
 bool tt__fixed_in_range(const tt_world *w, tt_vec2 p);   /* true when off */

@@ -147,13 +147,20 @@ static void save_fixed_point(const tt_world *w, tt__sink *s)
     tt__put_f64(s, w->fixed_point);
 }
 
-/* Written only where it says more than the settings do: substeps by speed
- * on, or a last step that ran another count than the setting (changed since,
- * or by speed before it was switched off). A world without it saves and
- * hashes as before it existed. */
+/* Whether substeps by speed says more than the defaults and the setting do:
+ * on, a cap not the default's, or a last step that ran another count than
+ * the setting (changed since, or by speed before it was switched off). */
+static bool travel_told(const tt_world *w)
+{
+    return w->max_travel != 0.0 || w->max_substeps != TT__MAX_SUBSTEPS_DEFAULT ||
+           (w->stats.substeps != 0 && w->stats.substeps != w->substeps);
+}
+
+/* Written only where travel_told: a world without it saves and hashes as
+ * before it existed. */
 static void save_travel(const tt_world *w, tt__sink *s)
 {
-    if (w->max_travel == 0.0 && (w->stats.substeps == 0 || w->stats.substeps == w->substeps)) return;
+    if (!travel_told(w)) return;
     tt__put_u32(s, ID_TRAVEL);
     tt__put_f64(s, w->max_travel);
     tt__put_u32(s, w->max_substeps);
@@ -385,8 +392,8 @@ static void load_travel(tt_world *w, tt__source *s)
     if (w->max_substeps < 1 || w->max_substeps > TT_MAX_SUBSTEPS) tt__src_fail(s, "max_substeps %u", w->max_substeps);
     else if (w->stats.substeps > TT_MAX_SUBSTEPS || (w->stats.substeps == 0) != (w->stats.steps == 0))
         tt__src_fail(s, "the last step's substeps %u after %llu steps", w->stats.substeps, (unsigned long long)w->stats.steps);
-    else if (w->max_travel == 0.0 && (w->stats.substeps == 0 || w->stats.substeps == w->substeps))
-        tt__src_fail(s, "substeps by speed written out while off");
+    else if (!travel_told(w))
+        tt__src_fail(s, "substeps by speed written out while it says nothing");
 }
 
 /* What follows the springs, each only when saved: the attractors, the
@@ -394,7 +401,7 @@ static void load_travel(tt_world *w, tt__source *s)
 static void load_extras(tt_world *w, tt__source *s, const tt__section *sec)
 {
     w->max_travel = 0.0; /* off, as tt_world_def_default, and the last step's count as the setting, unless saved */
-    w->max_substeps = 8;
+    w->max_substeps = TT__MAX_SUBSTEPS_DEFAULT;
     w->stats.substeps = w->stats.steps ? w->substeps : 0;
     if (s->failed || s->at >= sec->end) return; /* none saved */
     uint32_t tag = tt__get_u32(s);

@@ -53,7 +53,7 @@ tt_world_def tt_world_def_default(void)
     d.capacity = 0;
     d.max_particles = 1u << 24;
     d.substeps = 1;
-    d.max_substeps = 8;
+    d.max_substeps = TT__MAX_SUBSTEPS_DEFAULT;
     d.iterations = 10;
     d.tolerance = 1e-6;
     d.order = TT_GAUSS_SEIDEL;
@@ -82,7 +82,8 @@ tt_world *tt_world_create(const tt_world_def *def)
     if (d.max_particles == 0 || d.max_particles > TT_HANDLE_MAX_SLOTS) { tt__fail(NULL, TT_EINVAL, "%s: max_particles must be in [1, 2^24]", fn); return NULL; }
     if (d.substeps < 1 || d.substeps > TT_MAX_SUBSTEPS) { tt__fail(NULL, TT_EINVAL, "%s: substeps must be in [1, %d], got %u", fn, TT_MAX_SUBSTEPS, d.substeps); return NULL; }
     if (!tt__in_range(d.max_travel, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: max_travel must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.max_travel); return NULL; }
-    if (d.max_substeps < 1 || d.max_substeps > TT_MAX_SUBSTEPS) { tt__fail(NULL, TT_EINVAL, "%s: max_substeps must be in [1, %d], got %u", fn, TT_MAX_SUBSTEPS, d.max_substeps); return NULL; }
+    if (d.max_substeps == 0) d.max_substeps = TT__MAX_SUBSTEPS_DEFAULT; /* a def zeroed by hand, from before the field */
+    if (d.max_substeps > TT_MAX_SUBSTEPS) { tt__fail(NULL, TT_EINVAL, "%s: max_substeps must be in [1, %d] (0: %u), got %u", fn, TT_MAX_SUBSTEPS, TT__MAX_SUBSTEPS_DEFAULT, d.max_substeps); return NULL; }
     if (d.iterations < 1 || d.iterations > TT_MAX_ITERATIONS) { tt__fail(NULL, TT_EINVAL, "%s: iterations must be in [1, %d], got %u", fn, TT_MAX_ITERATIONS, d.iterations); return NULL; }
     if (!tt__in_range(d.tolerance, 0.0, TT_MAX_VALUE)) { tt__fail(NULL, TT_EINVAL, "%s: tolerance must be in [0, %g], got %g", fn, TT_MAX_VALUE, d.tolerance); return NULL; }
     if (d.order != TT_GAUSS_SEIDEL && d.order != TT_JACOBI) { tt__fail(NULL, TT_EINVAL, "%s: unknown solver order %d", fn, (int)d.order); return NULL; }
@@ -289,7 +290,7 @@ tt_result tt_world_set_travel(tt_world *w, double max_travel, uint32_t max_subst
 
 double tt_world_get_travel(const tt_world *w, uint32_t *max_substeps)
 {
-    if (max_substeps) *max_substeps = w ? w->max_substeps : 8;
+    if (max_substeps) *max_substeps = w ? w->max_substeps : TT__MAX_SUBSTEPS_DEFAULT;
     return w ? w->max_travel : 0.0;
 }
 

@@ -160,6 +160,8 @@ TEST(travel_off_leaves_no_trace_in_the_state)
     ball(b, (tt_vec2){0, 0}, (tt_vec2){0, 59}, 0.5);
     ENSURE_OK(tt_world_set_travel(b, 0.5, 5));
     ENSURE(tt_world_hash(a) != tt_world_hash(b)); /* on, it is state */
+    ENSURE_OK(tt_world_set_travel(b, 0.0, 5)); /* off, but a cap of its own: a setting, kept */
+    ENSURE(tt_world_hash(a) != tt_world_hash(b));
     ENSURE_OK(tt_world_set_travel(b, 0.0, 8));
     ENSURE(tt_world_hash(a) == tt_world_hash(b));
     tt_world_step(a, 1.0 / 60);
@@ -211,6 +213,7 @@ TEST(travel_is_saved_and_loaded_with_the_last_count)
     ENSURE(last_substeps(w) == 6);
     same_after_reload(w);
     ENSURE(last_substeps(w) == 1);
+    same_after_reload(w); /* off, the cap 6 kept */
     tt_world_destroy(w);
 }
 
@@ -233,8 +236,12 @@ TEST(travel_refuses_bad_values_and_leaves_the_world_as_it_was)
     wd.max_travel = NAN;
     ENSURE(!tt_world_create(&wd));
     wd.max_travel = 0.5;
-    wd.max_substeps = 0;
+    wd.max_substeps = TT_MAX_SUBSTEPS + 1;
     ENSURE(!tt_world_create(&wd));
+    wd.max_substeps = 0; /* a def zeroed by hand: the default cap */
+    tt_world *z = tt_world_create(&wd);
+    ENSURE(z && tt_world_get_travel(z, &most) == 0.5 && most == 8);
+    tt_world_destroy(z);
     /* a step backwards would start from other speeds, so another count */
     ENSURE(tt_world_reverse(w) == TT_ESTATE);
     tt_world_destroy(w);
