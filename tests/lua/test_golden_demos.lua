@@ -19,7 +19,8 @@
 -- went into the batches' vector lanes (their order, not the pairs'), and
 -- again when its rub took the pair's distance from the push and divided
 -- by reciprocals (contact_batch.h tt__anchored_rub: the same physics,
--- other roundings).
+-- other roundings). landing came with its pin (substeps by speed beside one
+-- fixed substep, src/core/travel.c).
 package.path = "tests/lua/?.lua;" .. package.path
 local T = require "harness"
 local tether = require "tether"
@@ -30,6 +31,7 @@ local golden = {
   fountain = { "6f5670ad6bc772f6", "445dc6e166079fa7" },
   galton = { "f87c0e38649ae15d", "715dbdd6cb3e2712" },
   hourglass = { "654a2585bdea45e0", "42be60c7a612e2a4" },
+  landing = { "569b6df26b7d9199", "671e4f0753023bb5,ed938c8f4b97d4c4" },
   integrators = { "72823523ba511575", "f2247ad90c3f894c,ddf0c7a2ba95667c,373b4cb2b329b35a,db9258f3acc7bed6,e35fe3ff1fc505ea" },
   ragdoll = { "1f6eff9f9b774ef4", "bc8e871ea995947e" },
   rope_bridge = { "73fa3817e5c476a7", "3defb6dcebf4f0d1" },
@@ -76,7 +78,7 @@ end
 
 local names = {}
 for _, n in ipairs { "cloth", "fountain", "galton", "hourglass", "integrators", "ragdoll", "rope_bridge",
-  "soft_bodies", "spring_net", "stacks", "terrain", "worms" } do names[#names + 1] = n end
+  "soft_bodies", "spring_net", "stacks", "terrain", "worms", "landing" } do names[#names + 1] = n end
 
 T.test("every demo keeps its positions and hashes", function()
   for _, n in ipairs(names) do
