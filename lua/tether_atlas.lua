@@ -1,5 +1,6 @@
 -- tether_atlas — the speed/accuracy atlas: runs a scene over a grid of
--- settings (integrator × dt × substeps × iterations × solver order), measures
+-- settings (integrator × dt × substeps × iterations × solver order × substeps
+-- by speed), measures
 -- each point's error against the scene's known answer and its cost, and
 -- writes CSV and log-log plots of error against cost with the Pareto front.
 --
@@ -13,7 +14,7 @@
 --   error_name  what its error measures, with its unit, for the axis
 --   duration    simulated seconds of one run
 --   build(cfg)  → world, ctx: the scene from its start; cfg holds the point's
---               settings (integrator, dt, substeps, iterations, solver) and
+--               settings (integrator, dt, substeps, iterations, solver, travel) and
 --               the atlas sets them on the world after build returns
 --   sample(w, ctx, t)  optional, every `sample_every` s of simulated time
 --                      (outside the timing): record what error needs
@@ -39,8 +40,9 @@ local tether = require "tether"
 local atlas = {}
 
 atlas.DTS = { 1 / 1000, 1 / 480, 1 / 240, 1 / 120, 1 / 60, 1 / 30, 1 / 10 }
-atlas.AXES = { "integrator", "dt", "substeps", "iterations", "solver" }
-local DEFAULT = { integrator = { "verlet" }, dt = { 1 / 60 }, substeps = { 1 }, iterations = { 10 }, solver = { "gauss_seidel" } }
+atlas.AXES = { "integrator", "dt", "substeps", "iterations", "solver", "travel" }
+local DEFAULT = { integrator = { "verlet" }, dt = { 1 / 60 }, substeps = { 1 }, iterations = { 10 }, solver = { "gauss_seidel" },
+  travel = { 0 } } -- travel: w:set_travel's max_travel, 0 = off
 
 local function median(v)
   local s = {}
@@ -80,6 +82,7 @@ local function run_point(scene, cfg, measure, probe)
   w:set_substeps(cfg.substeps)
   w:set_iterations(cfg.iterations)
   w:set_solver(cfg.solver)
+  w:set_travel(cfg.travel)
   local steps = math.max(1, math.floor(scene.duration / cfg.dt + 0.5))
   local chunk = steps
   if scene.sample then chunk = math.max(1, math.floor((scene.sample_every or 0.1) / cfg.dt + 0.5)) end
@@ -134,12 +137,12 @@ local function label(scene, cfg)
 end
 
 atlas.CSV_HEADER = "scene,line,integrator,dt,substeps,iterations,solver,particles,steps,error,"
-  .. "ns_per_particle_step,us_per_particle_second,cost_min,cost_max,pareto"
+  .. "ns_per_particle_step,us_per_particle_second,cost_min,cost_max,pareto,travel"
 
 local function csv_row(scene, r)
-  return ("%s,%s,%s,%.9g,%d,%d,%s,%d,%d,%.6e,%.4f,%.4f,%.4f,%.4f,%d"):format(scene.name, r.line, r.cfg.integrator, r.cfg.dt,
-    r.cfg.substeps, r.cfg.iterations, r.cfg.solver, r.particles, r.steps, r.error, r.ns_step, r.us_per_s, r.us_min,
-    r.us_max, r.pareto and 1 or 0)
+  return ("%s,%s,%s,%.9g,%d,%d,%s,%d,%d,%.6e,%.4f,%.4f,%.4f,%.4f,%d,%.9g"):format(scene.name, r.line, r.cfg.integrator,
+    r.cfg.dt, r.cfg.substeps, r.cfg.iterations, r.cfg.solver, r.particles, r.steps, r.error, r.ns_step, r.us_per_s,
+    r.us_min, r.us_max, r.pareto and 1 or 0, r.cfg.travel)
 end
 atlas.csv_row = csv_row
 
@@ -254,8 +257,9 @@ function atlas.write(scene, rows, dir)
 end
 
 local function describe(r)
-  return ("%s dt 1/%d, %d × %d %s"):format(r.cfg.integrator, math.floor(1 / r.cfg.dt + 0.5), r.cfg.substeps,
-    r.cfg.iterations, r.cfg.solver == "jacobi" and "jacobi" or "gs")
+  return ("%s dt 1/%d, %d × %d %s%s"):format(r.cfg.integrator, math.floor(1 / r.cfg.dt + 0.5), r.cfg.substeps,
+    r.cfg.iterations, r.cfg.solver == "jacobi" and "jacobi" or "gs",
+    r.cfg.travel > 0 and (", max_travel %g"):format(r.cfg.travel) or "")
 end
 atlas.describe = describe
 

@@ -2,8 +2,9 @@
 -- answer: exact (projectile, oscillator, Kepler orbit, the discrete
 -- catenary, the bounce's e²·h, the winch's rate), the pendulum's ODE solved
 -- by RK4 at 1e-5 s here (not by the engine), the cloth against itself at
--- converged settings, the reference pour against zero overlap. Many copies
--- of each small system run side by side, so a step costs enough to time.
+-- converged settings, the reference pour and a fast landing against zero
+-- overlap. Many copies of each small system run side by side, so a step
+-- costs enough to time.
 -- See tether_atlas.lua for what a scene table holds.
 local tether = require "tether"
 local atlas = require "tether_atlas"
@@ -353,6 +354,37 @@ function S.pour(q)
   }
 end
 
+-- A load thrown down at 60 m/s (two radii a step at 60 Hz) into a well 12 m
+-- wide: circles r = 0.5 in rows 1.02 apart. A fixed substep lets the layers
+-- above run into the stopped ones; substeps by speed (w:set_travel) split
+-- only the fast steps. Error: the deepest overlap at any sampled time.
+function S.landing(q)
+  local cols, rows = 11, q and 10 or 30
+  return {
+    name = "landing", title = ("a load of %d circles thrown down at 60 m/s into a well, 2 s"):format(cols * rows),
+    error_name = "deepest overlap in the run (sampled every 1/20 s), of a radius", duration = 2, sample_every = 0.05,
+    particles = cols * rows,
+    sweep = q and { dt = { 1 / 60 }, substeps = { 1, 4 }, iterations = { 8 }, travel = { 0, 0.5 } }
+      or { dt = { 1 / 60 }, substeps = { 1, 2, 4, 8 }, iterations = { 8 }, travel = { 0, 0.25, 0.5, 1 } },
+    line = function(cfg) return cfg.travel > 0 and ("max_travel %g"):format(cfg.travel) or "fixed substeps" end,
+    build = function(cfg)
+      local w = world(cfg, { dt_hint = cfg.dt })
+      w:set_collision {}
+      w:aabb(-7, -1, 7, 0)
+      w:aabb(-7, 0, -6, 80)
+      w:aabb(6, 0, 7, 80)
+      for r = 0, rows - 1 do
+        for c = 0, cols - 1 do
+          w:particle((c - 0.5 * (cols - 1)) * 1.02 + (r % 2) * 0.02, 12 + r * 1.02, { radius = 0.5, vy = -60 })
+        end
+      end
+      return w, { err = 0 }
+    end,
+    sample = function(w, ctx) max_err(ctx, overlap(w, 0.5)) end,
+    error = function(_, ctx) return ctx.err end,
+  }
+end
+
 -- A winch reels a load (with a 5-link rope hanging from it) up at 1 m/s:
 -- the load should rise at exactly that speed.
 function S.winch(q)
@@ -388,7 +420,8 @@ function S.winch(q)
   }
 end
 
-local ORDER = { "projectile", "oscillator", "pendulum_small", "pendulum_large", "kepler", "chain", "cloth", "bounce", "pour", "winch" }
+local ORDER = { "projectile", "oscillator", "pendulum_small", "pendulum_large", "kepler", "chain", "cloth", "bounce", "pour",
+  "landing", "winch" }
 
 local M = { make = S, order = ORDER }
 function M.scenes(quick)
