@@ -39,7 +39,8 @@ end
 
 -- Deepest overlap of two circles, as a share of a radius (every pair: 330 circles).
 local function overlap(w)
-  local xy, n, worst = w:positions(), #w:positions() // 2, 0
+  local xy, worst = w:positions(), 0
+  local n = math.floor(#xy / 2) -- (no // : the demos run under LuaJIT too)
   for i = 0, n - 1 do
     local xi, yi = xy[2 * i + 1], xy[2 * i + 2]
     for j = i + 1, n - 1 do
