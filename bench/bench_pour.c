@@ -1,6 +1,6 @@
 /* tether — the reference pour (src/scenes/, the scene `make crosscheck`
  * uses) against Box2D 2.4.1 doing the same (through src/box2d/): at the
- * default setting (section `pour`), and at the setting issue 21's "max
+ * default setting and with substeps by speed (section `pour`), and at the setting issue 21's "max
  * overlap <= 1 % at rest at >= 5x Box2D" is measured at, from 11 starts
  * (section `pourstarts`: stacking 2, anchored friction, warm start, 1 × 4). */
 #include "bench.h"
@@ -50,11 +50,13 @@ static void side_end(pour_side *o, const double *t, int steps, const pour_acc *a
 }
 
 /* The pour (10 000 circles, 100 wide, 20 s, sleeping off in both), tether
- * at 1 × iterations with collision settings cs (NULL: the world's), jittered by
+ * at 1 × iterations with collision settings cs (NULL: the world's) and
+ * substeps by speed at max_travel (0: off), jittered by
  * seed (0: as built; ts_tether_jitter), and, with b2 set, Box2D (8/3
  * iterations, continuous off) from the unjittered pour beside it, the two
  * taking turns 30 steps at a time. False when a step failed. */
-static bool pour_run(const tt_collision_settings *cs, uint32_t iterations, uint64_t seed, pour_side *tt, pour_side *b2)
+static bool pour_run(const tt_collision_settings *cs, uint32_t iterations, double travel, uint64_t seed, pour_side *tt,
+                     pour_side *b2)
 {
     const int steps = 1200, block = 30;
     ts_scene sc;
@@ -71,7 +73,8 @@ static bool pour_run(const tt_collision_settings *cs, uint32_t iterations, uint6
         printf("pour: %s\n", why);
         return false;
     }
-    bool good = ts_tether_jitter(&p.tt, seed, 0.05) == TT_OK && (!cs || tt_world_set_collision(p.tt.world, cs) == TT_OK);
+    bool good = ts_tether_jitter(&p.tt, seed, 0.05) == TT_OK && (!cs || tt_world_set_collision(p.tt.world, cs) == TT_OK) &&
+                tt_world_set_travel(p.tt.world, travel, 8) == TT_OK;
     const uint32_t n = p.tt.circle_count;
     double *xy = malloc(2 * (size_t)n * sizeof *xy), *t_b2 = calloc(steps, sizeof *t_b2), *t_tt = calloc(steps, sizeof *t_tt);
     pour_acc ab = {0, 0, 0, malloc(2 * (size_t)n * sizeof(double))}, at = {0, 0, 0, malloc(2 * (size_t)n * sizeof(double))};
@@ -119,19 +122,26 @@ void bench_pour(const char *dir)
     printf("(the two take turns, 30 steps each, timing only the step; means over the whole run)\n");
     printf("target: tether >= 20x faster than Box2D at the same accuracy (overlap flagged above %.0f %% of a radius at any step)\n",
            100 * ACC_MAX_OVERLAP);
-    pour_side tt, b2;
-    if (!pour_run(NULL, 8, 0, &tt, &b2)) return;
+    printf("second run: tether with substeps by speed (max_travel 0.5, at most 8), Box2D beside it again\n");
+    pour_side tt, b2, ttr, b2r;
+    if (!pour_run(NULL, 8, 0.0, 0, &tt, &b2) || !pour_run(NULL, 8, 0.5, 0, &ttr, &b2r)) return;
     printf("%10s %12s %10s %10s %16s %16s %12s %10s\n", "engine", "mean ms", "worst ms", "height m", "max overlap (run)",
            "mean overlap", "KE J/kg", "flags");
     side_print("Box2D", &b2);
     side_print("tether", &tt);
     printf("speed-up %.1fx   target >= 20x: %s%s\n", b2.ms / tt.ms, b2.ms / tt.ms >= 20 ? "met" : "NOT met",
            tt.max_run > b2.max_run ? " (and tether's overlap is deeper than Box2D's: not at equal accuracy)" : "");
-    FILE *c2 = bench_csv(dir, "collide_box2d.csv", "engine,steps,mean_ms,worst_ms,height,max_overlap_run,mean_overlap_run,ke_per_kg,flags");
-    const pour_side *o[2] = {&b2, &tt};
-    for (int k = 0; k < 2; k++)
-        fprintf(c2, "%s,1200,%.4f,%.4f,%.3f,%.4f,%.4f,%.4g,%s\n", k ? "tether" : "box2d", o[k]->ms, o[k]->worst, o[k]->end.height,
-                o[k]->max_run, o[k]->mean_run, o[k]->ke, o[k]->max_run > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
+    side_print("Box2D", &b2r);
+    side_print("tether tr", &ttr);
+    printf("speed-up %.1fx with max_travel 0.5%s\n", b2r.ms / ttr.ms,
+           ttr.max_run > b2r.max_run ? " (tether's overlap deeper than Box2D's)" : " (tether's overlap no deeper than Box2D's)");
+    FILE *c2 = bench_csv(dir, "collide_box2d.csv",
+                         "engine,travel,steps,mean_ms,worst_ms,height,max_overlap_run,mean_overlap_run,ke_per_kg,flags");
+    const pour_side *o[4] = {&b2, &tt, &b2r, &ttr};
+    for (int k = 0; k < 4; k++)
+        fprintf(c2, "%s,%.1f,1200,%.4f,%.4f,%.3f,%.4f,%.4f,%.4g,%s\n", k % 2 ? "tether" : "box2d", k < 2 ? 0.0 : 0.5, o[k]->ms,
+                o[k]->worst, o[k]->end.height, o[k]->max_run, o[k]->mean_run, o[k]->ke,
+                o[k]->max_run > ACC_MAX_OVERLAP ? "COLLAPSE" : "ok");
     fclose(c2);
 }
 
@@ -159,7 +169,7 @@ void bench_pour_starts(const char *dir)
     int met = 0;
     for (int k = 0; k < STARTS; k++) {
         pour_side tt, b2;
-        if (!pour_run(&cs, 4, (uint64_t)k, &tt, &b2)) return;
+        if (!pour_run(&cs, 4, 0.0, (uint64_t)k, &tt, &b2)) return;
         ratio[k] = b2.ms / tt.ms;
         worst = fmax(worst, tt.end.max_overlap);
         ke = fmax(ke, tt.ke);
