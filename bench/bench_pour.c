@@ -1,8 +1,9 @@
 /* tether — the reference pour (src/scenes/, the scene `make crosscheck`
  * uses) against Box2D 2.4.1 doing the same (through src/box2d/): at the
- * default setting and with substeps by speed (section `pour`), and at the setting issue 21's "max
- * overlap <= 1 % at rest at >= 5x Box2D" is measured at, from 11 starts
- * (section `pourstarts`: stacking 2, anchored friction, warm start, 1 × 4). */
+ * default setting and with substeps by speed (section `pour`), and at the
+ * setting issue 21's "max overlap <= 1 % at rest at >= 5x Box2D" is
+ * measured at, from 11 starts (section `pourstarts`: stacking 2, anchored
+ * friction, warm start, 1 × 4). */
 #include "bench.h"
 #include "bench_accuracy.h"
 #include "box2d/box2d_scene.h"
