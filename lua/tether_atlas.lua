@@ -41,8 +41,8 @@ local atlas = {}
 
 atlas.DTS = { 1 / 1000, 1 / 480, 1 / 240, 1 / 120, 1 / 60, 1 / 30, 1 / 10 }
 atlas.AXES = { "integrator", "dt", "substeps", "iterations", "solver", "travel" }
-local DEFAULT = { integrator = { "verlet" }, dt = { 1 / 60 }, substeps = { 1 }, iterations = { 10 }, solver = { "gauss_seidel" },
-  travel = { 0 } } -- travel: w:set_travel's max_travel, 0 = off
+local DEFAULT = { integrator = { "verlet" }, dt = { 1 / 60 }, substeps = { 1 }, iterations = { 10 },
+  solver = { "gauss_seidel" }, travel = { 0 } } -- travel: w:set_travel's max_travel, 0 = off
 
 local function median(v)
   local s = {}

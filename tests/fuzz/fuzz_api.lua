@@ -149,7 +149,8 @@ local KEYS = { "mass", "radius", "vx", "vy", "pinned", "user", "category", "mask
                "pressure", "start", "finish", "segments", "pin_start", "pin_finish", "slack", "origin", "width",
                "height", "columns", "rows", "shear_stiffness", "bend_stiffness", "pin_top_corners",
                "pin_top_row", "position", "limits", "center", "ring_radius", "area_stiffness", "area_compliance",
-               "angle", "points", "box", "sensor", "loop", "integrator", "gravity", "wind", "substeps", "max_travel", "max_substeps",
+               "angle", "points", "box", "sensor", "loop", "integrator", "gravity", "wind", "substeps",
+               "max_travel", "max_substeps",
                "iterations", "tolerance", "solver", "dt_hint", "capacity", "max_particles", "cell_size",
                "broadphase", "shapes", "constraints", "springs", "color", "min_radius", "bullet", "events",
                "max_rate", "x", "y", "pair_particles", "spin", "sleep" }
