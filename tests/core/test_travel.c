@@ -246,3 +246,25 @@ TEST(travel_refuses_bad_values_and_leaves_the_world_as_it_was)
     ENSURE(tt_world_reverse(w) == TT_ESTATE);
     tt_world_destroy(w);
 }
+
+/* dt at both ends of its range, a speck of a radius, a tiny max_travel: the
+ * count stays within [substeps, max_substeps] and nothing turns NaN. */
+TEST(travel_at_the_extremes_stays_within_its_bounds)
+{
+    tt_world *w = world((tt_vec2){0, -9.81}, 0.5, 8);
+    ENSURE(w);
+    tt_particle p = ball(w, (tt_vec2){0, 0}, (tt_vec2){0, 0}, 0.5);
+    ENSURE_OK(tt_world_step(w, TT_MAX_DT)); /* a fall of 490 m in a step: 981 radii */
+    ENSURE(last_substeps(w) == 8);
+    ENSURE_OK(tt_world_step(w, TT_MIN_DT));
+    ENSURE(last_substeps(w) == 1); /* falling at 98 m/s, but 1e-7 m a step */
+    ENSURE_OK(tt_particle_set_radius(w, p, 1e-9));
+    ENSURE_OK(tt_world_set_travel(w, 1e-300, 1000)); /* the travel in radii overflows to +inf */
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1000);
+    tt_vec2 x, v;
+    ENSURE_OK(tt_particle_get_position(w, p, &x));
+    ENSURE_OK(tt_particle_get_velocity(w, p, &v));
+    ENSURE(isfinite(x.x) && isfinite(x.y) && isfinite(v.x) && isfinite(v.y));
+    tt_world_destroy(w);
+}
