@@ -172,7 +172,7 @@ TT__HANDLE_U64(tt_terrain, TT_KIND_TERRAIN)
 /// switch keeps each particle's position and velocity.
 typedef enum tt_integrator {
     TT_EULER = 0,         ///< explicit Euler: x += v·dt with the old v; order 1, gains energy
-    TT_SYMPLECTIC_EULER,  ///< semi-implicit Euler: v += a·dt, then x += v·dt; order 1, bounded energy
+    TT_SYMPLECTIC_EULER,  ///< semi-implicit Euler: v += a·dt, then x += v·dt (after a change of dt, a·(dt + dt_prev)/2); order 1, bounded energy
     TT_LEAPFROG,          ///< velocity Verlet (kick-drift-kick), two force evaluations; order 2
     TT_VERLET,            ///< position Verlet, v implied by (x − x_old)/dt; order 2; the default
     TT_RK4,               ///< classic Runge-Kutta 4, four force evaluations; order 4 (force-only scenes)

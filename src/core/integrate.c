@@ -254,10 +254,18 @@ static uint32_t euler(tt_world *w, double dt, bool forces, bool symplectic)
     if (forces && !accel(w, px, py, vx, vy, &ax, &ay)) return 0;
     const double *inv = w->inv_mass;
     const double gx = w->gravity.x, gy = w->gravity.y, f = damping_factor(w, dt);
+    /* Symplectic Euler's velocity after a step is the mean over that step,
+     * so the kick spans the middle of the last step to the middle of this
+     * one: the mean of the two lengths. A change of dt (the caller's, or
+     * substeps by speed) then keeps a constant acceleration's samples on
+     * their parabola, where v += a·dt jumped by a·(dt − dt_prev)/2. One dt:
+     * (dt + dt)/2 = dt, the same bits. Before the world's first step there
+     * is no last step (dt_prev is the hint): the plain kick. */
+    const double kick = symplectic && w->stats.steps > 0 ? 0.5 * (dt + w->dt_prev) : dt;
     uint32_t bad = 0;
     for (uint32_t i = 0; i < n; i++) {
         if (inv[i] == 0.0) continue;
-        double nvx = vx[i] + (forces ? ax[i] : gx) * dt, nvy = vy[i] + (forces ? ay[i] : gy) * dt;
+        double nvx = vx[i] + (forces ? ax[i] : gx) * kick, nvy = vy[i] + (forces ? ay[i] : gy) * kick;
         if (symplectic) { /* damp, then drift with the new velocity: Verlet's twin */
             nvx *= f;
             nvy *= f;
