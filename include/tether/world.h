@@ -32,7 +32,8 @@ typedef struct tt_world_def {
     double max_travel;        ///< 0 (default): every step runs `substeps`. Else a step runs more substeps, up to
                               ///< max_substeps, where a particle would move more than max_travel times its radius
                               ///< in one (its speed as the step begins, plus gravity's over the step): a scene pays
-                              ///< for substeps only while something is fast (a pour landing, a shot). 0…TT_MAX_VALUE
+                              ///< for substeps only while something is fast (a pour landing, a shot). Only where
+                              ///< contacts can be found (particle contacts, a shape, a terrain). 0…TT_MAX_VALUE
     uint32_t max_substeps;    ///< the most substeps max_travel may ask for; default 8; 1…1000 (0: 8; below `substeps`: `substeps`)
     uint32_t iterations;      ///< most relaxation sweeps per substep; default 10; 1…10 000
     double tolerance;         ///< sweeps stop once the largest constraint error is ≤ this, m; default 1e-6; ≥ 0
@@ -145,8 +146,8 @@ TT_API double tt_world_get_fixed_point(const tt_world *w);
 TT_API tt_result tt_world_set_substeps(tt_world *w, uint32_t substeps);
 TT_API uint32_t tt_world_get_substeps(const tt_world *w);
 /// Substeps by speed (tt_world_def.max_travel): max_travel in radii per substep
-/// (finite, ≥ 0; 0 switches it off), max_substeps 1…1000. Not in a world that
-/// runs backwards (tt_world_reverse refuses it: the count follows the speed).
+/// (finite, ≥ 0; 0 switches it off), max_substeps 1…1000. It acts only where
+/// contacts can be found (particle contacts, a shape, a terrain).
 TT_API tt_result tt_world_set_travel(tt_world *w, double max_travel, uint32_t max_substeps);
 /// max_travel (0: off); max_substeps (may be NULL) gets the cap.
 TT_API double tt_world_get_travel(const tt_world *w, uint32_t *max_substeps);

@@ -505,6 +505,8 @@ bool tt__fixed_quantum_ok(double q);
  * cap a world has unless told (tt_world_def.max_substeps 0 or unsaved). */
 #define TT__MAX_SUBSTEPS_DEFAULT 8u
 uint32_t tt__travel_substeps(const tt_world *w, double dt);
+/* Whether a step can find contacts: particle contacts on, a shape or a terrain (travel.c). */
+bool tt__world_collides(const tt_world *w);
 double tt__fixed_range(const tt_world *w);                /* 2^51·q: the largest |coordinate| */
 bool tt__fixed_in_range(const tt_world *w, tt_vec2 p);   /* true when off */
 tt_vec2 tt__fixed_snap_vec(const tt_world *w, tt_vec2 p); /* p when off */

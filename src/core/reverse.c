@@ -8,7 +8,6 @@
  * measures how close). */
 #include "core/internal.h"
 #include "core/spin.h"
-#include "tether/collide.h"
 #include "tether/constraint.h"
 
 /* What of w stops its motion from running backwards, or NULL. */
@@ -16,11 +15,9 @@ static const char *irreversible(const tt_world *w)
 {
     if (w->integrator != TT_VERLET) return "the integrator (only 'verlet' keeps the previous position; this world uses another)";
     if (w->damping != 0.0) return "velocity damping (damping > 0)";
-    if (w->max_travel != 0.0) return "substeps by speed (max_travel > 0: a step backwards would start from other speeds)";
     if (tt_world_constraint_count(w) > 0) return "constraints (position corrections are not symmetric in time)";
-    tt_collision_settings cs;
-    if (tt_world_shape_count(w) > 0 || (tt_world_get_collision(w, &cs) == TT_OK && cs.particles))
-        return "collisions (shapes or particle contacts)";
+    /* substeps by speed acts only here too (a step backwards would start from other speeds, so run another count) */
+    if (tt__world_collides(w)) return "collisions (shapes, terrain or particle contacts)";
     for (uint32_t i = 0; i < w->spool.count; i++)
         if (w->springs[i].alive && w->springs[i].c != 0.0) return "spring damping (a spring with damping > 0)";
     for (uint32_t k = 0; k < w->fresh_count; k++)

@@ -10,16 +10,29 @@
  * same count, so replays, snapshots and journals step alike) and a larger
  * one is a time-corrected Verlet step like any change of dt. */
 #include "core/internal.h"
+#include "tether/collide.h"
+#include "tether/terrain.h"
 
 #include <math.h>
 
-/* The substeps the step of dt runs: w->substeps, or more where a movable,
- * awake particle with a radius would travel farther than max_travel radii
- * in one (|v|·dt + |g|·dt²/2 over the step), at most max_substeps. */
+/* Whether a step can find contacts: particle contacts on, or a shape or a
+ * terrain. Substeps by speed is for contacts, so a world without them runs
+ * its set substeps however fast it is (and can run backwards). */
+bool tt__world_collides(const tt_world *w)
+{
+    tt_collision_settings cs;
+    return tt_world_shape_count(w) > 0 || tt_world_terrain_count(w) > 0 ||
+           (tt_world_get_collision(w, &cs) == TT_OK && cs.particles);
+}
+
+/* The substeps the step of dt runs: w->substeps, or more where contacts
+ * can be found and a movable, awake particle with a radius would travel
+ * farther than max_travel radii in one (|v|·dt + |g|·dt²/2 over the step),
+ * at most max_substeps. */
 uint32_t tt__travel_substeps(const tt_world *w, double dt)
 {
     const uint32_t base = w->substeps;
-    if (w->max_travel == 0.0 || w->max_substeps <= base) return base;
+    if (w->max_travel == 0.0 || w->max_substeps <= base || !tt__world_collides(w)) return base;
     const double fall = 0.5 * sqrt(w->gravity.x * w->gravity.x + w->gravity.y * w->gravity.y) * dt * dt;
     double need = 0.0; /* the largest travel over the step, in radii */
     for (uint32_t i = 0; i < w->ppool.count; i++) {

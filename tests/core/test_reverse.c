@@ -109,7 +109,7 @@ TEST(reverse_refuses_every_irreversible_feature_naming_it_and_changes_nothing)
 {
     struct { const char *expect; int kind; } cases[] = {
         {"integrator", 0}, {"velocity damping", 1}, {"constraints", 2}, {"collisions", 3}, {"spring damping", 4},
-        {"a velocity set since the last step", 5},
+        {"a velocity set since the last step", 5}, {"collisions", 6}, {"collisions", 7},
     };
     for (unsigned k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         tt_world *w = verlet_world((tt_vec2){0, -10});
@@ -125,6 +125,21 @@ TEST(reverse_refuses_every_irreversible_feature_naming_it_and_changes_nothing)
         case 3: { tt_shape_def sd = tt_shape_def_default(); sd.a = (tt_vec2){-5, -5}; sd.b = (tt_vec2){5, -5}; tt_shape_create(w, &sd); break; }
         case 4: { tt_spring_def sd = tt_spring_def_default(); sd.a = a; sd.b = b; sd.damping = 0.5; tt_spring_create(w, &sd); break; }
         case 5: tt_particle_set_velocity(w, a, (tt_vec2){1, 2}); break;
+        case 6: { /* a terrain alone, particle contacts off */
+            tt_mask *m = tt_mask_create(8, 8, true);
+            tt_terrain_def td = tt_terrain_def_default();
+            td.solid = m;
+            td.origin = (tt_vec2){-5, -5};
+            tt_terrain_create(w, &td);
+            tt_mask_destroy(m);
+            break;
+        }
+        case 7: { /* particle contacts, and substeps by speed with them */
+            tt_collision_settings cs = tt_collision_settings_default();
+            tt_world_set_collision(w, &cs);
+            tt_world_set_travel(w, 0.5, 8);
+            break;
+        }
         }
         const uint64_t h = tt_world_hash(w);
         ENSURE(tt_world_reverse(w) == TT_ESTATE);

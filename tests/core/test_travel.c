@@ -18,7 +18,10 @@ static tt_world *world(tt_vec2 g, double travel, uint32_t most)
     wd.sleep = false;
     wd.max_travel = travel;
     wd.max_substeps = most;
-    return tt_world_create(&wd);
+    tt_world *w = tt_world_create(&wd);
+    tt_collision_settings cs = tt_collision_settings_default(); /* it acts where contacts can be found */
+    if (w) tt_world_set_collision(w, &cs);
+    return w;
 }
 
 static tt_particle ball(tt_world *w, tt_vec2 at, tt_vec2 v, double r)
@@ -242,8 +245,43 @@ TEST(travel_refuses_bad_values_and_leaves_the_world_as_it_was)
     tt_world *z = tt_world_create(&wd);
     ENSURE(z && tt_world_get_travel(z, &most) == 0.5 && most == 8);
     tt_world_destroy(z);
-    /* a step backwards would start from other speeds, so another count */
+    /* a step backwards would start from other speeds, so another count: it acts only where contacts
+     * can be found, which reverse refuses */
     ENSURE(tt_world_reverse(w) == TT_ESTATE);
+    tt_world_destroy(w);
+}
+
+/* Substeps by speed is for contacts: where none can be found (no particle
+ * contacts, shapes or terrain), a step runs the set substeps however fast
+ * its particles, and such a world runs backwards. */
+TEST(travel_leaves_a_world_without_contacts_at_its_substeps)
+{
+    tt_world_def wd = tt_world_def_default();
+    wd.max_travel = 0.5;
+    wd.integrator = TT_VERLET;
+    tt_world *w = tt_world_create(&wd);
+    ENSURE(w);
+    ball(w, (tt_vec2){0, 0}, (tt_vec2){0, 59}, 0.5); /* 1.97 radii a step */
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1);
+    ENSURE_OK(tt_world_reverse(w));
+    tt_collision_settings cs = tt_collision_settings_default();
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 4);
+    cs.particles = false; /* a shape instead */
+    ENSURE_OK(tt_world_set_collision(w, &cs));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1);
+    tt_shape_def sd = tt_shape_def_default();
+    sd.a = (tt_vec2){-50, -50};
+    sd.b = (tt_vec2){50, -50};
+    tt_shape s = tt_shape_create(w, &sd);
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 4);
+    ENSURE_OK(tt_shape_destroy(w, s));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1);
     tt_world_destroy(w);
 }
 

@@ -88,6 +88,9 @@ T.test("substeps by speed", function()
   T.eq(w:stats().substeps, 0, "no step yet")
   w:particle(0, 0, { radius = 0.5, vy = 59 }) -- 0.98 m a step: 1.97 radii, 4 substeps of 0.5
   w:step(1 / 60)
+  T.eq(w:stats().substeps, 1, "nothing to collide with: the setting")
+  w:set_collision() -- it is for contacts
+  w:step(1 / 60)
   T.eq(w:stats().substeps, 4, "the count the speed asks")
   w:set_travel(0.5, 3); w:step(1 / 60)
   T.eq(w:stats().substeps, 3, "capped")
