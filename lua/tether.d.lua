@@ -49,7 +49,7 @@ local tether = {}
 ---@field dt_hint? number the step you expect to use, s, in [1e-9, 10]; default 1/60
 ---@field capacity? integer particles to reserve up front, 0..16777216; default 0
 ---@field substeps? integer substeps per step, 1..1000; default 1
----@field max_travel? number substeps by speed: a step runs more substeps (up to max_substeps) where a particle would move more than max_travel radii in one, in [0, 1e12]; default 0 = off
+---@field max_travel? number substeps by speed: a step runs more substeps (up to max_substeps) where a particle would move more than max_travel radii in one relative to what it can meet (other particles, pinned or sleeping ones, shapes and terrain within reach), in [0, 1e12]; default 0 = off
 ---@field max_substeps? integer the most substeps max_travel may ask for, 1..1000; default 8
 ---@field iterations? integer most relaxation sweeps per substep, 1..10000; default 10
 ---@field tolerance? number sweeps stop once the largest error is <= this, m; default 1e-6

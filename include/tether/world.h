@@ -31,7 +31,8 @@ typedef struct tt_world_def {
     uint32_t substeps;        ///< each step runs this many substeps of dt/substeps; default 1; 1…1000
     double max_travel;        ///< 0 (default): every step runs `substeps`. Else a step runs more substeps, up to
                               ///< max_substeps, where a particle would move more than max_travel times its radius
-                              ///< in one (its speed as the step begins, plus gravity's over the step): a scene pays
+                              ///< in one relative to what it can meet (other particles, pinned or sleeping ones,
+                              ///< shapes and terrain within reach; its speed as the step begins, plus gravity's over the step): a scene pays
                               ///< for substeps only while something is fast (a pour landing, a shot). Only where
                               ///< contacts can be found (particle contacts, a shape, a terrain). 0…TT_MAX_VALUE
     uint32_t max_substeps;    ///< the most substeps max_travel may ask for; default 8; 1…1000 (0: 8; below `substeps`: `substeps`)

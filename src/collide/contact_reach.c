@@ -10,6 +10,7 @@
  * instruction a particle), and the box only when that does not separate. A
  * NaN position cannot touch anything: every extreme ignores it. */
 #include "collide_internal.h"
+#include "terrain_internal.h"
 
 #ifdef __SSE2__
 #include <emmintrin.h>
@@ -181,4 +182,21 @@ bool tt__shapes_out_of_reach(const tt_world *w, tt__collide *c, uint32_t n)
             return true;
         }
     return !tt__sgrid_near(c, lox - m, loy - m, hix + m, hiy + m);
+}
+
+/* For substeps by speed (core/travel.c), before the step: whether a shape
+ * or terrain lies within the box. The index is brought up to date first
+ * (as the step's detection would), so the answer is the same for a world
+ * and its reloaded copy; without memory for that, as if one did. */
+bool tt__statics_within(tt_world *w, double lox, double loy, double hix, double hiy)
+{
+    tt__collide *c = tt__collide_peek(w);
+    if (!c) return false;
+    if (c->dirty && tt__shapes_rebuild(w, c) != TT_OK) return true;
+    if (tt__sgrid_near(c, lox, loy, hix, hiy)) return true;
+    for (uint32_t i = 0; c->terr && i < c->terr->pool.count; i++) {
+        const tt__terrain *T = &c->terr->t[i];
+        if (T->alive && T->lox <= hix && lox <= T->hix && T->loy <= hiy && loy <= T->hiy) return true;
+    }
+    return false;
 }

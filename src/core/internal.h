@@ -504,7 +504,9 @@ bool tt__fixed_quantum_ok(double q);
 /* travel.c: the substeps a step of dt runs (tt_world_def.max_travel); the
  * cap a world has unless told (tt_world_def.max_substeps 0 or unsaved). */
 #define TT__MAX_SUBSTEPS_DEFAULT 8u
-uint32_t tt__travel_substeps(const tt_world *w, double dt);
+uint32_t tt__travel_substeps(tt_world *w, double dt);
+/* Whether a shape or terrain lies within the box (collide/contact_reach.c; brings the static index up to date). */
+bool tt__statics_within(tt_world *w, double lox, double loy, double hix, double hiy);
 /* Whether a step can find contacts: particle contacts on, a shape or a terrain (travel.c). */
 bool tt__world_collides(const tt_world *w);
 double tt__fixed_range(const tt_world *w);                /* 2^51·q: the largest |coordinate| */

@@ -33,6 +33,16 @@ static tt_particle ball(tt_world *w, tt_vec2 at, tt_vec2 v, double r)
     return tt_particle_create(w, &pd);
 }
 
+/* Something that stands still, far off: the speeds count against it. */
+static void post(tt_world *w)
+{
+    tt_particle_def pd = tt_particle_def_default();
+    pd.position = (tt_vec2){-1000, 0};
+    pd.radius = 0.5;
+    pd.pinned = true;
+    tt_particle_create(w, &pd);
+}
+
 static uint32_t last_substeps(const tt_world *w)
 {
     tt_stats st;
@@ -83,6 +93,7 @@ TEST(travel_keeps_free_flight_on_its_parabola)
     tt_world *w = world((tt_vec2){0, g}, 0.5, 8);
     ENSURE(w);
     tt_particle p = ball(w, (tt_vec2){0, 0}, (tt_vec2){3, v0}, 0.5);
+    post(w);
     uint32_t seen_lo = 100, seen_hi = 0;
     double worst = 0;
     for (int s = 1; s <= 1200; s++) {
@@ -207,6 +218,7 @@ TEST(travel_is_saved_and_loaded_with_the_last_count)
     tt_world *w = world((tt_vec2){0, -9.81}, 0.5, 6);
     ENSURE(w);
     ball(w, (tt_vec2){0, 0}, (tt_vec2){0, 100}, 0.5);
+    post(w);
     for (int s = 0; s < 3; s++) tt_world_step(w, 1.0 / 60);
     ENSURE(last_substeps(w) == 6);
     same_after_reload(w);
@@ -262,26 +274,75 @@ TEST(travel_leaves_a_world_without_contacts_at_its_substeps)
     tt_world *w = tt_world_create(&wd);
     ENSURE(w);
     ball(w, (tt_vec2){0, 0}, (tt_vec2){0, 59}, 0.5); /* 1.97 radii a step */
+    post(w);
     ENSURE_OK(tt_world_step(w, 1.0 / 60));
     ENSURE(last_substeps(w) == 1);
     ENSURE_OK(tt_world_reverse(w));
     tt_collision_settings cs = tt_collision_settings_default();
     ENSURE_OK(tt_world_set_collision(w, &cs));
     ENSURE_OK(tt_world_step(w, 1.0 / 60));
-    ENSURE(last_substeps(w) == 4);
-    cs.particles = false; /* a shape instead */
+    ENSURE(last_substeps(w) == 4); /* against the post */
+    ENSURE(tt_world_reverse(w) == TT_ESTATE);
+    cs.particles = false; /* shapes and terrain only */
     ENSURE_OK(tt_world_set_collision(w, &cs));
     ENSURE_OK(tt_world_step(w, 1.0 / 60));
     ENSURE(last_substeps(w) == 1);
-    tt_shape_def sd = tt_shape_def_default();
-    sd.a = (tt_vec2){-50, -50};
-    sd.b = (tt_vec2){50, -50};
-    tt_shape s = tt_shape_create(w, &sd);
+    tt_world_destroy(w);
+}
+
+/* The speed that counts is relative to what a particle can meet: the other
+ * particles (with particle contacts on), what stands still (pinned or
+ * sleeping particles), and shapes and terrain within the step's reach. A
+ * scene falling as one with nothing near pays nothing. */
+TEST(travel_counts_motion_relative_to_what_can_be_met)
+{
+    tt_world *w = world((tt_vec2){0, -9.81}, 0.5, 8);
+    ENSURE(w);
+    tt_particle a = ball(w, (tt_vec2){0, 0}, (tt_vec2){0, 59}, 0.5), b = ball(w, (tt_vec2){5, 0}, (tt_vec2){0, 59}, 0.5);
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1); /* flying as one */
+    ENSURE_OK(tt_particle_set_velocity(w, a, (tt_vec2){0, 0}));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 4); /* 59 m/s apart */
+    ENSURE_OK(tt_particle_set_pinned(w, a, true)); /* what stands still counts, however far */
+    ENSURE_OK(tt_particle_set_position(w, a, (tt_vec2){1e6, 0}, TT_MOVE_RESET_VELOCITY));
     ENSURE_OK(tt_world_step(w, 1.0 / 60));
     ENSURE(last_substeps(w) == 4);
-    ENSURE_OK(tt_shape_destroy(w, s));
+    ENSURE_OK(tt_particle_set_radius(w, a, 0.0)); /* but not a point */
     ENSURE_OK(tt_world_step(w, 1.0 / 60));
     ENSURE(last_substeps(w) == 1);
+    /* shapes: only within the step's reach (the ball's box grown by its radius and travel) */
+    tt_shape_def sd = tt_shape_def_default();
+    sd.a = (tt_vec2){1e6, -50};
+    sd.b = (tt_vec2){1e6, 50};
+    tt_shape far = tt_shape_create(w, &sd);
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1);
+    ENSURE_OK(tt_shape_destroy(w, far));
+    sd.a = (tt_vec2){6, -1e3}; /* a wall 1 m beside the flying ball */
+    sd.b = (tt_vec2){6, 1e3};
+    tt_shape near = tt_shape_create(w, &sd);
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) >= 3);
+    ENSURE_OK(tt_shape_destroy(w, near));
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1);
+    /* terrain likewise */
+    tt_mask *m = tt_mask_create(8, 8, true);
+    tt_terrain_def td = tt_terrain_def_default();
+    td.solid = m;
+    td.origin = (tt_vec2){1e5, 0};
+    tt_terrain t = tt_terrain_create(w, &td);
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) == 1);
+    ENSURE_OK(tt_terrain_destroy(w, t));
+    tt_vec2 x;
+    ENSURE_OK(tt_particle_get_position(w, b, &x));
+    td.origin = (tt_vec2){5.8, x.y}; /* 0.3 m beside it */
+    ENSURE(tt_terrain_create(w, &td).gen != 0);
+    ENSURE_OK(tt_world_step(w, 1.0 / 60));
+    ENSURE(last_substeps(w) >= 3);
+    tt_mask_destroy(m);
     tt_world_destroy(w);
 }
 
