@@ -19,6 +19,9 @@ void bench_collide(const char *dir);
 /* The reference pour against Box2D 2.4.1 (bench_pour.c): at the default
  * setting; with stacking and anchored friction from 11 starts. */
 void bench_pour(const char *dir);
+/* The pile settings issue 21's "<= 1 % at rest" is measured at (pourstarts,
+ * and a pour100k row): stacking 2, anchored friction, warm start 0.75, on cs. */
+void bench_pile_settings(tt_collision_settings *cs);
 void bench_pour_starts(const char *dir);
 void bench_pour100k(const char *dir);
 void bench_render(const char *dir);

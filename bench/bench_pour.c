@@ -154,6 +154,13 @@ void bench_pour(const char *dir)
  * pour: its time, for the ratio, hardly depends on the start), the two
  * taking turns 30 steps at a time. Accuracy at 20 s (the issue's end
  * state): the deepest overlap, the mean, KE; and the deepest of the run. */
+void bench_pile_settings(tt_collision_settings *cs)
+{
+    cs->stacking = 2.0;
+    cs->anchored_friction = true;
+    cs->warm_start = 0.75;
+}
+
 void bench_pour_starts(const char *dir)
 {
     printf("\n== The reference pour, stacking 2, anchored friction, warm start 0.75, 1 x 4, from 11 starts (the pour, and jittered"
@@ -163,9 +170,7 @@ void bench_pour_starts(const char *dir)
            "tether ms", "Box2D ms", "ratio");
     FILE *csv = bench_csv(dir, "pour_starts.csv", "seed,max_overlap,mean_overlap,ke20,max_overlap_run,height,ms,box2d_ms");
     tt_collision_settings cs = tt_collision_settings_default();
-    cs.stacking = 2.0;
-    cs.anchored_friction = true;
-    cs.warm_start = 0.75;
+    bench_pile_settings(&cs);
     double ratio[STARTS], worst = 0.0, ke = 0.0;
     int met = 0;
     for (int k = 0; k < STARTS; k++) {

@@ -25,9 +25,7 @@ static void row_settings(ts_tether *t, const row100k *r)
     if (!r->piled) return;
     tt_collision_settings cs;
     tt_world_get_collision(t->world, &cs);
-    cs.stacking = 2.0;
-    cs.anchored_friction = true;
-    cs.warm_start = 0.75;
+    bench_pile_settings(&cs);
     tt_world_set_collision(t->world, &cs);
 }
 
